@@ -1,0 +1,47 @@
+//! `femdem`: the command-line driver of the femdem FEMDEM simulator.
+//!
+//! This is the only crate (with xtask) that knows about TOML case files and
+//! the terminal; it composes the library crates.
+
+mod case;
+mod commands;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Combined finite–discrete element simulation of fracture in quasi-brittle
+/// materials.
+#[derive(Parser)]
+#[command(name = "femdem", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Build a case's mesh with joints and print its statistics.
+    Check {
+        /// The TOML case file.
+        case: PathBuf,
+        /// Print one JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check { case, json } => commands::check::run(&case, json),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

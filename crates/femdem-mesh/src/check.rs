@@ -1,0 +1,107 @@
+//! Mesh validity checks.
+
+use femdem_core::tet::{edge_lengths, signed_volume};
+use rayon::prelude::*;
+
+use crate::{MeshError, TetMesh, face_adjacency};
+
+/// A tet whose volume is at most this fraction of its longest edge cubed is
+/// degenerate (a regular tet has `V = ℓ³ / (6√2) ≈ 0.118 ℓ³`).
+pub const DEGENERATE_VOLUME_RATIO: f64 = 1e-9;
+
+/// Checks that the mesh can be simulated: array lengths agree, node and
+/// region ids are in range, every tet has positive, non-degenerate volume,
+/// every node is used by some tet, and no face is shared by more than two
+/// tets. Returns the first problem found (lowest tet index first).
+///
+/// # Errors
+/// The [`MeshError`] that describes the first problem.
+pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
+    if mesh.tet_region.len() != mesh.tets.len() {
+        return Err(MeshError::Inconsistent(format!(
+            "{} tets but {} region ids",
+            mesh.tets.len(),
+            mesh.tet_region.len()
+        )));
+    }
+    if let Some(t) = mesh.tet_region.iter().position(|&r| r as usize >= mesh.regions.len()) {
+        return Err(MeshError::Inconsistent(format!(
+            "tet {t} has region id {} but only {} regions exist",
+            mesh.tet_region[t],
+            mesh.regions.len()
+        )));
+    }
+    let n = mesh.coords.len();
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        if let Some(&node) = tet.iter().find(|&&v| v as usize >= n) {
+            return Err(MeshError::NodeOutOfRange { tet: t, node, num_nodes: n });
+        }
+    }
+    let bad = mesh.tets.par_iter().enumerate().find_first(|(t, _)| {
+        let p = mesh.tet_points(*t);
+        let lmax = edge_lengths(&p).into_iter().fold(0.0, f64::max);
+        signed_volume(&p) <= DEGENERATE_VOLUME_RATIO * lmax.powi(3)
+    });
+    if let Some((t, _)) = bad {
+        let volume = signed_volume(&mesh.tet_points(t));
+        let kind = if volume < 0.0 { "inverted" } else { "degenerate" };
+        return Err(MeshError::BadTet { tet: t, kind, volume });
+    }
+    let mut used = vec![false; n];
+    for tet in &mesh.tets {
+        for &v in tet {
+            used[v as usize] = true;
+        }
+    }
+    let unused = used.iter().filter(|&&u| !u).count();
+    if unused > 0 {
+        let first = used.iter().position(|&u| !u).unwrap_or(0) as u32;
+        return Err(MeshError::UnreferencedNodes { count: unused, first });
+    }
+    face_adjacency(mesh).map(|_| ())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Region;
+
+    fn one_tet(d: [f64; 3]) -> TetMesh {
+        TetMesh {
+            coords: vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], d],
+            tets: vec![[0, 1, 2, 3]],
+            tet_region: vec![0],
+            regions: vec![Region { name: "r".into(), breakable: true }],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn positive_tet_passes() {
+        assert_eq!(check(&one_tet([0., 0., 1.])), Ok(()));
+    }
+
+    #[test]
+    fn inverted_tet_is_reported() {
+        assert!(matches!(check(&one_tet([0., 0., -1.])), Err(MeshError::BadTet { tet: 0, kind: "inverted", .. })));
+    }
+
+    #[test]
+    fn flat_tet_is_degenerate() {
+        assert!(matches!(check(&one_tet([0.3, 0.3, 0.0])), Err(MeshError::BadTet { kind: "degenerate", .. })));
+    }
+
+    #[test]
+    fn unused_node_is_reported() {
+        let mut m = one_tet([0., 0., 1.]);
+        m.coords.push([5., 5., 5.]);
+        assert_eq!(check(&m), Err(MeshError::UnreferencedNodes { count: 1, first: 4 }));
+    }
+
+    #[test]
+    fn node_out_of_range_is_reported() {
+        let mut m = one_tet([0., 0., 1.]);
+        m.tets[0][3] = 9;
+        assert!(matches!(check(&m), Err(MeshError::NodeOutOfRange { node: 9, .. })));
+    }
+}

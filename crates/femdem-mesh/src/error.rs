@@ -1,0 +1,76 @@
+//! Errors of the mesh crate.
+
+use thiserror::Error;
+
+/// Everything that can go wrong while building, reading or checking a mesh.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MeshError {
+    /// A generator parameter is out of range.
+    #[error("invalid generator parameter `{name}`: {reason}")]
+    InvalidParameter {
+        /// Parameter name as it appears in a case file.
+        name: &'static str,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// The 2D triangulation failed (e.g. a self-intersecting outline).
+    #[error("2D triangulation failed: {0}")]
+    Triangulation(String),
+    /// A malformed Gmsh MSH file.
+    #[error("MSH line {line}: {message}")]
+    Msh {
+        /// 1-based line number in the file.
+        line: usize,
+        /// What is wrong there.
+        message: String,
+    },
+    /// A tet with negative or (near) zero volume.
+    #[error("tet {tet} is {kind} (volume {volume:.3e} m³)")]
+    BadTet {
+        /// Tet index.
+        tet: usize,
+        /// `"inverted"` or `"degenerate"`.
+        kind: &'static str,
+        /// Its signed volume.
+        volume: f64,
+    },
+    /// A tet refers to a node that does not exist.
+    #[error("tet {tet} refers to node {node}, but the mesh has {num_nodes} nodes")]
+    NodeOutOfRange {
+        /// Tet index.
+        tet: usize,
+        /// The bad node id.
+        node: u32,
+        /// Number of nodes in the mesh.
+        num_nodes: usize,
+    },
+    /// Nodes that no tet uses.
+    #[error("{count} node(s) are used by no tet (first: node {first})")]
+    UnreferencedNodes {
+        /// How many.
+        count: usize,
+        /// The first one.
+        first: u32,
+    },
+    /// A face shared by more than two tets (non-manifold mesh).
+    #[error("face with nodes {nodes:?} is shared by {count} tets (at most 2 allowed)")]
+    NonManifoldFace {
+        /// The face's node ids, sorted.
+        nodes: [u32; 3],
+        /// How many tets share it.
+        count: usize,
+    },
+    /// A pre-existing fracture face that cannot be honoured.
+    #[error("fracture face of tet {tet} (local face {local}) {reason}")]
+    BadFractureFace {
+        /// Tet index.
+        tet: u32,
+        /// Local face index.
+        local: u8,
+        /// Why.
+        reason: &'static str,
+    },
+    /// Arrays of the mesh that disagree with each other.
+    #[error("inconsistent mesh: {0}")]
+    Inconsistent(String),
+}

@@ -1,0 +1,867 @@
+//! The ASCII MSH 4.1 reader.
+//!
+//! The file is read line by line: Gmsh writes one record per line, so a
+//! record with too few or too many fields is reported on its own line
+//! instead of shifting every later record. Counts given by headers are
+//! checked against what follows, but never trusted for allocation.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::fmt;
+use std::str::{FromStr, SplitAsciiWhitespace};
+
+use femdem_core::tet::signed_volume;
+
+use crate::faces::{face_key, sorted_face_keys};
+use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
+
+/// Gmsh element type of the 3-node triangle.
+const TRIANGLE: u32 = 2;
+/// Gmsh element type of the 4-node tetrahedron.
+const TET: u32 = 4;
+/// Name of the region that takes tets of volumes in no physical group.
+const UNNAMED: &str = "unnamed";
+
+/// What [`read_msh_report`] left out of the mesh or changed in it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct MshReport {
+    /// Elements that are neither 4-node tets nor 3-node triangles, counted
+    /// by Gmsh element type number (see [`element_type_name`]).
+    pub skipped_elements: BTreeMap<u32, usize>,
+    /// Triangles on surfaces in no physical group: they name no boundary
+    /// group, so they are not kept.
+    pub ungrouped_triangles: usize,
+    /// Nodes used by no tet, dropped from the mesh.
+    pub dropped_nodes: usize,
+    /// Tets given in negative orientation, reoriented by swapping their
+    /// last two nodes.
+    pub reoriented_tets: usize,
+}
+
+impl fmt::Display for MshReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut parts = Vec::new();
+        if !self.skipped_elements.is_empty() {
+            let skipped: Vec<String> = self
+                .skipped_elements
+                .iter()
+                .map(|(&ty, &n)| match element_type_name(ty) {
+                    Some(name) => format!("{n} {name} (type {ty})"),
+                    None => format!("{n} of type {ty}"),
+                })
+                .collect();
+            parts.push(format!("skipped elements: {}", skipped.join(", ")));
+        }
+        if self.ungrouped_triangles > 0 {
+            parts.push(format!(
+                "{} triangle(s) in no physical surface ignored",
+                self.ungrouped_triangles
+            ));
+        }
+        if self.dropped_nodes > 0 {
+            parts.push(format!("{} node(s) used by no tet dropped", self.dropped_nodes));
+        }
+        if self.reoriented_tets > 0 {
+            parts.push(format!("{} tet(s) reoriented", self.reoriented_tets));
+        }
+        if parts.is_empty() {
+            f.write_str("nothing skipped")
+        } else {
+            f.write_str(&parts.join("; "))
+        }
+    }
+}
+
+/// Gmsh element types known by name, with their node counts.
+const ELEMENT_TYPES: [(u32, &str, usize); 19] = [
+    (1, "2-node line", 2),
+    (2, "3-node triangle", 3),
+    (3, "4-node quadrangle", 4),
+    (4, "4-node tetrahedron", 4),
+    (5, "8-node hexahedron", 8),
+    (6, "6-node prism", 6),
+    (7, "5-node pyramid", 5),
+    (8, "3-node line", 3),
+    (9, "6-node triangle", 6),
+    (10, "9-node quadrangle", 9),
+    (11, "10-node tetrahedron", 10),
+    (12, "27-node hexahedron", 27),
+    (13, "18-node prism", 18),
+    (14, "14-node pyramid", 14),
+    (15, "point", 1),
+    (16, "8-node quadrangle", 8),
+    (17, "20-node hexahedron", 20),
+    (18, "15-node prism", 15),
+    (19, "13-node pyramid", 13),
+];
+
+/// The Gmsh name of element type `ty` (e.g. `"2-node line"` for 1), for the
+/// common first- and second-order types; `None` for others.
+pub fn element_type_name(ty: u32) -> Option<&'static str> {
+    ELEMENT_TYPES.iter().find(|e| e.0 == ty).map(|e| e.1)
+}
+
+fn element_type_nodes(ty: u32) -> Option<usize> {
+    ELEMENT_TYPES.iter().find(|e| e.0 == ty).map(|e| e.2)
+}
+
+/// Reads an ASCII Gmsh MSH 4.1 file; see the [module docs](super) for what
+/// is kept. Use [`read_msh_report`] to also learn what was skipped.
+///
+/// # Errors
+/// [`MeshError::Msh`] with the 1-based line of the first problem, for any
+/// malformed input, a binary file, a version other than 4.1, or a file with
+/// no 4-node tets.
+pub fn read_msh(bytes: &[u8]) -> Result<TetMesh, MeshError> {
+    read_msh_report(bytes).map(|(mesh, _)| mesh)
+}
+
+/// Like [`read_msh`], and also reports the skipped elements, dropped nodes
+/// and reoriented tets.
+///
+/// # Errors
+/// As [`read_msh`].
+pub fn read_msh_report(bytes: &[u8]) -> Result<(TetMesh, MshReport), MeshError> {
+    Reader::new(bytes).read()
+}
+
+/// Lines of the file, numbered from 1.
+struct Lines<'a> {
+    rest: &'a [u8],
+    /// Number of the line last returned (0 before the first).
+    line: usize,
+}
+
+impl<'a> Lines<'a> {
+    fn err(&self, message: impl Into<String>) -> MeshError {
+        err_at(self.line.max(1), message)
+    }
+
+    /// The next line without its line break, or `None` at end of file.
+    fn next_line(&mut self) -> Result<Option<&'a str>, MeshError> {
+        if self.rest.is_empty() {
+            return Ok(None);
+        }
+        let (raw, rest) = match self.rest.iter().position(|&b| b == b'\n') {
+            Some(i) => (&self.rest[..i], &self.rest[i + 1..]),
+            None => (self.rest, &self.rest[self.rest.len()..]),
+        };
+        self.rest = rest;
+        self.line += 1;
+        let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+        std::str::from_utf8(raw)
+            .map(Some)
+            .map_err(|_| self.err("not valid UTF-8 (binary data in an ASCII MSH file?)"))
+    }
+
+    /// The next record of section `section`, trimmed. A section end (any
+    /// line starting with `$`) or the end of file is an error that says
+    /// `what` was expected.
+    fn record(
+        &mut self,
+        section: &str,
+        what: impl FnOnce() -> String,
+    ) -> Result<Fields<'a>, MeshError> {
+        match self.next_line()? {
+            None => Err(self.err(format!("file ends inside ${section}: expected {}", what()))),
+            Some(l) if l.trim_start().starts_with('$') => Err(self.err(format!(
+                "${section} ends early: expected {}, found `{}`",
+                what(),
+                l.trim()
+            ))),
+            Some(l) => Ok(Fields { it: l.split_ascii_whitespace(), line: self.line }),
+        }
+    }
+
+    /// Expects the line `$End<section>`.
+    fn end_of(&mut self, section: &str) -> Result<(), MeshError> {
+        match self.next_line()? {
+            Some(l) if l.trim() == format!("$End{section}") => Ok(()),
+            Some(l) => Err(self.err(format!("expected $End{section}, found `{}`", l.trim()))),
+            None => Err(self.err(format!("file ends inside ${section}: expected $End{section}"))),
+        }
+    }
+}
+
+fn err_at(line: usize, message: impl Into<String>) -> MeshError {
+    MeshError::Msh { line, message: message.into() }
+}
+
+/// The whitespace-separated fields of one record.
+struct Fields<'a> {
+    it: SplitAsciiWhitespace<'a>,
+    line: usize,
+}
+
+impl<'a> Fields<'a> {
+    fn err(&self, message: impl Into<String>) -> MeshError {
+        err_at(self.line, message)
+    }
+
+    fn token(&mut self, name: &str) -> Result<&'a str, MeshError> {
+        let line = self.line;
+        self.it.next().ok_or_else(|| err_at(line, format!("missing {name}")))
+    }
+
+    fn parse<T: FromStr>(&mut self, name: &str, kind: &str) -> Result<T, MeshError> {
+        let line = self.line;
+        let tok = self.token(name)?;
+        tok.parse().map_err(|_| err_at(line, format!("bad {name} `{tok}`: expected {kind}")))
+    }
+
+    fn count(&mut self, name: &str) -> Result<usize, MeshError> {
+        self.parse(name, "a non-negative integer")
+    }
+
+    fn int(&mut self, name: &str) -> Result<i32, MeshError> {
+        self.parse(name, "an integer")
+    }
+
+    fn node_tag(&mut self, name: &str) -> Result<u64, MeshError> {
+        let tag: u64 = self.parse(name, "a positive integer")?;
+        if tag == 0 {
+            return Err(self.err(format!("bad {name} `0`: tags start at 1")));
+        }
+        Ok(tag)
+    }
+
+    fn real(&mut self, name: &str) -> Result<f64, MeshError> {
+        let line = self.line;
+        let tok = self.token(name)?;
+        match tok.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(err_at(line, format!("bad {name} `{tok}`: expected a finite number"))),
+        }
+    }
+
+    /// Checks that no field is left.
+    fn end(&mut self, what: &str) -> Result<(), MeshError> {
+        match self.it.next() {
+            None => Ok(()),
+            Some(tok) => Err(self.err(format!("unexpected `{tok}` after {what}"))),
+        }
+    }
+}
+
+/// Node tag → index into the file's node list.
+enum TagMap {
+    /// Tags in `min..min + idx.len()`; `u32::MAX` marks a missing tag.
+    Dense { min: u64, idx: Vec<u32> },
+    Sparse(HashMap<u64, u32>),
+}
+
+impl TagMap {
+    fn get(&self, tag: u64) -> Option<u32> {
+        match self {
+            TagMap::Dense { min, idx } => {
+                let i = usize::try_from(tag.checked_sub(*min)?).ok()?;
+                idx.get(i).copied().filter(|&v| v != u32::MAX)
+            }
+            TagMap::Sparse(m) => m.get(&tag).copied(),
+        }
+    }
+
+    /// Inserts; `false` if the tag was already there.
+    fn insert(&mut self, tag: u64, index: u32) -> bool {
+        match self {
+            TagMap::Dense { min, idx } => {
+                let slot = tag
+                    .checked_sub(*min)
+                    .and_then(|i| usize::try_from(i).ok())
+                    .and_then(|i| idx.get_mut(i));
+                match slot {
+                    Some(s) if *s == u32::MAX => {
+                        *s = index;
+                        true
+                    }
+                    _ => false,
+                }
+            }
+            TagMap::Sparse(m) => m.insert(tag, index).is_none(),
+        }
+    }
+}
+
+/// A triangle waiting for the tets: file node indices, its surface entity,
+/// and its line.
+struct RawTriangle {
+    nodes: [u32; 3],
+    entity: i32,
+    line: usize,
+}
+
+struct Reader<'a> {
+    lines: Lines<'a>,
+    /// Bound on any count worth allocating for: the file's size.
+    file_len: usize,
+    report: MshReport,
+    /// `(dim, tag)` → physical name.
+    names: HashMap<(i32, i32), String>,
+    /// Volume entity → physical tags; `None` until `$Entities` is read.
+    volumes: Option<HashMap<i32, Vec<i32>>>,
+    /// Surface entity → physical tags.
+    surfaces: HashMap<i32, Vec<i32>>,
+    coords: Vec<[f64; 3]>,
+    tags: Option<TagMap>,
+    /// Tets in file node indices, with the physical tag of their volume.
+    tets: Vec<[u32; 4]>,
+    tet_phys: Vec<Option<i32>>,
+    triangles: Vec<RawTriangle>,
+    /// Line of the `$Elements` header, once read.
+    elements_line: Option<usize>,
+}
+
+impl<'a> Reader<'a> {
+    fn new(bytes: &'a [u8]) -> Self {
+        Reader {
+            lines: Lines { rest: bytes, line: 0 },
+            file_len: bytes.len(),
+            report: MshReport::default(),
+            names: HashMap::new(),
+            volumes: None,
+            surfaces: HashMap::new(),
+            coords: Vec::new(),
+            tags: None,
+            tets: Vec::new(),
+            tet_phys: Vec::new(),
+            triangles: Vec::new(),
+            elements_line: None,
+        }
+    }
+
+    /// A capacity for `n` announced items that a malicious header cannot
+    /// blow up: no item takes less than two bytes of file.
+    fn capacity(&self, n: usize) -> usize {
+        n.min(self.file_len / 2)
+    }
+
+    fn read(mut self) -> Result<(TetMesh, MshReport), MeshError> {
+        let mut seen_format = false;
+        let mut seen = BTreeSet::new();
+        while let Some(line) = self.lines.next_line()? {
+            let header = line.trim();
+            if header.is_empty() {
+                continue;
+            }
+            let Some(name) = header.strip_prefix('$') else {
+                return Err(self.lines.err(format!(
+                    "expected a section header such as $Nodes, found `{header}`"
+                )));
+            };
+            if name.starts_with("End") {
+                return Err(self.lines.err(format!("`{header}` closes no open section")));
+            }
+            if !seen_format && name != "MeshFormat" {
+                return Err(self.lines.err(format!(
+                    "expected $MeshFormat first, found `{header}` (not a Gmsh MSH file?)"
+                )));
+            }
+            let known = matches!(name, "MeshFormat" | "PhysicalNames" | "Entities" | "Nodes" | "Elements");
+            if known && !seen.insert(name.to_owned()) {
+                return Err(self.lines.err(format!("second ${name} section")));
+            }
+            match name {
+                "MeshFormat" => {
+                    self.mesh_format()?;
+                    seen_format = true;
+                }
+                "PhysicalNames" => self.physical_names()?,
+                "Entities" => {
+                    if self.elements_line.is_some() {
+                        return Err(self.lines.err("$Entities must come before $Elements"));
+                    }
+                    self.entities()?;
+                }
+                "Nodes" => self.nodes()?,
+                "Elements" => self.elements()?,
+                "PartitionedEntities" => {
+                    return Err(self.lines.err(
+                        "partitioned meshes are not supported: save without partitions",
+                    ));
+                }
+                _ => self.skip_section(name)?,
+            }
+        }
+        if !seen_format {
+            return Err(self.lines.err("empty file: no $MeshFormat section"));
+        }
+        if self.elements_line.is_none() {
+            return Err(self.lines.err("file ends without an $Elements section"));
+        }
+        self.assemble()
+    }
+
+    fn skip_section(&mut self, name: &str) -> Result<(), MeshError> {
+        let start = self.lines.line;
+        let end = format!("$End{name}");
+        while let Some(l) = self.lines.next_line()? {
+            if l.trim() == end {
+                return Ok(());
+            }
+        }
+        Err(err_at(start, format!("section ${name} is never closed by {end}")))
+    }
+
+    fn mesh_format(&mut self) -> Result<(), MeshError> {
+        let mut f = self.lines.record("MeshFormat", || "`version file-type data-size`".into())?;
+        let version = f.token("version")?;
+        if version != "4.1" {
+            return Err(f.err(format!(
+                "MSH version {version} is not supported: femdem reads MSH 4.1 \
+                 (in Gmsh, save with `Mesh.MshFileVersion = 4.1`)"
+            )));
+        }
+        let file_type = f.count("file type")?;
+        match file_type {
+            0 => {}
+            1 => {
+                return Err(f.err(
+                    "binary MSH files are not supported: save as ASCII \
+                     (in Gmsh, `Mesh.Binary = 0`)",
+                ));
+            }
+            other => return Err(f.err(format!("bad file type {other}: expected 0 (ASCII)"))),
+        }
+        f.count("data size")?;
+        f.end("the data size")?;
+        self.lines.end_of("MeshFormat")
+    }
+
+    fn physical_names(&mut self) -> Result<(), MeshError> {
+        const S: &str = "PhysicalNames";
+        let mut f = self.lines.record(S, || "the number of physical names".into())?;
+        let n = f.count("number of physical names")?;
+        f.end("the number of physical names")?;
+        for i in 0..n {
+            let mut f = self.lines.record(S, || format!("physical name {} of {n}", i + 1))?;
+            let dim = f.int("dimension")?;
+            let tag = f.int("physical tag")?;
+            let rest = f.it.collect::<Vec<_>>().join(" ");
+            let name = rest
+                .strip_prefix('"')
+                .and_then(|r| r.strip_suffix('"'))
+                .filter(|_| rest.len() >= 2)
+                .ok_or_else(|| err_at(f.line, format!("expected a quoted name, found `{rest}`")))?;
+            if !(0..=3).contains(&dim) {
+                return Err(err_at(f.line, format!("bad dimension {dim}: expected 0 to 3")));
+            }
+            self.names.insert((dim, tag), name.to_owned());
+        }
+        self.lines.end_of(S)
+    }
+
+    fn entities(&mut self) -> Result<(), MeshError> {
+        const S: &str = "Entities";
+        let mut f = self.lines.record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
+        let mut counts = [0usize; 4];
+        for (c, name) in counts.iter_mut().zip(["points", "curves", "surfaces", "volumes"]) {
+            *c = f.count(&format!("number of {name}"))?;
+        }
+        f.end("the number of volumes")?;
+        let mut volumes = HashMap::new();
+        for (dim, &n) in counts.iter().enumerate() {
+            let kind = ["point", "curve", "surface", "volume"][dim];
+            let mut tags_seen = BTreeSet::new();
+            for i in 0..n {
+                let mut f = self.lines.record(S, || format!("{kind} entity {} of {n}", i + 1))?;
+                let tag = f.int(&format!("{kind} tag"))?;
+                if !tags_seen.insert(tag) {
+                    return Err(f.err(format!("{kind} entity {tag} listed twice")));
+                }
+                let n_coords = if dim == 0 { 3 } else { 6 };
+                for _ in 0..n_coords {
+                    f.real("bounding-box coordinate")?;
+                }
+                let n_phys = f.count("number of physical tags")?;
+                let mut phys = Vec::with_capacity(n_phys.min(16));
+                for _ in 0..n_phys {
+                    phys.push(f.int("physical tag")?);
+                }
+                if dim > 0 {
+                    let n_bound = f.count("number of bounding entities")?;
+                    for _ in 0..n_bound {
+                        f.int("bounding entity tag")?;
+                    }
+                }
+                f.end(&format!("the {kind} entity"))?;
+                match dim {
+                    2 => {
+                        self.surfaces.insert(tag, phys);
+                    }
+                    3 => {
+                        volumes.insert(tag, phys);
+                    }
+                    _ => {}
+                }
+            }
+        }
+        self.volumes = Some(volumes);
+        self.lines.end_of(S)
+    }
+
+    fn nodes(&mut self) -> Result<(), MeshError> {
+        const S: &str = "Nodes";
+        let mut f = self.lines.record(S, || "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into())?;
+        let n_blocks = f.count("number of entity blocks")?;
+        let n_nodes = f.count("number of nodes")?;
+        let (min, max) = if n_nodes == 0 {
+            (f.count("minimum node tag")? as u64, f.count("maximum node tag")? as u64)
+        } else {
+            (f.node_tag("minimum node tag")?, f.node_tag("maximum node tag")?)
+        };
+        f.end("the maximum node tag")?;
+        if n_nodes > 0 && max < min {
+            return Err(f.err(format!("maximum node tag {max} is below the minimum {min}")));
+        }
+        if u32::try_from(n_nodes).is_err() {
+            return Err(f.err(format!("{n_nodes} nodes are more than femdem can index")));
+        }
+        let range = max.saturating_sub(min).saturating_add(1);
+        let dense_limit = 2 * self.capacity(n_nodes) as u64 + 1024;
+        let mut tags = if range <= dense_limit {
+            TagMap::Dense { min, idx: vec![u32::MAX; range as usize] }
+        } else {
+            TagMap::Sparse(HashMap::with_capacity(self.capacity(n_nodes)))
+        };
+        self.coords = Vec::with_capacity(self.capacity(n_nodes));
+        for b in 0..n_blocks {
+            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let dim = f.int("entity dimension")?;
+            f.int("entity tag")?;
+            let parametric = f.count("parametric flag")?;
+            let n = f.count("number of nodes in block")?;
+            f.end("the number of nodes in the block")?;
+            if !(0..=3).contains(&dim) {
+                return Err(f.err(format!("bad entity dimension {dim}: expected 0 to 3")));
+            }
+            if parametric > 1 {
+                return Err(f.err(format!("bad parametric flag {parametric}: expected 0 or 1")));
+            }
+            let base = self.coords.len();
+            if n > n_nodes - base {
+                return Err(f.err(format!(
+                    "blocks hold more nodes than the {n_nodes} announced by the $Nodes header"
+                )));
+            }
+            for i in 0..n {
+                let mut f = self.lines.record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
+                let tag = f.node_tag("node tag")?;
+                f.end("the node tag")?;
+                if !(min..=max).contains(&tag) {
+                    return Err(f.err(format!(
+                        "node tag {tag} is outside the header's range {min}..={max}"
+                    )));
+                }
+                // `base + i < n_nodes`, which fits in u32 (checked above).
+                if !tags.insert(tag, (base + i) as u32) {
+                    return Err(f.err(format!("node tag {tag} appears twice")));
+                }
+            }
+            let extra = if parametric == 1 { dim as usize } else { 0 };
+            for i in 0..n {
+                let mut f = self.lines.record(S, || format!("coordinates of node {} of block {}", i + 1, b + 1))?;
+                let x = f.real("x coordinate")?;
+                let y = f.real("y coordinate")?;
+                let z = f.real("z coordinate")?;
+                for _ in 0..extra {
+                    f.real("parametric coordinate")?;
+                }
+                f.end("the node coordinates")?;
+                self.coords.push([x, y, z]);
+            }
+        }
+        if self.coords.len() != n_nodes {
+            // Report on the line that should have been a block header.
+            self.lines.next_line()?;
+            return Err(self.lines.err(format!(
+                "the $Nodes header announces {n_nodes} nodes, the blocks hold {}",
+                self.coords.len()
+            )));
+        }
+        self.tags = Some(tags);
+        self.lines.end_of(S)
+    }
+
+    fn elements(&mut self) -> Result<(), MeshError> {
+        const S: &str = "Elements";
+        self.elements_line = Some(self.lines.line);
+        let Some(tags) = self.tags.take() else {
+            return Err(self.lines.err("$Elements must come after $Nodes"));
+        };
+        let mut f = self.lines.record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
+        let n_blocks = f.count("number of entity blocks")?;
+        let n_elements = f.count("number of elements")?;
+        f.count("minimum element tag")?;
+        f.count("maximum element tag")?;
+        f.end("the maximum element tag")?;
+        let mut total = 0usize;
+        for b in 0..n_blocks {
+            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let dim = f.int("entity dimension")?;
+            let entity = f.int("entity tag")?;
+            let ty: u32 = f.parse("element type", "a positive integer")?;
+            let n = f.count("number of elements in block")?;
+            f.end("the number of elements in the block")?;
+            total = total.saturating_add(n);
+            if total > n_elements {
+                return Err(f.err(format!(
+                    "blocks hold more elements than the {n_elements} announced by the \
+                     $Elements header"
+                )));
+            }
+            match ty {
+                TET => self.tet_block(&tags, dim, entity, n, f.line)?,
+                TRIANGLE => self.triangle_block(&tags, dim, entity, n, f.line)?,
+                _ => {
+                    *self.report.skipped_elements.entry(ty).or_insert(0) += n;
+                    for i in 0..n {
+                        let mut f = self.lines.record(S, || format!("element {} of block {}", i + 1, b + 1))?;
+                        f.node_tag("element tag")?;
+                        let nodes = f.it.by_ref().count();
+                        let ok = match element_type_nodes(ty) {
+                            Some(k) => nodes == k,
+                            None => nodes > 0,
+                        };
+                        if !ok {
+                            let k = element_type_nodes(ty).unwrap_or(0);
+                            return Err(f.err(format!(
+                                "element of type {ty} has {nodes} node tags, expected {k}"
+                            )));
+                        }
+                    }
+                }
+            }
+        }
+        if total != n_elements {
+            self.lines.next_line()?;
+            return Err(self.lines.err(format!(
+                "the $Elements header announces {n_elements} elements, the blocks hold {total}"
+            )));
+        }
+        self.tags = Some(tags);
+        self.lines.end_of(S)
+    }
+
+    /// Reads the `K` node tags of one element line as file node indices.
+    fn element<const K: usize>(
+        &mut self,
+        tags: &TagMap,
+        what: impl FnOnce() -> String,
+    ) -> Result<([u32; K], usize), MeshError> {
+        let mut f = self.lines.record("Elements", what)?;
+        f.node_tag("element tag")?;
+        let mut nodes = [0u32; K];
+        for v in &mut nodes {
+            let tag = f.node_tag("node tag")?;
+            *v = tags
+                .get(tag)
+                .ok_or_else(|| f.err(format!("node tag {tag} is not in $Nodes")))?;
+        }
+        let line = f.line;
+        f.end(&format!("the {K} node tags"))?;
+        Ok((nodes, line))
+    }
+
+    fn tet_block(
+        &mut self,
+        tags: &TagMap,
+        dim: i32,
+        entity: i32,
+        n: usize,
+        line: usize,
+    ) -> Result<(), MeshError> {
+        if dim != 3 {
+            return Err(err_at(line, format!("tets (type 4) on an entity of dimension {dim}")));
+        }
+        let phys = match &self.volumes {
+            None => None,
+            Some(v) => match v.get(&entity).map(Vec::as_slice) {
+                None => {
+                    return Err(err_at(
+                        line,
+                        format!("volume entity {entity} is not listed in $Entities"),
+                    ));
+                }
+                Some([]) => None,
+                Some([p]) => Some(*p),
+                Some(many) => {
+                    return Err(err_at(
+                        line,
+                        format!(
+                            "volume entity {entity} is in {} physical volumes {many:?}; \
+                             a tet can belong to one region only",
+                            many.len()
+                        ),
+                    ));
+                }
+            },
+        };
+        let cap = self.capacity(n);
+        self.tets.reserve(cap);
+        self.tet_phys.reserve(cap);
+        for i in 0..n {
+            let (t, _) = self.element::<4>(tags, || format!("tet {} of {n} on volume {entity}", i + 1))?;
+            self.tets.push(t);
+            self.tet_phys.push(phys);
+        }
+        Ok(())
+    }
+
+    fn triangle_block(
+        &mut self,
+        tags: &TagMap,
+        dim: i32,
+        entity: i32,
+        n: usize,
+        line: usize,
+    ) -> Result<(), MeshError> {
+        if dim != 2 {
+            return Err(err_at(
+                line,
+                format!("triangles (type 2) on an entity of dimension {dim}"),
+            ));
+        }
+        let grouped = match &self.volumes {
+            None => false,
+            Some(_) => match self.surfaces.get(&entity) {
+                None => {
+                    return Err(err_at(
+                        line,
+                        format!("surface entity {entity} is not listed in $Entities"),
+                    ));
+                }
+                Some(p) => !p.is_empty(),
+            },
+        };
+        if grouped {
+            self.triangles.reserve(self.capacity(n));
+        } else {
+            self.report.ungrouped_triangles += n;
+        }
+        for i in 0..n {
+            let (nodes, line) = self.element::<3>(tags, || format!("triangle {} of {n} on surface {entity}", i + 1))?;
+            if grouped {
+                self.triangles.push(RawTriangle { nodes, entity, line });
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds the mesh from what was read.
+    fn assemble(mut self) -> Result<(TetMesh, MshReport), MeshError> {
+        let elements_line = self.elements_line.unwrap_or(1);
+        if self.tets.is_empty() {
+            let mut message = String::from("no 4-node tetrahedra (element type 4) in the file");
+            if !self.report.skipped_elements.is_empty() {
+                message.push_str(&format!(
+                    " ({}); femdem needs linear tets (in Gmsh, `Mesh.ElementOrder = 1` \
+                     and no recombination)",
+                    self.report
+                ));
+            }
+            return Err(err_at(elements_line, message));
+        }
+
+        // Keep the nodes that tets use, in file order.
+        let mut new_index = vec![u32::MAX; self.coords.len()];
+        for t in &self.tets {
+            for &v in t {
+                new_index[v as usize] = 0;
+            }
+        }
+        let mut coords = Vec::with_capacity(self.coords.len());
+        for (i, c) in self.coords.iter().enumerate() {
+            if new_index[i] == 0 {
+                new_index[i] = coords.len() as u32;
+                coords.push(*c);
+            }
+        }
+        self.report.dropped_nodes = self.coords.len() - coords.len();
+        let mut mesh = TetMesh { coords, ..Default::default() };
+        mesh.tets = self.tets.iter().map(|t| t.map(|v| new_index[v as usize])).collect();
+        for t in 0..mesh.tets.len() {
+            if signed_volume(&mesh.tet_points(t)) < 0.0 {
+                mesh.tets[t].swap(2, 3);
+                self.report.reoriented_tets += 1;
+            }
+        }
+
+        // Regions: physical volumes by tag, then "unnamed".
+        let volumes = self.volumes.take().unwrap_or_default();
+        let phys_volumes: BTreeSet<i32> = volumes.values().flatten().copied().collect();
+        let mut region_of: HashMap<Option<i32>, u16> = HashMap::new();
+        let add_region = |regions: &mut Vec<Region>, name: String| -> Result<u16, MeshError> {
+            if let Some(i) = regions.iter().position(|r| r.name == name) {
+                return Ok(i as u16);
+            }
+            let i = u16::try_from(regions.len()).map_err(|_| {
+                err_at(elements_line, "more than 65536 regions (physical volumes)")
+            })?;
+            regions.push(Region { name, breakable: true });
+            Ok(i)
+        };
+        for &p in &phys_volumes {
+            let name = self.names.get(&(3, p)).cloned().unwrap_or_else(|| format!("volume_{p}"));
+            region_of.insert(Some(p), add_region(&mut mesh.regions, name)?);
+        }
+        if self.tet_phys.iter().any(Option::is_none) {
+            region_of.insert(None, add_region(&mut mesh.regions, UNNAMED.to_owned())?);
+        }
+        mesh.tet_region = self.tet_phys.iter().map(|p| region_of[p]).collect();
+
+        // Boundary groups: physical surfaces by tag.
+        let phys_surfaces: BTreeSet<i32> = self.surfaces.values().flatten().copied().collect();
+        let mut group_of: HashMap<i32, usize> = HashMap::new();
+        for &p in &phys_surfaces {
+            let name = self.names.get(&(2, p)).cloned().unwrap_or_else(|| format!("surface_{p}"));
+            let g = match mesh.boundary.iter().position(|g| g.name == name) {
+                Some(g) => g,
+                None => {
+                    mesh.boundary.push(BoundaryGroup { name, faces: Vec::new() });
+                    mesh.boundary.len() - 1
+                }
+            };
+            group_of.insert(p, g);
+        }
+        let keys = sorted_face_keys(&mesh);
+        for tri in &self.triangles {
+            let nodes = tri.nodes.map(|v| new_index[v as usize]);
+            let face = match_face(&mesh, &keys, nodes).ok_or_else(|| {
+                err_at(
+                    tri.line,
+                    format!(
+                        "triangle on surface {} is not a face of any tet",
+                        tri.entity
+                    ),
+                )
+            })?;
+            for p in self.surfaces.get(&tri.entity).into_iter().flatten() {
+                if let Some(&g) = group_of.get(p) {
+                    mesh.boundary[g].faces.push(face);
+                }
+            }
+        }
+        Ok((mesh, self.report))
+    }
+}
+
+/// The tet face with the same nodes as the triangle `nodes`; of two (an
+/// interior face), the one whose outward order is a rotation of `nodes`.
+fn match_face(mesh: &TetMesh, keys: &[(u128, u32)], nodes: [u32; 3]) -> Option<FaceRef> {
+    if nodes.contains(&u32::MAX) {
+        return None; // a node no tet uses
+    }
+    let key = face_key(nodes);
+    let first = keys.partition_point(|&(k, _)| k < key);
+    let candidates = keys[first..].iter().take_while(|&&(k, _)| k == key);
+    let mut found = None;
+    for &(_, slot) in candidates {
+        let f = FaceRef { tet: slot / 4, local: (slot % 4) as u8 };
+        let o = f.nodes(&mesh.tets);
+        let same_turn = (0..3).any(|r| o[r] == nodes[0] && o[(r + 1) % 3] == nodes[1]);
+        if same_turn {
+            return Some(f);
+        }
+        found.get_or_insert(f);
+    }
+    found
+}

@@ -1,0 +1,186 @@
+//! Properties of the mesh generators, over random parameters: every tet is
+//! positive and the mesh passes `check`; volumes sum to the geometry's
+//! volume (for a circle, to the inscribed polygon's area times the
+//! thickness: `A_n = (n/2) r² sin(2π/n)`); boundary groups cover the sides;
+//! the same parameters give the same mesh.
+
+use femdem_core::tet::triangle_area;
+use femdem_mesh::check::check;
+use femdem_mesh::generate::{
+    BoxSpec, ExtrusionSpec, Outline, PlatenSpec, Side, generate_box, generate_extrusion, generate_platen,
+};
+use femdem_mesh::{Region, TetMesh, stats};
+use proptest::prelude::*;
+
+fn region() -> Region {
+    Region { name: "rock".into(), breakable: true }
+}
+
+fn group_area(mesh: &TetMesh, name: &str) -> f64 {
+    mesh.boundary_group(name)
+        .unwrap_or_else(|| panic!("no group {name}"))
+        .faces
+        .iter()
+        .map(|f| {
+            let [a, b, c] = f.nodes(&mesh.tets).map(|n| mesh.point(n));
+            triangle_area(&a, &b, &c)
+        })
+        .sum()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn box_is_positive_and_fills_its_volume(
+        lx in 0.2f64..2.0, ly in 0.2f64..2.0, lz in 0.2f64..2.0,
+        h in 0.12f64..0.5, jitter in 0.0f64..=0.15, seed in any::<u64>(),
+    ) {
+        let spec = BoxSpec { min: [-0.3, 0.1, 1.0], max: [-0.3 + lx, 0.1 + ly, 1.0 + lz], element_size: h, jitter, seed, region: region() };
+        let mesh = generate_box(&spec).unwrap();
+        prop_assert_eq!(check(&mesh), Ok(()));
+        let s = stats(&mesh);
+        // Round-off only: each tet volume carries ~1e-16 relative error.
+        prop_assert!(rel(s.volume, lx * ly * lz) < 1e-12, "volume {} vs {}", s.volume, lx * ly * lz);
+        prop_assert!(rel(group_area(&mesh, "xmin"), ly * lz) < 1e-12);
+        prop_assert!(rel(group_area(&mesh, "zmax"), lx * ly) < 1e-12);
+        prop_assert_eq!(&generate_box(&spec).unwrap(), &mesh);
+    }
+
+    #[test]
+    fn extruded_polygon_fills_its_prism(
+        w in 0.5f64..2.0, hgt in 0.5f64..2.0, notch in 0.1f64..0.4, t in 0.1f64..0.6,
+        h in 0.1f64..0.3, layers in proptest::option::of(1usize..5),
+    ) {
+        // An L-shaped (non-convex) outline: area w·hgt − (notch·w)(notch·hgt).
+        let poly = vec![[0.0, 0.0], [w, 0.0], [w, hgt * (1.0 - notch)], [w * (1.0 - notch), hgt * (1.0 - notch)], [w * (1.0 - notch), hgt], [0.0, hgt]];
+        let area = w * hgt - notch * w * notch * hgt;
+        let spec = ExtrusionSpec { outline: Outline::Polygon(poly), traces: vec![], z0: -0.2, thickness: t, element_size: h, layers, region: region() };
+        let mesh = generate_extrusion(&spec).unwrap();
+        prop_assert_eq!(check(&mesh), Ok(()));
+        prop_assert!(rel(stats(&mesh).volume, area * t) < 1e-12);
+        prop_assert!(rel(group_area(&mesh, "bottom"), area) < 1e-12);
+        prop_assert!(rel(group_area(&mesh, "top"), area) < 1e-12);
+        let perimeter = 2.0 * (w + hgt);
+        prop_assert!(rel(group_area(&mesh, "side"), perimeter * t) < 1e-12);
+        prop_assert!(mesh.fracture_faces.is_empty());
+    }
+
+    #[test]
+    fn extruded_circle_fills_its_inscribed_polygon(r in 0.01f64..0.05, t in 0.005f64..0.02, frac in 0.08f64..0.25) {
+        let h = r * frac;
+        let spec = ExtrusionSpec { outline: Outline::Circle { center: [0.01, -0.02], radius: r }, traces: vec![], z0: 0.0, thickness: t, element_size: h, layers: None, region: region() };
+        let mesh = generate_extrusion(&spec).unwrap();
+        prop_assert_eq!(check(&mesh), Ok(()));
+        let n = femdem_mesh::generate::circle_segments(r, h) as f64;
+        let polygon = 0.5 * n * r * r * (std::f64::consts::TAU / n).sin();
+        prop_assert!(rel(stats(&mesh).volume, polygon * t) < 1e-12);
+        // The inscribed polygon is within (2π/n)²/6 of the circle.
+        prop_assert!(rel(polygon, std::f64::consts::PI * r * r) < (std::f64::consts::TAU / n).powi(2) / 6.0 * 1.01);
+    }
+
+    #[test]
+    fn trace_faces_cover_the_trace(y in -0.3f64..0.3, x0 in -0.8f64..-0.2, x1 in 0.2f64..0.8, kink in -0.2f64..0.2) {
+        let trace = vec![[x0, y], [0.0, y + kink], [x1, y]];
+        let length = (x0.powi(2) + kink.powi(2)).sqrt() + (x1.powi(2) + kink.powi(2)).sqrt();
+        let t = 0.3;
+        let spec = ExtrusionSpec {
+            outline: Outline::Polygon(vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]),
+            traces: vec![trace], z0: 0.0, thickness: t, element_size: 0.2, layers: Some(2), region: region(),
+        };
+        let mesh = generate_extrusion(&spec).unwrap();
+        prop_assert_eq!(check(&mesh), Ok(()));
+        let area: f64 = mesh.fracture_faces.iter().map(|f| {
+            let [a, b, c] = f.nodes(&mesh.tets).map(|n| mesh.point(n));
+            triangle_area(&a, &b, &c)
+        }).sum();
+        prop_assert!(rel(area, length * t) < 1e-12, "fracture area {} vs {}", area, length * t);
+    }
+}
+
+#[test]
+fn platen_touches_the_specimen_without_sharing_nodes() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Circle { center: [0.0, 0.0], radius: 0.02 },
+        traces: vec![],
+        z0: 0.0,
+        thickness: 0.01,
+        element_size: 0.004,
+        layers: None,
+        region: region(),
+    };
+    let mut mesh = generate_extrusion(&spec).unwrap();
+    let (lo, hi) = mesh.bounding_box().unwrap();
+    let platen = PlatenSpec {
+        side: Side::YMax,
+        thickness: 0.005,
+        extent: [Some(0.01), None],
+        element_size: 0.0025,
+        region: Region { name: "platen".into(), breakable: false },
+    };
+    let p = generate_platen(&platen, lo, hi).unwrap();
+    let (plo, phi) = p.bounding_box().unwrap();
+    assert_eq!(plo[1], hi[1], "contact face in the plane of the disc's top");
+    assert!((phi[1] - hi[1] - 0.005).abs() < 1e-15);
+    assert!((phi[0] - plo[0] - 0.01).abs() < 1e-15);
+    assert_eq!((plo[2], phi[2]), (lo[2], hi[2]));
+    let before = mesh.num_nodes();
+    mesh.append(&p);
+    assert_eq!(check(&mesh), Ok(()));
+    assert_eq!(mesh.regions.len(), 2);
+    assert_eq!(mesh.num_nodes(), before + p.num_nodes());
+}
+
+#[test]
+fn bad_parameters_are_rejected_with_their_name() {
+    let mut spec = BoxSpec { min: [0.0; 3], max: [1.0; 3], element_size: 0.0, jitter: 0.1, seed: 0, region: region() };
+    let e = generate_box(&spec).unwrap_err().to_string();
+    assert!(e.contains("element_size"), "{e}");
+    spec.element_size = 0.5;
+    spec.jitter = 0.3;
+    assert!(generate_box(&spec).unwrap_err().to_string().contains("jitter"));
+    spec.jitter = 0.0;
+    spec.max[1] = -1.0;
+    assert!(generate_box(&spec).unwrap_err().to_string().contains("max"));
+    let crossing = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]),
+        traces: vec![],
+        z0: 0.0,
+        thickness: 1.0,
+        element_size: 0.3,
+        layers: None,
+        region: region(),
+    };
+    assert!(generate_extrusion(&crossing).is_err(), "a self-intersecting outline must be refused");
+}
+
+/// The element size of an extrusion is the in-plane edge length: the mean
+/// edge of the bottom triangles lies within 15% of it (Delaunay refinement
+/// makes sizes vary; the bound says the knob means what it says).
+#[test]
+fn extruded_mean_edge_is_close_to_the_element_size() {
+    for (r, h) in [(0.02, 1.2e-3), (1.0, 0.05), (1.0, 0.2)] {
+        let spec = ExtrusionSpec {
+            outline: Outline::Circle { center: [0.0, 0.0], radius: r },
+            traces: vec![],
+            z0: 0.0,
+            thickness: h,
+            element_size: h,
+            layers: Some(1),
+            region: region(),
+        };
+        let mesh = generate_extrusion(&spec).unwrap();
+        let faces = &mesh.boundary_group("bottom").unwrap().faces;
+        let mut sum = 0.0;
+        for f in faces {
+            let [a, b, c] = f.nodes(&mesh.tets).map(|n| mesh.point(n));
+            sum += (b - a).norm() + (c - b).norm() + (a - c).norm();
+        }
+        let mean = sum / (3 * faces.len()) as f64;
+        assert!(rel(mean, h) < 0.15, "r = {r}, h = {h}: mean in-plane edge {mean}");
+    }
+}

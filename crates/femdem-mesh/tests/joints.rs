@@ -1,0 +1,160 @@
+//! Properties of joint insertion (reference paper §2.1, Fig. 2):
+//! every interior face of a breakable region gets exactly one joint; the
+//! joint's node pairs N1–N6, N2–N5, N3–N4 start at the same point; every
+//! split node maps back to the vertex it came from; unbreakable regions keep
+//! shared nodes; faces on pre-existing fractures get no joint and become
+//! initial contacts.
+
+use std::collections::{HashMap, HashSet};
+
+use femdem_core::tet::centroid;
+use femdem_mesh::check::check;
+use femdem_mesh::faces::face_key;
+use femdem_mesh::generate::{BoxSpec, ExtrusionSpec, Outline, generate_box, generate_extrusion};
+use femdem_mesh::{JointedMesh, Region, TetMesh, face_adjacency, insert_joints};
+use proptest::prelude::*;
+
+/// A jittered box whose tets left of `split` form an unbreakable region.
+fn two_region_box(h: f64, jitter: f64, seed: u64, split: f64) -> TetMesh {
+    let spec = BoxSpec {
+        min: [0.0; 3],
+        max: [1.0, 0.6, 0.5],
+        element_size: h,
+        jitter,
+        seed,
+        region: Region { name: "rock".into(), breakable: true },
+    };
+    let mut mesh = generate_box(&spec).unwrap();
+    mesh.regions.push(Region { name: "steel".into(), breakable: false });
+    for t in 0..mesh.num_tets() {
+        if centroid(&mesh.tet_points(t))[0] < split {
+            mesh.tet_region[t] = 1;
+        }
+    }
+    mesh
+}
+
+fn breakable(mesh: &TetMesh, t: u32) -> bool {
+    mesh.regions[mesh.tet_region[t as usize] as usize].breakable
+}
+
+/// Checks every invariant of `j` against its source `mesh`.
+fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
+    assert_eq!(check(&j.mesh), Ok(()), "the split mesh is valid");
+    assert_eq!(j.mesh.tets.len(), mesh.tets.len());
+    // Split nodes map back to their vertex, at the same position.
+    for (t, tet) in j.mesh.tets.iter().enumerate() {
+        for (k, &n) in tet.iter().enumerate() {
+            assert_eq!(j.origin[n as usize], mesh.tets[t][k], "tet {t} node {k}");
+            assert_eq!(j.mesh.coords[n as usize], mesh.coords[mesh.tets[t][k] as usize]);
+        }
+    }
+    // Breakable tets own their nodes; unbreakable ones share theirs.
+    let mut users: HashMap<u32, usize> = HashMap::new();
+    for (t, tet) in j.mesh.tets.iter().enumerate() {
+        if breakable(mesh, t as u32) {
+            for &n in tet {
+                *users.entry(n).or_default() += 1;
+            }
+        }
+    }
+    assert!(users.values().all(|&c| c == 1), "a breakable tet's node is used by another tet");
+    let unbreakable_vertices: HashSet<u32> = mesh
+        .tets
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| !breakable(mesh, *t as u32))
+        .flat_map(|(_, tet)| tet.iter().copied())
+        .collect();
+    let n_breakable = (0..mesh.num_tets()).filter(|&t| breakable(mesh, t as u32)).count();
+    assert_eq!(j.mesh.num_nodes(), 4 * n_breakable + unbreakable_vertices.len());
+
+    // Exactly one joint per interior face that touches a breakable tet and is
+    // not a fracture face; none elsewhere.
+    let fracture: HashSet<u128> = mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
+    let mut expected = HashSet::new();
+    let mut interface = 0;
+    for (a, b) in face_adjacency(mesh).unwrap().interior {
+        let key = face_key(a.nodes(&mesh.tets));
+        let (ba, bb) = (breakable(mesh, a.tet), breakable(mesh, b.tet));
+        if (ba || bb) && !fracture.contains(&key) {
+            expected.insert(key);
+            interface += usize::from(ba != bb);
+        }
+    }
+    let got: Vec<u128> = j.joints.iter().map(|jn| face_key([jn[0], jn[1], jn[2]].map(|n| j.origin[n as usize]))).collect();
+    let got_set: HashSet<u128> = got.iter().copied().collect();
+    assert_eq!(got.len(), got_set.len(), "a face has two joints");
+    assert_eq!(got_set, expected);
+    assert_eq!(j.interface_joints, interface);
+    assert_eq!(j.initial_contacts.len(), fracture.len());
+
+    for (jn, &(fa, fb)) in j.joints.iter().zip(&j.joint_faces) {
+        // N1–N6, N2–N5, N3–N4 coincide initially and share their origin.
+        for (p, q) in [(0, 5), (1, 4), (2, 3)] {
+            assert_eq!(j.mesh.coords[jn[p] as usize], j.mesh.coords[jn[q] as usize]);
+            assert_eq!(j.origin[jn[p] as usize], j.origin[jn[q] as usize]);
+        }
+        // N1N2N3 is face fa of tet a; N4N5N6 is face fb of tet b.
+        let ta = j.mesh.tets[fa.tet as usize];
+        let tb = j.mesh.tets[fb.tet as usize];
+        assert!(jn[..3].iter().all(|n| ta.contains(n)));
+        assert!(jn[3..].iter().all(|n| tb.contains(n)));
+        // The normal of N1N2N3 points from a to b.
+        let p = |n: u32| j.mesh.point(n);
+        let normal = (p(jn[1]) - p(jn[0])).cross(&(p(jn[2]) - p(jn[0])));
+        let ab = centroid(&j.mesh.tet_points(fb.tet as usize)) - centroid(&j.mesh.tet_points(fa.tet as usize));
+        assert!(normal.dot(&ab) > 0.0, "N1N2N3 must face tet b");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    #[test]
+    fn joints_are_inserted_on_every_breakable_interior_face(
+        h in 0.12f64..0.3, jitter in 0.0f64..=0.15, seed in any::<u64>(), split in -0.1f64..1.1,
+    ) {
+        let mesh = two_region_box(h, jitter, seed, split);
+        let j = insert_joints(&mesh).unwrap();
+        assert_joint_invariants(&mesh, &j);
+    }
+
+    #[test]
+    fn fracture_traces_become_initial_contacts(y in -0.5f64..0.5, layers in 1usize..4) {
+        let spec = ExtrusionSpec {
+            outline: Outline::Polygon(vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]),
+            traces: vec![vec![[-0.6, y], [0.7, y + 0.2]]],
+            z0: 0.0, thickness: 0.4, element_size: 0.25, layers: Some(layers),
+            region: Region { name: "rock".into(), breakable: true },
+        };
+        let mesh = generate_extrusion(&spec).unwrap();
+        let j = insert_joints(&mesh).unwrap();
+        prop_assert!(!j.initial_contacts.is_empty());
+        assert_joint_invariants(&mesh, &j);
+    }
+}
+
+#[test]
+fn all_unbreakable_mesh_has_no_joints_and_keeps_its_nodes() {
+    let mesh = two_region_box(0.2, 0.1, 7, 2.0);
+    let j = insert_joints(&mesh).unwrap();
+    assert!(j.joints.is_empty());
+    assert_eq!(j.mesh.num_nodes(), mesh.num_nodes());
+}
+
+#[test]
+fn fracture_face_inside_an_unbreakable_region_is_refused() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]),
+        traces: vec![vec![[-0.5, 0.0], [0.5, 0.0]]],
+        z0: 0.0,
+        thickness: 0.4,
+        element_size: 0.3,
+        layers: Some(1),
+        region: Region { name: "steel".into(), breakable: false },
+    };
+    let mesh = generate_extrusion(&spec).unwrap();
+    let e = insert_joints(&mesh).unwrap_err().to_string();
+    assert!(e.contains("unbreakable"), "{e}");
+}

@@ -1,1 +1,39 @@
-fn main() {}
+//! `cargo xtask <task>`: project automation that needs nothing but cargo.
+//!
+//! - `bench [--memory] [criterion args…]`: the criterion benchmarks, or with
+//!   `--memory` only the peak-memory run of joint insertion on 10⁶ tets.
+//! - `fixtures`: regenerates the Gmsh test fixture (needs `pip install gmsh`).
+
+mod bench;
+mod fixtures;
+
+use anyhow::{Result, bail};
+
+fn main() -> Result<()> {
+    let mut args = std::env::args().skip(1);
+    let task = args.next();
+    let rest: Vec<String> = args.collect();
+    match task.as_deref() {
+        Some("bench") => bench::run(&rest),
+        Some("fixtures") => fixtures::run(),
+        Some(other) => bail!("unknown task `{other}`; tasks: bench, fixtures"),
+        None => bail!("usage: cargo xtask <bench|fixtures>"),
+    }
+}
+
+/// The workspace root (the parent of this crate's directory).
+pub fn root() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_path_buf()
+}
+
+/// Runs a command in the workspace root, failing on a non-zero exit.
+pub fn run_in_root(cmd: &mut std::process::Command) -> Result<()> {
+    let status = cmd.current_dir(root()).status()?;
+    if !status.success() {
+        bail!("{cmd:?} failed with {status}");
+    }
+    Ok(())
+}

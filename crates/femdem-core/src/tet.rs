@@ -39,7 +39,11 @@ pub fn surface_area(p: &[Vec3; 4]) -> Real {
 /// Radius of the inscribed sphere, `r = 3|V| / A` with `A` the surface area.
 pub fn inradius(p: &[Vec3; 4]) -> Real {
     let a = surface_area(p);
-    if a > 0.0 { 3.0 * signed_volume(p).abs() / a } else { 0.0 }
+    if a > 0.0 {
+        3.0 * signed_volume(p).abs() / a
+    } else {
+        0.0
+    }
 }
 
 /// Lengths of the six edges, in [`EDGES`] order.
@@ -53,7 +57,11 @@ pub fn edge_lengths(p: &[Vec3; 4]) -> [Real; 6] {
 pub fn aspect_ratio(p: &[Vec3; 4]) -> Real {
     let lmax = edge_lengths(p).into_iter().fold(0.0, Real::max);
     let r = inradius(p);
-    if r > 0.0 { lmax / (2.0 * 6.0_f64.sqrt() * r) } else { Real::INFINITY }
+    if r > 0.0 {
+        lmax / (2.0 * 6.0_f64.sqrt() * r)
+    } else {
+        Real::INFINITY
+    }
 }
 
 /// Centroid of the four points.

@@ -45,7 +45,11 @@ pub struct LoadedCase {
 impl LoadedCase {
     /// An error at byte range `span` of the source.
     pub fn error_at(&self, span: Range<usize>, message: impl Into<String>) -> CaseError {
-        CaseError { path: self.path.clone(), at: Some(line_col(&self.source, span.start)), message: message.into() }
+        CaseError {
+            path: self.path.clone(),
+            at: Some(line_col(&self.source, span.start)),
+            message: message.into(),
+        }
     }
 
     /// The directory that relative paths in the case are taken from.
@@ -63,6 +67,34 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// Where to point an error at. Serde reports an unknown key of a `kind`-
+/// tagged table (the parts) at the table's header; the key's own line is
+/// found by looking for `` `key` = `` at a line start between that header
+/// and the next one.
+fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
+    let key = message
+        .strip_prefix("unknown field `")
+        .and_then(|m| m.split('`').next());
+    let (Some(key), Some(text)) = (key, source.get(span.start..)) else {
+        return span.start;
+    };
+    let mut offset = span.start;
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        let trimmed = line.trim_start();
+        if i > 0 && trimmed.starts_with('[') {
+            break;
+        }
+        if trimmed
+            .strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with('='))
+        {
+            return offset + (line.len() - trimmed.len());
+        }
+        offset += line.len();
+    }
+    span.start
+}
+
 /// Reads and parses `path`, checking the format version.
 ///
 /// # Errors
@@ -76,14 +108,23 @@ pub fn load(path: &Path) -> Result<LoadedCase, CaseError> {
     })?;
     let case: Case = toml::from_str(&source).map_err(|e| CaseError {
         path: path.to_path_buf(),
-        at: e.span().map(|s| line_col(&source, s.start)),
+        at: e
+            .span()
+            .map(|s| line_col(&source, key_offset(&source, s, e.message()))),
         message: e.message().trim_end().to_string(),
     })?;
-    let loaded = LoadedCase { case, path: path.to_path_buf(), source };
+    let loaded = LoadedCase {
+        case,
+        path: path.to_path_buf(),
+        source,
+    };
     if *loaded.case.version.get_ref() != CASE_VERSION {
         return Err(loaded.error_at(
             loaded.case.version.span(),
-            format!("`version` is {}, but this femdem reads case format {CASE_VERSION}", loaded.case.version.get_ref()),
+            format!(
+                "`version` is {}, but this femdem reads case format {CASE_VERSION}",
+                loaded.case.version.get_ref()
+            ),
         ));
     }
     Ok(loaded)

@@ -61,11 +61,19 @@ pub struct PlatenSpec {
 ///
 /// # Errors
 /// [`MeshError::InvalidParameter`] for a bad thickness, extent or size.
-pub fn generate_platen(spec: &PlatenSpec, lo: [f64; 3], hi: [f64; 3]) -> Result<TetMesh, MeshError> {
+pub fn generate_platen(
+    spec: &PlatenSpec,
+    lo: [f64; 3],
+    hi: [f64; 3],
+) -> Result<TetMesh, MeshError> {
     let t = positive("thickness", spec.thickness)?;
     let axis = spec.side.axis();
     let others = [(axis + 1) % 3, (axis + 2) % 3];
-    let others = if others[0] < others[1] { others } else { [others[1], others[0]] };
+    let others = if others[0] < others[1] {
+        others
+    } else {
+        [others[1], others[0]]
+    };
     let mut min = [0.0; 3];
     let mut max = [0.0; 3];
     for (k, &a) in others.iter().enumerate() {
@@ -84,5 +92,12 @@ pub fn generate_platen(spec: &PlatenSpec, lo: [f64; 3], hi: [f64; 3]) -> Result<
         min[axis] = lo[axis] - t;
         max[axis] = lo[axis];
     }
-    generate_box(&BoxSpec { min, max, element_size: spec.element_size, jitter: 0.0, seed: 0, region: spec.region.clone() })
+    generate_box(&BoxSpec {
+        min,
+        max,
+        element_size: spec.element_size,
+        jitter: 0.0,
+        seed: 0,
+        region: spec.region.clone(),
+    })
 }

@@ -5,6 +5,7 @@
 //! instead of shifting every later record. Counts given by headers are
 //! checked against what follows, but never trusted for allocation.
 
+use std::collections::hash_map::Entry;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 use std::str::{FromStr, SplitAsciiWhitespace};
@@ -58,7 +59,10 @@ impl fmt::Display for MshReport {
             ));
         }
         if self.dropped_nodes > 0 {
-            parts.push(format!("{} node(s) used by no tet dropped", self.dropped_nodes));
+            parts.push(format!(
+                "{} node(s) used by no tet dropped",
+                self.dropped_nodes
+            ));
         }
         if self.reoriented_tets > 0 {
             parts.push(format!("{} tet(s) reoriented", self.reoriented_tets));
@@ -168,7 +172,11 @@ impl<'a> Lines<'a> {
                 what(),
                 l.trim()
             ))),
-            Some(l) => Ok(Fields { it: l.split_ascii_whitespace(), line: self.line }),
+            Some(l) => Ok(Fields {
+                raw: l,
+                it: l.split_ascii_whitespace(),
+                line: self.line,
+            }),
         }
     }
 
@@ -177,17 +185,24 @@ impl<'a> Lines<'a> {
         match self.next_line()? {
             Some(l) if l.trim() == format!("$End{section}") => Ok(()),
             Some(l) => Err(self.err(format!("expected $End{section}, found `{}`", l.trim()))),
-            None => Err(self.err(format!("file ends inside ${section}: expected $End{section}"))),
+            None => Err(self.err(format!(
+                "file ends inside ${section}: expected $End{section}"
+            ))),
         }
     }
 }
 
 fn err_at(line: usize, message: impl Into<String>) -> MeshError {
-    MeshError::Msh { line, message: message.into() }
+    MeshError::Msh {
+        line,
+        message: message.into(),
+    }
 }
 
 /// The whitespace-separated fields of one record.
 struct Fields<'a> {
+    /// The whole line.
+    raw: &'a str,
     it: SplitAsciiWhitespace<'a>,
     line: usize,
 }
@@ -199,13 +214,16 @@ impl<'a> Fields<'a> {
 
     fn token(&mut self, name: &str) -> Result<&'a str, MeshError> {
         let line = self.line;
-        self.it.next().ok_or_else(|| err_at(line, format!("missing {name}")))
+        self.it
+            .next()
+            .ok_or_else(|| err_at(line, format!("missing {name}")))
     }
 
     fn parse<T: FromStr>(&mut self, name: &str, kind: &str) -> Result<T, MeshError> {
         let line = self.line;
         let tok = self.token(name)?;
-        tok.parse().map_err(|_| err_at(line, format!("bad {name} `{tok}`: expected {kind}")))
+        tok.parse()
+            .map_err(|_| err_at(line, format!("bad {name} `{tok}`: expected {kind}")))
     }
 
     fn count(&mut self, name: &str) -> Result<usize, MeshError> {
@@ -229,7 +247,10 @@ impl<'a> Fields<'a> {
         let tok = self.token(name)?;
         match tok.parse::<f64>() {
             Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(err_at(line, format!("bad {name} `{tok}`: expected a finite number"))),
+            _ => Err(err_at(
+                line,
+                format!("bad {name} `{tok}`: expected a finite number"),
+            )),
         }
     }
 
@@ -245,7 +266,10 @@ impl<'a> Fields<'a> {
 /// Node tag → index into the file's node list.
 enum TagMap {
     /// Tags in `min..min + idx.len()`; `u32::MAX` marks a missing tag.
-    Dense { min: u64, idx: Vec<u32> },
+    Dense {
+        min: u64,
+        idx: Vec<u32>,
+    },
     Sparse(HashMap<u64, u32>),
 }
 
@@ -276,7 +300,13 @@ impl TagMap {
                     _ => false,
                 }
             }
-            TagMap::Sparse(m) => m.insert(tag, index).is_none(),
+            TagMap::Sparse(m) => match m.entry(tag) {
+                Entry::Occupied(_) => false,
+                Entry::Vacant(e) => {
+                    e.insert(index);
+                    true
+                }
+            },
         }
     }
 }
@@ -313,7 +343,10 @@ struct Reader<'a> {
 impl<'a> Reader<'a> {
     fn new(bytes: &'a [u8]) -> Self {
         Reader {
-            lines: Lines { rest: bytes, line: 0 },
+            lines: Lines {
+                rest: bytes,
+                line: 0,
+            },
             file_len: bytes.len(),
             report: MshReport::default(),
             names: HashMap::new(),
@@ -355,7 +388,10 @@ impl<'a> Reader<'a> {
                     "expected $MeshFormat first, found `{header}` (not a Gmsh MSH file?)"
                 )));
             }
-            let known = matches!(name, "MeshFormat" | "PhysicalNames" | "Entities" | "Nodes" | "Elements");
+            let known = matches!(
+                name,
+                "MeshFormat" | "PhysicalNames" | "Entities" | "Nodes" | "Elements"
+            );
             if known && !seen.insert(name.to_owned()) {
                 return Err(self.lines.err(format!("second ${name} section")));
             }
@@ -374,9 +410,9 @@ impl<'a> Reader<'a> {
                 "Nodes" => self.nodes()?,
                 "Elements" => self.elements()?,
                 "PartitionedEntities" => {
-                    return Err(self.lines.err(
-                        "partitioned meshes are not supported: save without partitions",
-                    ));
+                    return Err(self
+                        .lines
+                        .err("partitioned meshes are not supported: save without partitions"));
                 }
                 _ => self.skip_section(name)?,
             }
@@ -398,11 +434,16 @@ impl<'a> Reader<'a> {
                 return Ok(());
             }
         }
-        Err(err_at(start, format!("section ${name} is never closed by {end}")))
+        Err(err_at(
+            start,
+            format!("section ${name} is never closed by {end}"),
+        ))
     }
 
     fn mesh_format(&mut self) -> Result<(), MeshError> {
-        let mut f = self.lines.record("MeshFormat", || "`version file-type data-size`".into())?;
+        let mut f = self
+            .lines
+            .record("MeshFormat", || "`version file-type data-size`".into())?;
         let version = f.token("version")?;
         if version != "4.1" {
             return Err(f.err(format!(
@@ -428,21 +469,33 @@ impl<'a> Reader<'a> {
 
     fn physical_names(&mut self) -> Result<(), MeshError> {
         const S: &str = "PhysicalNames";
-        let mut f = self.lines.record(S, || "the number of physical names".into())?;
+        let mut f = self
+            .lines
+            .record(S, || "the number of physical names".into())?;
         let n = f.count("number of physical names")?;
         f.end("the number of physical names")?;
         for i in 0..n {
-            let mut f = self.lines.record(S, || format!("physical name {} of {n}", i + 1))?;
-            let dim = f.int("dimension")?;
-            let tag = f.int("physical tag")?;
-            let rest = f.it.collect::<Vec<_>>().join(" ");
-            let name = rest
+            let f = self
+                .lines
+                .record(S, || format!("physical name {} of {n}", i + 1))?;
+            // `dim tag "name"`; the name may hold any run of spaces.
+            let raw = f.raw;
+            let (head, quoted) = raw.split_at(raw.find('"').unwrap_or(raw.len()));
+            let mut h = Fields {
+                raw: head,
+                it: head.split_ascii_whitespace(),
+                line: f.line,
+            };
+            let dim = h.int("dimension")?;
+            let tag = h.int("physical tag")?;
+            h.end("the physical tag")?;
+            let quoted = quoted.trim_end();
+            let name = quoted
                 .strip_prefix('"')
                 .and_then(|r| r.strip_suffix('"'))
-                .filter(|_| rest.len() >= 2)
-                .ok_or_else(|| err_at(f.line, format!("expected a quoted name, found `{rest}`")))?;
+                .ok_or_else(|| h.err(format!("expected a quoted name, found `{quoted}`")))?;
             if !(0..=3).contains(&dim) {
-                return Err(err_at(f.line, format!("bad dimension {dim}: expected 0 to 3")));
+                return Err(h.err(format!("bad dimension {dim}: expected 0 to 3")));
             }
             self.names.insert((dim, tag), name.to_owned());
         }
@@ -451,9 +504,14 @@ impl<'a> Reader<'a> {
 
     fn entities(&mut self) -> Result<(), MeshError> {
         const S: &str = "Entities";
-        let mut f = self.lines.record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
+        let mut f = self
+            .lines
+            .record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
         let mut counts = [0usize; 4];
-        for (c, name) in counts.iter_mut().zip(["points", "curves", "surfaces", "volumes"]) {
+        for (c, name) in counts
+            .iter_mut()
+            .zip(["points", "curves", "surfaces", "volumes"])
+        {
             *c = f.count(&format!("number of {name}"))?;
         }
         f.end("the number of volumes")?;
@@ -462,7 +520,9 @@ impl<'a> Reader<'a> {
             let kind = ["point", "curve", "surface", "volume"][dim];
             let mut tags_seen = BTreeSet::new();
             for i in 0..n {
-                let mut f = self.lines.record(S, || format!("{kind} entity {} of {n}", i + 1))?;
+                let mut f = self
+                    .lines
+                    .record(S, || format!("{kind} entity {} of {n}", i + 1))?;
                 let tag = f.int(&format!("{kind} tag"))?;
                 if !tags_seen.insert(tag) {
                     return Err(f.err(format!("{kind} entity {tag} listed twice")));
@@ -500,13 +560,21 @@ impl<'a> Reader<'a> {
 
     fn nodes(&mut self) -> Result<(), MeshError> {
         const S: &str = "Nodes";
-        let mut f = self.lines.record(S, || "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into())?;
+        let mut f = self.lines.record(S, || {
+            "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into()
+        })?;
         let n_blocks = f.count("number of entity blocks")?;
         let n_nodes = f.count("number of nodes")?;
         let (min, max) = if n_nodes == 0 {
-            (f.count("minimum node tag")? as u64, f.count("maximum node tag")? as u64)
+            (
+                f.count("minimum node tag")? as u64,
+                f.count("maximum node tag")? as u64,
+            )
         } else {
-            (f.node_tag("minimum node tag")?, f.node_tag("maximum node tag")?)
+            (
+                f.node_tag("minimum node tag")?,
+                f.node_tag("maximum node tag")?,
+            )
         };
         f.end("the maximum node tag")?;
         if n_nodes > 0 && max < min {
@@ -518,13 +586,18 @@ impl<'a> Reader<'a> {
         let range = max.saturating_sub(min).saturating_add(1);
         let dense_limit = 2 * self.capacity(n_nodes) as u64 + 1024;
         let mut tags = if range <= dense_limit {
-            TagMap::Dense { min, idx: vec![u32::MAX; range as usize] }
+            TagMap::Dense {
+                min,
+                idx: vec![u32::MAX; range as usize],
+            }
         } else {
             TagMap::Sparse(HashMap::with_capacity(self.capacity(n_nodes)))
         };
         self.coords = Vec::with_capacity(self.capacity(n_nodes));
         for b in 0..n_blocks {
-            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let mut f = self
+                .lines
+                .record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
             let dim = f.int("entity dimension")?;
             f.int("entity tag")?;
             let parametric = f.count("parametric flag")?;
@@ -543,7 +616,9 @@ impl<'a> Reader<'a> {
                 )));
             }
             for i in 0..n {
-                let mut f = self.lines.record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
+                let mut f = self
+                    .lines
+                    .record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
                 let tag = f.node_tag("node tag")?;
                 f.end("the node tag")?;
                 if !(min..=max).contains(&tag) {
@@ -558,7 +633,9 @@ impl<'a> Reader<'a> {
             }
             let extra = if parametric == 1 { dim as usize } else { 0 };
             for i in 0..n {
-                let mut f = self.lines.record(S, || format!("coordinates of node {} of block {}", i + 1, b + 1))?;
+                let mut f = self.lines.record(S, || {
+                    format!("coordinates of node {} of block {}", i + 1, b + 1)
+                })?;
                 let x = f.real("x coordinate")?;
                 let y = f.real("y coordinate")?;
                 let z = f.real("z coordinate")?;
@@ -587,7 +664,9 @@ impl<'a> Reader<'a> {
         let Some(tags) = self.tags.take() else {
             return Err(self.lines.err("$Elements must come after $Nodes"));
         };
-        let mut f = self.lines.record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
+        let mut f = self
+            .lines
+            .record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
         let n_blocks = f.count("number of entity blocks")?;
         let n_elements = f.count("number of elements")?;
         f.count("minimum element tag")?;
@@ -595,7 +674,9 @@ impl<'a> Reader<'a> {
         f.end("the maximum element tag")?;
         let mut total = 0usize;
         for b in 0..n_blocks {
-            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let mut f = self
+                .lines
+                .record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
             let dim = f.int("entity dimension")?;
             let entity = f.int("entity tag")?;
             let ty: u32 = f.parse("element type", "a positive integer")?;
@@ -614,7 +695,9 @@ impl<'a> Reader<'a> {
                 _ => {
                     *self.report.skipped_elements.entry(ty).or_insert(0) += n;
                     for i in 0..n {
-                        let mut f = self.lines.record(S, || format!("element {} of block {}", i + 1, b + 1))?;
+                        let mut f = self
+                            .lines
+                            .record(S, || format!("element {} of block {}", i + 1, b + 1))?;
                         f.node_tag("element tag")?;
                         let nodes = f.it.by_ref().count();
                         let ok = match element_type_nodes(ty) {
@@ -657,7 +740,7 @@ impl<'a> Reader<'a> {
                 .ok_or_else(|| f.err(format!("node tag {tag} is not in $Nodes")))?;
         }
         let line = f.line;
-        f.end(&format!("the {K} node tags"))?;
+        f.end("the node tags")?;
         Ok((nodes, line))
     }
 
@@ -670,7 +753,10 @@ impl<'a> Reader<'a> {
         line: usize,
     ) -> Result<(), MeshError> {
         if dim != 3 {
-            return Err(err_at(line, format!("tets (type 4) on an entity of dimension {dim}")));
+            return Err(err_at(
+                line,
+                format!("tets (type 4) on an entity of dimension {dim}"),
+            ));
         }
         let phys = match &self.volumes {
             None => None,
@@ -699,7 +785,8 @@ impl<'a> Reader<'a> {
         self.tets.reserve(cap);
         self.tet_phys.reserve(cap);
         for i in 0..n {
-            let (t, _) = self.element::<4>(tags, || format!("tet {} of {n} on volume {entity}", i + 1))?;
+            let (t, _) =
+                self.element::<4>(tags, || format!("tet {} of {n} on volume {entity}", i + 1))?;
             self.tets.push(t);
             self.tet_phys.push(phys);
         }
@@ -738,9 +825,15 @@ impl<'a> Reader<'a> {
             self.report.ungrouped_triangles += n;
         }
         for i in 0..n {
-            let (nodes, line) = self.element::<3>(tags, || format!("triangle {} of {n} on surface {entity}", i + 1))?;
+            let (nodes, line) = self.element::<3>(tags, || {
+                format!("triangle {} of {n} on surface {entity}", i + 1)
+            })?;
             if grouped {
-                self.triangles.push(RawTriangle { nodes, entity, line });
+                self.triangles.push(RawTriangle {
+                    nodes,
+                    entity,
+                    line,
+                });
             }
         }
         Ok(())
@@ -762,22 +855,30 @@ impl<'a> Reader<'a> {
         }
 
         // Keep the nodes that tets use, in file order.
-        let mut new_index = vec![u32::MAX; self.coords.len()];
+        let mut used = vec![false; self.coords.len()];
         for t in &self.tets {
             for &v in t {
-                new_index[v as usize] = 0;
+                used[v as usize] = true;
             }
         }
+        let mut new_index = vec![u32::MAX; self.coords.len()];
         let mut coords = Vec::with_capacity(self.coords.len());
         for (i, c) in self.coords.iter().enumerate() {
-            if new_index[i] == 0 {
+            if used[i] {
                 new_index[i] = coords.len() as u32;
                 coords.push(*c);
             }
         }
         self.report.dropped_nodes = self.coords.len() - coords.len();
-        let mut mesh = TetMesh { coords, ..Default::default() };
-        mesh.tets = self.tets.iter().map(|t| t.map(|v| new_index[v as usize])).collect();
+        let mut mesh = TetMesh {
+            coords,
+            ..Default::default()
+        };
+        mesh.tets = self
+            .tets
+            .iter()
+            .map(|t| t.map(|v| new_index[v as usize]))
+            .collect();
         for t in 0..mesh.tets.len() {
             if signed_volume(&mesh.tet_points(t)) < 0.0 {
                 mesh.tets[t].swap(2, 3);
@@ -793,14 +894,20 @@ impl<'a> Reader<'a> {
             if let Some(i) = regions.iter().position(|r| r.name == name) {
                 return Ok(i as u16);
             }
-            let i = u16::try_from(regions.len()).map_err(|_| {
-                err_at(elements_line, "more than 65536 regions (physical volumes)")
-            })?;
-            regions.push(Region { name, breakable: true });
+            let i = u16::try_from(regions.len())
+                .map_err(|_| err_at(elements_line, "more than 65536 regions (physical volumes)"))?;
+            regions.push(Region {
+                name,
+                breakable: true,
+            });
             Ok(i)
         };
         for &p in &phys_volumes {
-            let name = self.names.get(&(3, p)).cloned().unwrap_or_else(|| format!("volume_{p}"));
+            let name = self
+                .names
+                .get(&(3, p))
+                .cloned()
+                .unwrap_or_else(|| format!("volume_{p}"));
             region_of.insert(Some(p), add_region(&mut mesh.regions, name)?);
         }
         if self.tet_phys.iter().any(Option::is_none) {
@@ -812,11 +919,18 @@ impl<'a> Reader<'a> {
         let phys_surfaces: BTreeSet<i32> = self.surfaces.values().flatten().copied().collect();
         let mut group_of: HashMap<i32, usize> = HashMap::new();
         for &p in &phys_surfaces {
-            let name = self.names.get(&(2, p)).cloned().unwrap_or_else(|| format!("surface_{p}"));
+            let name = self
+                .names
+                .get(&(2, p))
+                .cloned()
+                .unwrap_or_else(|| format!("surface_{p}"));
             let g = match mesh.boundary.iter().position(|g| g.name == name) {
                 Some(g) => g,
                 None => {
-                    mesh.boundary.push(BoundaryGroup { name, faces: Vec::new() });
+                    mesh.boundary.push(BoundaryGroup {
+                        name,
+                        faces: Vec::new(),
+                    });
                     mesh.boundary.len() - 1
                 }
             };
@@ -855,7 +969,10 @@ fn match_face(mesh: &TetMesh, keys: &[(u128, u32)], nodes: [u32; 3]) -> Option<F
     let candidates = keys[first..].iter().take_while(|&&(k, _)| k == key);
     let mut found = None;
     for &(_, slot) in candidates {
-        let f = FaceRef { tet: slot / 4, local: (slot % 4) as u8 };
+        let f = FaceRef {
+            tet: slot / 4,
+            local: (slot % 4) as u8,
+        };
         let o = f.nodes(&mesh.tets);
         let same_turn = (0..3).any(|r| o[r] == nodes[0] && o[(r + 1) % 3] == nodes[1]);
         if same_turn {
@@ -864,4 +981,33 @@ fn match_face(mesh: &TetMesh, keys: &[(u128, u32)], nodes: [u32; 3]) -> Option<F
         found.get_or_insert(f);
     }
     found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dense_and_sparse_tag_maps_agree() {
+        let mut dense = TagMap::Dense {
+            min: 5,
+            idx: vec![u32::MAX; 10],
+        };
+        let mut sparse = TagMap::Sparse(HashMap::new());
+        for m in [&mut dense, &mut sparse] {
+            assert!(m.insert(7, 0));
+            assert!(m.insert(14, 1));
+            assert!(!m.insert(7, 2), "a tag given twice");
+            assert_eq!((m.get(7), m.get(14), m.get(8)), (Some(0), Some(1), None));
+            assert_eq!((m.get(0), m.get(u64::MAX)), (None, None));
+        }
+        assert!(!dense.insert(15, 3), "outside the dense range");
+    }
+
+    #[test]
+    fn element_types_have_gmsh_names() {
+        assert_eq!(element_type_name(TET), Some("4-node tetrahedron"));
+        assert_eq!(element_type_name(15), Some("point"));
+        assert_eq!(element_type_name(99), None);
+    }
 }

@@ -159,7 +159,11 @@ fn grow(b: &mut [[f64; 3]; 2], p: [f64; 3]) {
 
 /// Writes ` minX minY minZ maxX maxY maxZ`; an empty box as zeros.
 fn push_box(out: &mut String, b: &[[f64; 3]; 2]) {
-    let b = if b[0][0] <= b[1][0] { *b } else { [[0.0; 3]; 2] };
+    let b = if b[0][0] <= b[1][0] {
+        *b
+    } else {
+        [[0.0; 3]; 2]
+    };
     for x in b.iter().flatten() {
         out.push(' ');
         push_real(out, *x);
@@ -180,4 +184,32 @@ fn push_real(out: &mut String, x: f64) {
 /// `name` with the characters MSH cannot hold in a quoted name replaced.
 fn quotable(name: &str) -> String {
     name.replace('"', "'").replace(['\n', '\r'], " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn real(x: f64) -> String {
+        let mut s = String::new();
+        push_real(&mut s, x);
+        s
+    }
+
+    #[test]
+    fn reals_are_short_and_exact() {
+        assert_eq!(real(0.01), "0.01");
+        assert_eq!(real(-0.0), "-0");
+        assert_eq!(real(1e-300), "1e-300");
+        assert_eq!(real(2.5e20), "2.5e20");
+        assert_eq!(real(0.1 + 0.2), "0.30000000000000004");
+        for x in [1e-300, 3e-6, 0.1 + 0.2, 1e15 + 1.0, 1.7976931348623157e308] {
+            assert_eq!(real(x).parse::<f64>().unwrap(), x);
+        }
+    }
+
+    #[test]
+    fn quotes_in_names_are_replaced() {
+        assert_eq!(quotable("a \"b\"\nc"), "a 'b' c");
+    }
 }

@@ -1,0 +1,152 @@
+//! `femdem check` end to end: the bundled paper cases meet the numbers of
+//! the reference paper's set-up, and bad case files give errors that name
+//! the file, the line and the key.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn femdem(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_femdem"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("run femdem")
+}
+
+fn check_json(case: &str) -> Value {
+    let out = femdem(&["check", case, "--json"]);
+    assert!(
+        out.status.success(),
+        "{case}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+fn region<'a>(report: &'a Value, name: &str) -> &'a Value {
+    report["regions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["name"] == name)
+        .unwrap_or_else(|| panic!("no region {name}"))
+}
+
+/// Paper §3.1: 51,690 tets in a disc of 40 mm diameter and 15 mm thickness.
+/// The issue asks for ±40% on the count and 1% on the volume (the inscribed
+/// polygon loses (2π/n)²/6 ≈ 0.06% at n = 108 segments).
+#[test]
+fn brazilian_disc_matches_the_paper_setup() {
+    let r = check_json("cases/paper/brazilian.toml");
+    let disc = region(&r, "disc");
+    let tets = disc["tets"].as_f64().unwrap();
+    assert!((tets / 51_690.0 - 1.0).abs() < 0.4, "disc tets {tets}");
+    let exact = std::f64::consts::PI * 0.02f64.powi(2) * 0.015;
+    let v = disc["volume"].as_f64().unwrap();
+    assert!((v / exact - 1.0).abs() < 0.01, "disc volume {v} vs {exact}");
+    assert_eq!(disc["breakable"], true);
+    assert!(r["min_volume"].as_f64().unwrap() > 0.0);
+    assert_eq!(r["joints"], r["interior_faces"]);
+    assert_eq!(r["interface_joints"], 0);
+    for p in ["platen_top", "platen_bottom"] {
+        assert_eq!(region(&r, p)["breakable"], false);
+        assert!(region(&r, p)["tets"].as_u64().unwrap() > 0);
+    }
+}
+
+#[test]
+fn polyaxial_cube_fills_half_a_metre_cubed() {
+    let r = check_json("cases/paper/polyaxial.toml");
+    assert!((r["volume"].as_f64().unwrap() - 0.125).abs() < 1e-12);
+    assert_eq!(r["joints"], r["interior_faces"]);
+    // Each tet has four faces: 4T = 2·interior + boundary, boundary = 6 sides × 20² cells × 2.
+    let tets = r["tets"].as_u64().unwrap();
+    assert_eq!(
+        4 * tets,
+        2 * r["interior_faces"].as_u64().unwrap() + 6 * 400 * 2
+    );
+    assert_eq!(r["nodes"].as_u64().unwrap(), 4 * tets);
+}
+
+#[test]
+fn gmsh_case_joints_the_breakable_matrix_and_its_interface() {
+    let r = check_json("crates/femdem-cli/tests/cases/gmsh_inclusion.toml");
+    // Counts written by Gmsh (see tests/data/gmsh_two_volumes.geo).
+    assert_eq!(region(&r, "matrix")["tets"], 335);
+    assert_eq!(region(&r, "inclusion")["tets"], 68);
+    // The inclusion's 66 boundary triangles separate matrix from inclusion.
+    assert_eq!(r["interface_joints"], 66);
+    assert_eq!(
+        r["joints"].as_u64().unwrap(),
+        r["interior_faces"].as_u64().unwrap() + 66
+    );
+}
+
+#[test]
+fn traces_become_initial_contact_faces() {
+    let r = check_json("crates/femdem-cli/tests/cases/traces.toml");
+    assert!(r["initial_contact_faces"].as_u64().unwrap() > 0);
+    assert_eq!(r["joints"], r["interior_faces"]);
+}
+
+#[test]
+fn text_report_names_the_counts() {
+    let out = femdem(&["check", "cases/paper/brazilian.toml"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for word in [
+        "tets",
+        "joints",
+        "initial contact faces",
+        "min inradius",
+        "aspect ratio",
+        "memory",
+        "disc",
+    ] {
+        assert!(text.contains(word), "missing `{word}` in:\n{text}");
+    }
+}
+
+/// Each bad case with the location and words its error must carry.
+#[test]
+fn bad_cases_are_refused_with_file_line_and_key() {
+    let dir = "crates/femdem-cli/tests/cases/bad";
+    let expected = [
+        ("unknown_key.toml", ":12:1:", "elemnt_size"),
+        (
+            "undeclared_region.toml",
+            ":7:1:",
+            "mesh.parts[0].region: `granite` is not declared",
+        ),
+        ("wrong_version.toml", ":1:11:", "version"),
+        (
+            "platen_first.toml",
+            ":7:1:",
+            "needs a specimen part before it",
+        ),
+        ("negative_size.toml", ":7:1:", "element_size"),
+        ("missing_msh.toml", ":7:1:", "does_not_exist.msh"),
+        (
+            "undeclared_physical_volume.toml",
+            ":7:1:",
+            "physical volume `inclusion`",
+        ),
+    ];
+    for (file, at, words) in expected {
+        let path = format!("{dir}/{file}");
+        let out = femdem(&["check", &path]);
+        assert!(!out.status.success(), "{file} was accepted");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            err.contains(&format!("{path}{at}")),
+            "{file}: expected location {at} in: {err}"
+        );
+        assert!(err.contains(words), "{file}: expected `{words}` in: {err}");
+    }
+}

@@ -1,0 +1,27 @@
+//! `cargo xtask bench`.
+
+use std::process::Command;
+
+use anyhow::Result;
+
+/// Runs the criterion benches, or the memory run with `--memory`.
+pub fn run(args: &[String]) -> Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    if args.iter().any(|a| a == "--memory") {
+        return crate::run_in_root(Command::new(&cargo).args([
+            "run",
+            "--release",
+            "-p",
+            "femdem-benches",
+            "--example",
+            "joint_memory",
+            "--",
+            "1000000",
+        ]));
+    }
+    crate::run_in_root(
+        Command::new(&cargo)
+            .args(["bench", "-p", "femdem-benches", "--"])
+            .args(args),
+    )
+}

@@ -30,12 +30,22 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run a case to its end time, writing VTU frames, a PVD series and a
+    /// CSV history.
+    Run {
+        /// The TOML case file.
+        case: PathBuf,
+        /// Output directory (default: `[output] dir`, else `out/<case stem>`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json } => commands::check::run(&case, json),
+        Command::Run { case, out } => commands::run::run(&case, out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

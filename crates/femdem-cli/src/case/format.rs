@@ -19,6 +19,187 @@ pub struct Case {
     pub title: String,
     /// How the mesh is made.
     pub mesh: MeshSection,
+    /// `[[materials]]`: one per deformable region.
+    #[serde(default)]
+    pub materials: Vec<Spanned<MaterialSpec>>,
+    /// `[[platens]]`: rigid regions moved by a prescribed velocity.
+    #[serde(default)]
+    pub platens: Vec<Spanned<PlatenDrive>>,
+    /// `[[loads]]`: constraints, velocities, pressures, tractions.
+    #[serde(default)]
+    pub loads: Vec<Spanned<LoadSpec>>,
+    /// `[solver]`: time span and the speed/accuracy knobs.
+    pub solver: Option<Spanned<SolverSpec>>,
+    /// `[output]`: what is written and how often.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// `[[materials]]`: the material of one region, SI units.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// The region.
+    pub region: String,
+    /// `"neo-hookean"` (Eq. 1, default) or `"linear-elastic"` (small strain).
+    #[serde(default = "default_law")]
+    pub law: String,
+    /// Density ρ, kg/m³.
+    pub density: f64,
+    /// Young's modulus E, Pa.
+    pub young: f64,
+    /// Poisson's ratio ν.
+    pub poisson: f64,
+    /// Viscous damping η of Eq. 1, Pa·s (exclusive with `damping_ratio`).
+    pub viscosity: Option<f64>,
+    /// η as a fraction of the critical value `2 h √(Eρ)`, `h` the region's
+    /// mean edge length (exclusive with `viscosity`). Default: 0.
+    pub damping_ratio: Option<f64>,
+    /// Joint penalty p0, Pa (breakable regions; default 10 E, Eq. 9).
+    pub penalty: Option<f64>,
+    /// Tensile strength f_t, Pa (breakable regions).
+    pub tensile_strength: Option<f64>,
+    /// Cohesion c, Pa (breakable regions).
+    pub cohesion: Option<f64>,
+    /// Internal friction angle φ, degrees (breakable regions).
+    pub friction_angle: Option<f64>,
+}
+
+fn default_law() -> String {
+    "neo-hookean".into()
+}
+
+/// A set of nodes: the intersection of the criteria given.
+#[derive(Debug, Deserialize, Default, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct NodeSpec {
+    /// Nodes on a boundary group, e.g. `"bar.zmin"`.
+    pub group: Option<String>,
+    /// Nodes of a region.
+    pub region: Option<String>,
+    /// Nodes whose initial position lies in a box.
+    #[serde(rename = "box")]
+    pub within: Option<BoxSpec>,
+}
+
+/// `{ min = [x, y, z], max = [x, y, z] }`, m.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    /// Lower corner.
+    pub min: [f64; 3],
+    /// Upper corner.
+    pub max: [f64; 3],
+}
+
+/// `[[platens]]`: a rigid region moved at a ramped velocity. Until contact
+/// exists, it moves the specimen nodes in `drives` with it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlatenDrive {
+    /// The rigid region (declared unbreakable, with no material).
+    pub region: String,
+    /// Velocity, m/s.
+    pub velocity: [f64; 3],
+    /// Linear rise time of the velocity, s (default 0).
+    #[serde(default)]
+    pub ramp_time: f64,
+    /// Specimen nodes moved with the platen.
+    pub drives: Option<NodeSpec>,
+}
+
+/// `[[loads]]`, told apart by `kind`.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum LoadSpec {
+    /// Zero velocity on the given components.
+    Fixed {
+        /// The nodes.
+        nodes: NodeSpec,
+        /// Components, letters of `"xyz"`.
+        components: String,
+    },
+    /// A prescribed, ramped velocity; its reaction force is recorded.
+    Velocity {
+        /// Name in the history (default `velocity<i>`).
+        name: Option<String>,
+        /// The nodes.
+        nodes: NodeSpec,
+        /// Velocity, m/s.
+        velocity: [f64; 3],
+        /// Components prescribed (default `"xyz"`).
+        components: Option<String>,
+        /// Rise time, s.
+        #[serde(default)]
+        ramp_time: f64,
+        /// Time after which the velocity is zero, s.
+        stop_time: Option<f64>,
+    },
+    /// A pressure on a boundary group (positive pushes on it).
+    Pressure {
+        /// The boundary group.
+        group: String,
+        /// Pressure, Pa.
+        pressure: f64,
+        /// Rise time, s.
+        #[serde(default)]
+        ramp_time: f64,
+    },
+    /// A traction vector on a boundary group.
+    Traction {
+        /// The boundary group.
+        group: String,
+        /// Traction, Pa.
+        traction: [f64; 3],
+        /// Rise time, s.
+        #[serde(default)]
+        ramp_time: f64,
+    },
+}
+
+/// `[solver]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Simulated time, s.
+    pub end_time: f64,
+    /// Time step, s (default: `safety ×` the estimated critical step).
+    pub time_step: Option<f64>,
+    /// Fraction of the critical step used when `time_step` is not given
+    /// (default 0.9).
+    #[serde(default = "default_safety")]
+    pub safety: f64,
+    /// Nodal mass multiplier ≥ 1 (default 1: exact dynamics).
+    #[serde(default = "one")]
+    pub mass_scaling: f64,
+    /// Body acceleration, m/s² (default none).
+    #[serde(default)]
+    pub gravity: [f64; 3],
+    /// Worker threads (default: all cores). Results do not depend on it.
+    pub threads: Option<usize>,
+}
+
+fn default_safety() -> f64 {
+    0.9
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// `[output]`.
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output directory (default `out/<case file stem>`; `--out` overrides).
+    pub dir: Option<String>,
+    /// Simulated time between VTU frames, s (default: end_time / 20).
+    pub interval: Option<f64>,
+    /// Simulated time between history rows, s (default: interval / 10).
+    pub history_interval: Option<f64>,
+    /// Fields written (default all): `displacement`, `velocity`, `stress`,
+    /// `principal_stress`, `von_mises`, `region`.
+    pub fields: Option<Vec<String>>,
 }
 
 /// `[mesh]`: regions, parts and the seed of random generators.

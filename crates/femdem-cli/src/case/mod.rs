@@ -3,6 +3,7 @@
 
 pub mod format;
 pub mod mesh;
+pub mod setup;
 
 use std::fmt;
 use std::ops::Range;

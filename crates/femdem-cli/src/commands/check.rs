@@ -3,10 +3,10 @@
 use std::path::Path;
 
 use anyhow::Result;
-use femdem_mesh::{face_adjacency, faces::face_key, insert_joints, stats};
+use femdem_mesh::{face_adjacency, faces::face_key, stats};
 use serde::Serialize;
 
-use crate::case;
+use super::prepare::prepare;
 
 /// One region in the report.
 #[derive(Serialize)]
@@ -46,14 +46,27 @@ struct CheckReport {
     memory_bytes: usize,
     regions: Vec<RegionReport>,
     boundary_groups: Vec<GroupReport>,
+    /// Present when the case has a `[solver]`.
+    time_stepping: Option<TimeStepReport>,
+}
+
+/// The time step a run would take.
+#[derive(Serialize)]
+struct TimeStepReport {
+    critical_time_step: f64,
+    time_step: f64,
+    element_transit_time: f64,
+    omega_max: f64,
+    damping_ratio: f64,
+    steps: u64,
+    deformable_tets: usize,
 }
 
 /// Runs the command.
 pub fn run(path: &Path, json: bool) -> Result<()> {
-    let loaded = case::load(path)?;
-    let mesh = case::mesh::build_mesh(&loaded)?;
-    let jointed = insert_joints(&mesh)?;
-    let s = stats(&mesh);
+    let prepared = prepare(path)?;
+    let (loaded, mesh, jointed) = (&prepared.case, &prepared.mesh, &prepared.jointed);
+    let s = stats(mesh);
 
     // Counted from the face adjacency of the unsplit mesh, independently of
     // joint insertion, so `joints == interior_faces` is a real check.
@@ -63,7 +76,7 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
         .map(|f| face_key(f.nodes(&mesh.tets)))
         .collect();
     let breakable = |t: u32| mesh.regions[mesh.tet_region[t as usize] as usize].breakable;
-    let interior_faces = face_adjacency(&mesh)?
+    let interior_faces = face_adjacency(mesh)?
         .interior
         .iter()
         .filter(|(a, b)| {
@@ -108,6 +121,15 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
                 faces: g.faces.len(),
             })
             .collect(),
+        time_stepping: prepared.run.as_ref().map(|r| TimeStepReport {
+            critical_time_step: r.stable.critical,
+            time_step: r.solver.dt,
+            element_transit_time: r.stable.element_transit,
+            omega_max: r.stable.omega_max,
+            damping_ratio: r.stable.damping_ratio,
+            steps: r.steps,
+            deformable_tets: r.solver.model.num_deformable_tets(),
+        }),
     };
     if json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -165,6 +187,17 @@ fn print_text(r: &CheckReport) {
         println!(
             "  {:<20} {:>9} tets  {:.6e} m³  {kind}",
             g.name, g.tets, g.volume
+        );
+    }
+    if let Some(t) = &r.time_stepping {
+        println!(
+            "time step {:.4e} s (critical {:.4e} s from ω_max = {:.4e} rad/s, damping ratio {:.3}; element transit {:.4e} s)",
+            t.time_step, t.critical_time_step, t.omega_max, t.damping_ratio, t.element_transit_time
+        );
+        println!(
+            "steps     {} ({:.3e} tet-steps)",
+            t.steps,
+            t.steps as f64 * t.deformable_tets as f64
         );
     }
     println!("boundary groups");

@@ -1,0 +1,310 @@
+//! Turning a case's material, platen, load and solver sections into a
+//! solver model and its loads.
+
+use femdem_core::Vec3;
+use femdem_fracture::JointParams;
+use femdem_material::{ElasticParams, Law};
+use femdem_mesh::JointedMesh;
+use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
+use femdem_solver::{
+    Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
+};
+
+use super::format::{LoadSpec, NodeSpec};
+use super::{CaseError, LoadedCase};
+
+/// The default joint penalty as a multiple of E (the top of Eq. 9's range).
+pub const DEFAULT_PENALTY_FACTOR: f64 = 10.0;
+
+/// Builds the region behaviours of the case.
+///
+/// # Errors
+/// A located [`CaseError`] for an unknown region, a region with two
+/// materials, a deformable region without one, bad parameters, or missing
+/// joint strengths in a breakable region.
+pub fn behaviours(
+    case: &LoadedCase,
+    mesh: &JointedMesh,
+) -> Result<Vec<RegionBehaviour>, CaseError> {
+    let m = &mesh.mesh;
+    let stats = femdem_mesh::stats(m);
+    let mut out: Vec<Option<RegionBehaviour>> = vec![None; m.regions.len()];
+    for p in &case.case.platens {
+        let r = m.region_index(&p.get_ref().region).ok_or_else(|| {
+            case.error_at(
+                p.span(),
+                format!(
+                    "platens.region: `{}` is not a region of the mesh",
+                    p.get_ref().region
+                ),
+            )
+        })?;
+        if m.regions[r as usize].breakable {
+            return Err(case.error_at(
+                p.span(),
+                format!(
+                    "platens.region: `{}` is breakable; a rigid platen cannot break",
+                    p.get_ref().region
+                ),
+            ));
+        }
+        out[r as usize] = Some(RegionBehaviour::Rigid);
+    }
+    for (i, spec) in case.case.materials.iter().enumerate() {
+        let s = spec.get_ref();
+        let key = format!("materials[{i}]");
+        let at = |msg: String| case.error_at(spec.span(), format!("{key}: {msg}"));
+        let r = m
+            .region_index(&s.region)
+            .ok_or_else(|| at(format!("region `{}` is not a region of the mesh", s.region)))?;
+        if out[r as usize].is_some() {
+            return Err(at(format!(
+                "region `{}` already has a material or is a platen",
+                s.region
+            )));
+        }
+        let law = match s.law.as_str() {
+            "neo-hookean" => Law::NeoHookean,
+            "linear-elastic" => Law::LinearElastic,
+            other => {
+                return Err(at(format!(
+                    "law `{other}` is not `neo-hookean` or `linear-elastic`"
+                )));
+            }
+        };
+        let mean_edge = {
+            // Mean edge of this region's tets.
+            let mut sum = 0.0;
+            let mut count = 0usize;
+            for t in (0..m.num_tets()).filter(|&t| m.tet_region[t] == r) {
+                sum += femdem_core::tet::edge_lengths(&m.tet_points(t))
+                    .iter()
+                    .sum::<f64>();
+                count += 6;
+            }
+            if count > 0 {
+                sum / count as f64
+            } else {
+                stats.mean_edge
+            }
+        };
+        let viscosity = match (s.viscosity, s.damping_ratio) {
+            (Some(_), Some(_)) => {
+                return Err(at("give `viscosity` or `damping_ratio`, not both".into()));
+            }
+            (Some(v), None) => v,
+            (None, Some(xi)) => {
+                xi * femdem_material::critical_viscosity(mean_edge, s.young, s.density)
+            }
+            (None, None) => 0.0,
+        };
+        let material = ElasticParams {
+            young: s.young,
+            poisson: s.poisson,
+            density: s.density,
+            viscosity,
+        }
+        .validate()
+        .map_err(|e| at(e.to_string()))?;
+        let joints = if m.regions[r as usize].breakable {
+            let need = |v: Option<f64>, name: &str| {
+                v.ok_or_else(|| {
+                    at(format!(
+                        "region `{}` is breakable: `{name}` is required",
+                        s.region
+                    ))
+                })
+            };
+            let params = JointParams {
+                penalty: s.penalty.unwrap_or(DEFAULT_PENALTY_FACTOR * s.young),
+                tensile_strength: need(s.tensile_strength, "tensile_strength")?,
+                cohesion: need(s.cohesion, "cohesion")?,
+                friction_angle: need(s.friction_angle, "friction_angle")?.to_radians(),
+            };
+            Some(params.validate().map_err(|e| at(e.to_string()))?)
+        } else {
+            None
+        };
+        out[r as usize] = Some(RegionBehaviour::Deformable {
+            law,
+            material,
+            joints,
+        });
+    }
+    out.into_iter()
+        .enumerate()
+        .map(|(r, b)| {
+            b.ok_or_else(|| CaseError {
+                path: case.path.clone(),
+                at: None,
+                message: format!(
+                    "region `{}` has no [[materials]] entry and is not a [[platens]] region",
+                    m.regions[r].name
+                ),
+            })
+        })
+        .collect()
+}
+
+fn selection(spec: &NodeSpec) -> NodeSelection {
+    NodeSelection {
+        group: spec.group.clone(),
+        region: spec.region.clone(),
+        within: spec.within.map(|b| (b.min, b.max)),
+    }
+}
+
+fn components(s: &str) -> Option<[bool; 3]> {
+    let mut c = [false; 3];
+    for ch in s.chars() {
+        match ch {
+            'x' => c[0] = true,
+            'y' => c[1] = true,
+            'z' => c[2] = true,
+            _ => return None,
+        }
+    }
+    c.iter().any(|&b| b).then_some(c)
+}
+
+fn unknown(u: UnknownName) -> String {
+    format!(
+        "no {} `{}` in the mesh (have: {})",
+        u.kind,
+        u.name,
+        u.available.join(", ")
+    )
+}
+
+/// Builds the loads of the case: platens as velocity drives of their
+/// region's nodes plus the specimen nodes they drive, then `[[loads]]`.
+///
+/// # Errors
+/// A located [`CaseError`] for unknown groups or regions, empty node sets
+/// and bad component strings.
+pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result<Loads, CaseError> {
+    let mut loads = Loads {
+        gravity: Vec3::from(gravity),
+        ..Default::default()
+    };
+    for (i, p) in case.case.platens.iter().enumerate() {
+        let s = p.get_ref();
+        let at = |msg: String| case.error_at(p.span(), format!("platens[{i}]: {msg}"));
+        let mut nodes = select_nodes(
+            mesh,
+            &NodeSelection {
+                region: Some(s.region.clone()),
+                ..Default::default()
+            },
+        )
+        .map_err(|u| at(unknown(u)))?;
+        if let Some(d) = &s.drives {
+            let driven = select_nodes(mesh, &selection(d)).map_err(|u| at(unknown(u)))?;
+            if driven.is_empty() {
+                return Err(at("`drives` selects no node".into()));
+            }
+            nodes.extend(driven);
+            nodes.sort_unstable();
+            nodes.dedup();
+        }
+        loads.drives.push(VelocityDrive {
+            name: s.region.clone(),
+            nodes,
+            velocity: Vec3::from(s.velocity),
+            components: [true; 3],
+            ramp: Ramp {
+                ramp_time: s.ramp_time,
+                stop_time: None,
+            },
+        });
+    }
+    for (i, l) in case.case.loads.iter().enumerate() {
+        let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
+        match l.get_ref() {
+            LoadSpec::Fixed {
+                nodes,
+                components: c,
+            } => {
+                let nodes = select_nodes(mesh, &selection(nodes)).map_err(|u| at(unknown(u)))?;
+                if nodes.is_empty() {
+                    return Err(at("`nodes` selects no node".into()));
+                }
+                let components = components(c)
+                    .ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                loads.fixed.push(Fixed { nodes, components });
+            }
+            LoadSpec::Velocity {
+                name,
+                nodes,
+                velocity,
+                components: c,
+                ramp_time,
+                stop_time,
+            } => {
+                let nodes = select_nodes(mesh, &selection(nodes)).map_err(|u| at(unknown(u)))?;
+                if nodes.is_empty() {
+                    return Err(at("`nodes` selects no node".into()));
+                }
+                let c = c.as_deref().unwrap_or("xyz");
+                let components = components(c)
+                    .ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                loads.drives.push(VelocityDrive {
+                    name: name.clone().unwrap_or_else(|| format!("velocity{i}")),
+                    nodes,
+                    velocity: Vec3::from(*velocity),
+                    components,
+                    ramp: Ramp {
+                        ramp_time: *ramp_time,
+                        stop_time: *stop_time,
+                    },
+                });
+            }
+            LoadSpec::Pressure {
+                group,
+                pressure,
+                ramp_time,
+            } => {
+                let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                loads.surfaces.push(SurfaceLoad {
+                    name: group.clone(),
+                    faces,
+                    kind: SurfaceKind::Pressure(*pressure),
+                    ramp: Ramp {
+                        ramp_time: *ramp_time,
+                        stop_time: None,
+                    },
+                });
+            }
+            LoadSpec::Traction {
+                group,
+                traction,
+                ramp_time,
+            } => {
+                let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                loads.surfaces.push(SurfaceLoad {
+                    name: group.clone(),
+                    faces,
+                    kind: SurfaceKind::Traction(Vec3::from(*traction)),
+                    ramp: Ramp {
+                        ramp_time: *ramp_time,
+                        stop_time: None,
+                    },
+                });
+            }
+        }
+    }
+    Ok(loads)
+}
+
+/// Builds the model with the case's mass scaling.
+///
+/// # Errors
+/// As [`behaviours`], plus model set-up errors.
+pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result<Model, CaseError> {
+    let b = behaviours(case, mesh)?;
+    Model::new(mesh, &b, mass_scaling).map_err(|e| CaseError {
+        path: case.path.clone(),
+        at: None,
+        message: e.to_string(),
+    })
+}

@@ -1,0 +1,126 @@
+//! `femdem run CASE.toml [--out DIR]`: integrate a case to its end time,
+//! writing VTU frames, a PVD series and a CSV history.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::{Context, Result, bail};
+use femdem_solver::Want;
+
+use super::output::{FIELDS, Output};
+use super::prepare::prepare;
+use super::progress::Progress;
+
+/// Runs the command.
+pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
+    let prepared = prepare(path)?;
+    let Some(mut run) = prepared.run else {
+        bail!(
+            "{}: a [solver] section is needed to run the case",
+            path.display()
+        );
+    };
+    let spec = &prepared.case.case.output;
+    let stem = path
+        .file_stem()
+        .map_or("case".into(), |s| s.to_string_lossy().into_owned());
+    let dir = out
+        .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
+        .unwrap_or_else(|| Path::new("out").join(&stem));
+    let interval = spec.interval.unwrap_or(run.end_time / 20.0);
+    let history_interval = spec.history_interval.unwrap_or(interval / 10.0);
+    if !(interval > 0.0 && history_interval > 0.0) {
+        bail!(
+            "{}: output.interval and output.history_interval must be > 0 s",
+            path.display()
+        );
+    }
+    let fields = spec
+        .fields
+        .clone()
+        .unwrap_or_else(|| FIELDS.iter().map(|s| s.to_string()).collect());
+    let solver = &mut run.solver;
+    let mut output = Output::create(&dir, &stem, fields, solver)
+        .with_context(|| format!("output directory {}", dir.display()))?;
+
+    let stop = Arc::new(AtomicBool::new(false));
+    {
+        let stop = stop.clone();
+        // A second handler cannot be installed (tests call run twice): then Ctrl-C kills as usual.
+        let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
+    }
+
+    let elements = solver.model.num_deformable_tets() as u64;
+    eprintln!(
+        "femdem: {} tets ({} deformable), {} joints, {} nodes; dt = {:.4e} s ({:.2} of the critical {:.4e} s), {} steps",
+        solver.model.tets.len(),
+        elements,
+        solver.model.joints.len(),
+        solver.model.num_nodes(),
+        solver.dt,
+        solver.dt / run.stable.critical,
+        run.stable.critical,
+        run.steps
+    );
+    let mut progress = Progress::new(run.steps, elements);
+    let dt = solver.dt;
+    let mut next_frame = 0.0;
+    let mut next_row = 0.0;
+    let mut interrupted = false;
+    for n in 0..run.steps {
+        let t = solver.state.time;
+        let last = n + 1 == run.steps;
+        let stopping = stop.load(Ordering::SeqCst);
+        let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
+        let row_due = frame_due || t >= next_row - 0.5 * dt;
+        solver.step(Want {
+            stress: frame_due,
+            energy: row_due,
+            dissipation: false,
+        });
+        if row_due {
+            output.history_row(solver, t, n)?;
+            next_row +=
+                history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
+        }
+        if frame_due {
+            output.frame(solver, t)?;
+            output.flush()?;
+            next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
+        }
+        progress.update(n + 1, solver.state.time);
+        if stopping {
+            interrupted = true;
+            break;
+        }
+    }
+    output.flush()?;
+    progress.finish();
+    let wall = progress.elapsed().as_secs_f64();
+    let steps = solver.state.step;
+    println!(
+        "{} after {steps} steps, t = {:.6e} s",
+        if interrupted {
+            "interrupted"
+        } else {
+            "finished"
+        },
+        solver.state.time
+    );
+    println!("wall time   {wall:.2} s");
+    println!(
+        "throughput  {:.3e} tet-steps/s ({} threads)",
+        progress.throughput(steps),
+        rayon::current_num_threads()
+    );
+    println!("results     {}", output.pvd().display());
+    println!("history     {}", output.history_path().display());
+    if interrupted {
+        bail!(
+            "interrupted by Ctrl-C; the state at t = {:.6e} s was written",
+            solver.state.time
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,52 @@
+//! Constitutive laws of the femdem tetrahedra and the force kernel of one
+//! 4-node tet.
+//!
+//! This crate owns §2.2, Eq. 1–2 of the reference paper (Guo, Xiang, Latham,
+//! Izzuddin): the neo-Hookean viscoelastic Cauchy stress
+//! `T = μ/J (B − I) + λ/J ln J I + η D` with `D = ½(L + Lᵀ)`, a
+//! small-strain linear elastic law for verification, their strain energies,
+//! and the nodal forces a stressed linear tet exerts on its nodes.
+//!
+//! # Code map
+//!
+//! - [`params`]: [`ElasticParams`] (what a user writes) validated into a
+//!   [`Material`] (Lamé constants, P-wave modulus and speed), and
+//!   [`critical_viscosity`], Munjiza's estimate used to choose `η`.
+//! - [`law`]: [`Law`], [`cauchy_stress`] (Eq. 1–2), [`first_piola_kirchhoff`]
+//!   and [`strain_energy_density`], including the documented behaviour of
+//!   inverted elements (`J ≤` [`J_FLOOR`]).
+//! - [`tet`]: the hot-path kernel: [`TetReference`] (`Dm⁻¹` and `V₀`),
+//!   [`deformation_gradient`], [`velocity_gradient`], [`nodal_forces`] and
+//!   [`tet_forces`], which returns forces, stress and stored energy of one
+//!   tet in one call. No allocation; plain nalgebra stack types.
+//! - [`invariants`]: [`principal_stresses`] and [`von_mises`] for output.
+//!
+//! # Conventions
+//!
+//! - SI units; tension positive.
+//! - Tets follow the positive orientation of [`femdem_core::tet`]:
+//!   `(X₁ − X₀) · ((X₂ − X₀) × (X₃ − X₀)) > 0` in the reference state.
+//! - Forces are the forces the element exerts **on** its nodes: a solver
+//!   adds them to the nodal force vector (they are `−f_int` of the paper's
+//!   Eq. 19, `m v̇ + f_int = f_ext`).
+//! - Inverted or crushed elements never produce NaN: below
+//!   `J =` [`J_FLOOR`] the volumetric energy is continued linearly, so the
+//!   forces stay finite, stay the exact gradient of the stored energy and
+//!   push the element back towards positive volume (see [`law`]).
+//!
+//! **Architecture invariant:** this crate knows one tet and nothing more:
+//! no meshes, no node numbering beyond the four local nodes, no time
+//! stepping, no files or I/O of any kind. It depends on `femdem-core` only,
+//! so another solver can use the laws and the kernel on their own.
+
+pub mod invariants;
+pub mod law;
+pub mod params;
+pub mod tet;
+
+pub use invariants::{principal_stresses, von_mises};
+pub use law::{J_FLOOR, Law, cauchy_stress, first_piola_kirchhoff, strain_energy_density};
+pub use params::{ElasticParams, Material, MaterialError, critical_viscosity};
+pub use tet::{
+    TetReference, TetResult, deformation_gradient, nodal_forces, tet_forces, velocity_gradient,
+};

@@ -1,0 +1,188 @@
+//! Internal forces: the tet pass (Eq. 1–2), the joint pass (Eq. 11), and a
+//! gather that sums each node's slots in a fixed order.
+//!
+//! Both passes run in parallel over fixed-size chunks and write only their
+//! own element's force slots; the gather then runs in parallel over nodes,
+//! each summing its slots in increasing slot order. No floating-point sum
+//! depends on the thread count, so results are identical bit for bit with
+//! one thread or many. Energy sums are taken per chunk and then added in
+//! chunk order, for the same reason.
+
+use femdem_core::{Mat3, Real, Vec3};
+use femdem_fracture::joint_forces;
+use femdem_material::{
+    cauchy_stress, deformation_gradient, nodal_forces, strain_energy_density, velocity_gradient,
+};
+use rayon::prelude::*;
+
+use crate::model::{Model, RIGID};
+
+/// Elements per parallel work item.
+pub const CHUNK: usize = 512;
+
+/// What a force evaluation should compute besides the forces.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Want {
+    /// Store each tet's Cauchy stress.
+    pub stress: bool,
+    /// Sum the stored elastic energies.
+    pub energy: bool,
+    /// Sum the viscous dissipation rate `∫ η D:D dv`.
+    pub dissipation: bool,
+}
+
+/// Sums returned by [`internal_forces`] (zero where not asked for).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ForceSums {
+    /// Elastic energy stored in the tets, J.
+    pub tet_energy: Real,
+    /// Elastic energy stored in the joints, J.
+    pub joint_energy: Real,
+    /// Rate of viscous dissipation in the tets, W.
+    pub dissipation_rate: Real,
+}
+
+impl ForceSums {
+    fn add(self, o: ForceSums) -> ForceSums {
+        ForceSums {
+            tet_energy: self.tet_energy + o.tet_energy,
+            joint_energy: self.joint_energy + o.joint_energy,
+            dissipation_rate: self.dissipation_rate + o.dissipation_rate,
+        }
+    }
+}
+
+/// Preallocated buffers of the force evaluation: no allocation per step.
+#[derive(Clone, Debug)]
+pub struct Workspace {
+    /// Forces of each tet on its four nodes.
+    pub tet_slots: Vec<[Vec3; 4]>,
+    /// Forces of each joint on its six nodes.
+    pub joint_slots: Vec<[Vec3; 6]>,
+    /// Gathered internal force per node.
+    pub internal: Vec<Vec3>,
+    /// Cauchy stress per tet (filled when asked for).
+    pub stress: Vec<Mat3>,
+    tet_partials: Vec<ForceSums>,
+    joint_partials: Vec<ForceSums>,
+}
+
+impl Workspace {
+    /// Buffers sized for `model`.
+    pub fn new(model: &Model) -> Workspace {
+        Workspace {
+            tet_slots: vec![[Vec3::zeros(); 4]; model.tets.len()],
+            joint_slots: vec![[Vec3::zeros(); 6]; model.joints.len()],
+            internal: vec![Vec3::zeros(); model.num_nodes()],
+            stress: vec![Mat3::zeros(); model.tets.len()],
+            tet_partials: vec![ForceSums::default(); model.tets.len().div_ceil(CHUNK)],
+            joint_partials: vec![ForceSums::default(); model.joints.len().div_ceil(CHUNK)],
+        }
+    }
+}
+
+/// Computes the internal force on every node at positions `x` and
+/// velocities `v` (the velocities enter only the viscous term of Eq. 1)
+/// into `ws.internal`, and the sums asked for in `want`.
+pub fn internal_forces(
+    model: &Model,
+    x: &[Vec3],
+    v: &[Vec3],
+    ws: &mut Workspace,
+    want: Want,
+) -> ForceSums {
+    tet_pass(model, x, v, ws, want);
+    joint_pass(model, x, ws, want);
+    gather(model, ws);
+    let tets = ws
+        .tet_partials
+        .iter()
+        .fold(ForceSums::default(), |a, &b| a.add(b));
+    ws.joint_partials.iter().fold(tets, |a, &b| a.add(b))
+}
+
+fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Want) {
+    let stress_out = &mut ws.stress;
+    ws.tet_slots
+        .par_chunks_mut(CHUNK)
+        .zip(stress_out.par_chunks_mut(CHUNK))
+        .zip(ws.tet_partials.par_iter_mut())
+        .enumerate()
+        .for_each(|(c, ((slots, stresses), partial))| {
+            let mut sums = ForceSums::default();
+            for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
+                let t = c * CHUNK + k;
+                let mat = model.tet_material[t];
+                if mat == RIGID {
+                    *slot = [Vec3::zeros(); 4];
+                    continue;
+                }
+                let (law, material) = &model.materials[mat as usize];
+                let tet = model.tets[t];
+                let xp = tet.map(|n| x[n as usize]);
+                let reference = &model.tet_ref[t];
+                let f = deformation_gradient(reference, &xp);
+                let viscous = material.viscosity() > 0.0;
+                let l = if viscous {
+                    velocity_gradient(&xp, &tet.map(|n| v[n as usize]))
+                } else {
+                    Mat3::zeros()
+                };
+                let sigma = cauchy_stress(*law, material, &f, &l);
+                *slot = nodal_forces(&sigma, &xp);
+                if want.stress {
+                    *stress_slot = sigma;
+                }
+                if want.energy {
+                    sums.tet_energy += strain_energy_density(*law, material, &f) * reference.volume;
+                }
+                if want.dissipation && viscous {
+                    let d = (l + l.transpose()) * 0.5;
+                    sums.dissipation_rate +=
+                        material.viscosity() * d.dot(&d) * reference.volume * f.determinant();
+                }
+            }
+            *partial = sums;
+        });
+}
+
+fn joint_pass(model: &Model, x: &[Vec3], ws: &mut Workspace, want: Want) {
+    ws.joint_slots
+        .par_chunks_mut(CHUNK)
+        .zip(ws.joint_partials.par_iter_mut())
+        .enumerate()
+        .for_each(|(c, (slots, partial))| {
+            let mut sums = ForceSums::default();
+            for (k, slot) in slots.iter_mut().enumerate() {
+                let j = c * CHUNK + k;
+                let xp = model.joints[j].map(|n| x[n as usize]);
+                let out = joint_forces(&model.joint_law[j], &xp);
+                *slot = out.forces;
+                if want.energy {
+                    sums.joint_energy += out.energy;
+                }
+            }
+            *partial = sums;
+        });
+}
+
+fn gather(model: &Model, ws: &mut Workspace) {
+    let tet_slots = &ws.tet_slots;
+    let joint_slots = &ws.joint_slots;
+    ws.internal
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .for_each(|(c, out)| {
+            for (k, f) in out.iter_mut().enumerate() {
+                let i = c * CHUNK + k;
+                let mut sum = Vec3::zeros();
+                for &s in model.tet_gather.of(i) {
+                    sum += tet_slots[(s / 4) as usize][(s % 4) as usize];
+                }
+                for &s in model.joint_gather.of(i) {
+                    sum += joint_slots[(s / 6) as usize][(s % 6) as usize];
+                }
+                *f = sum;
+            }
+        });
+}

@@ -40,12 +40,14 @@
 //!   is `∂J/∂F`. Since `U′(J_f) = (λ ln J_f − μ)/J_f < 0` and large, the
 //!   volumetric force always pushes the nodes towards larger `J`, also
 //!   through `J = 0` and for `J < 0`;
-//! - the viscous part uses the guarded rate `D̂ = sym(Ḟ cof(F)ᵀ)/Ĵ`
-//!   (equal to `D` when `J ≥ J_f`), and its power `P_v : Ḟ = η Ĵ D̂ : D̂`
+//! - the viscous part of `P` is `η D cof F` (`= J η D F⁻ᵀ`), and
+//!   [`tet_forces`](crate::tet_forces) feeds it the guarded velocity
+//!   gradient `L̂ = Ḟ cof(F)ᵀ / Ĵ` (equal to `L = Ḟ F⁻¹` when `J ≥ J_f`,
+//!   finite at `J = 0`); its power `P_v : Ḟ = η Ĵ D̂ : D̂`, `D̂ = sym(L̂)`,
 //!   is never negative, so damping never feeds energy in;
-//! - [`cauchy_stress`] is Eq. 1 evaluated with `Ĵ` in place of `J` (a
-//!   finite, compressive report for output; no Cauchy stress exists for an
-//!   inverted element).
+//! - [`cauchy_stress`] is Eq. 1 evaluated with `Ĵ` in place of `J`: a
+//!   finite report for output, dominated by the compressive volumetric
+//!   term (no Cauchy stress exists for an inverted element).
 //!
 //! For `J ≥ J_FLOOR` everything is exactly Eq. 1–2. Finite inputs always
 //! give finite outputs.
@@ -68,9 +70,11 @@ pub enum Law {
 /// (see the [module documentation](self)): `J_FLOOR = 0.01`.
 ///
 /// An element compressed to 1 % of its volume is far outside anything
-/// Eq. 1 models for a quasi-brittle solid (rock fails near `J ≈ 0.99`), so
-/// the continuation changes no physical result; it only keeps crushed and
-/// inverted elements finite and restoring. At the floor the restoring
+/// Eq. 1 models for a quasi-brittle solid (which fails at volume changes
+/// well under 1 %), so the continuation changes no physical result; it only
+/// keeps crushed and inverted elements finite and restoring. Below the
+/// floor the volumetric stiffness `U″` is zero, so the continuation adds no
+/// stiffness that would shrink the stable time step. At the floor the restoring
 /// volumetric stress is `|U′(J_f)| ≈ 460 λ + 100 μ`.
 pub const J_FLOOR: Real = 1e-2;
 

@@ -10,9 +10,7 @@
 
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_fracture::joint_forces;
-use femdem_material::{
-    cauchy_stress, deformation_gradient, nodal_forces, strain_energy_density, velocity_gradient,
-};
+use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
 use crate::model::{Model, RIGID};
@@ -120,26 +118,25 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
                 let (law, material) = &model.materials[mat as usize];
                 let tet = model.tets[t];
                 let xp = tet.map(|n| x[n as usize]);
+                let vp = tet.map(|n| v[n as usize]);
                 let reference = &model.tet_ref[t];
-                let f = deformation_gradient(reference, &xp);
-                let viscous = material.viscosity() > 0.0;
-                let l = if viscous {
-                    velocity_gradient(&xp, &tet.map(|n| v[n as usize]))
-                } else {
-                    Mat3::zeros()
-                };
-                let sigma = cauchy_stress(*law, material, &f, &l);
-                *slot = nodal_forces(&sigma, &xp);
+                let out = tet_forces(*law, material, reference, &xp, &vp);
+                *slot = out.forces;
                 if want.stress {
-                    *stress_slot = sigma;
+                    *stress_slot = out.stress;
                 }
                 if want.energy {
-                    sums.tet_energy += strain_energy_density(*law, material, &f) * reference.volume;
+                    sums.tet_energy += out.energy;
                 }
-                if want.dissipation && viscous {
+                if want.dissipation && material.viscosity() > 0.0 {
+                    // Rate of viscous work −Σ f_visc·v = ∫ η D:D dv.
+                    let l = velocity_gradient(&xp, &vp);
                     let d = (l + l.transpose()) * 0.5;
-                    sums.dissipation_rate +=
-                        material.viscosity() * d.dot(&d) * reference.volume * f.determinant();
+                    let j = deformation_gradient(reference, &xp).determinant();
+                    let rate = material.viscosity() * d.dot(&d) * reference.volume * j;
+                    if rate.is_finite() {
+                        sums.dissipation_rate += rate;
+                    }
                 }
             }
             *partial = sums;

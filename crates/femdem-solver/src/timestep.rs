@@ -4,18 +4,20 @@
 //! linear system when `Δt ≤ 2 / ω_max`, `ω_max²` being the largest
 //! eigenvalue of `M⁻¹K`. With viscous damping of ratio `ξ` in that mode the
 //! limit becomes `Δt ≤ (2/ω_max)(√(1 + ξ²) − ξ)`. femdem estimates `ω_max²`
-//! directly, by power iteration on `M^{-1/2} K M^{-1/2}` where `K v` is the
-//! directional derivative of the internal forces (tets and joints together,
-//! at the initial state) taken by a small finite difference; the Rayleigh
-//! quotient converges to `ω_max²` from below, quadratically in the error of
-//! the iterate, so a few hundred iterations give it to a fraction of a
-//! percent even when the top of the spectrum is clustered. The user-facing
+//! directly, by the Lanczos iteration on `M^{-1/2} K M^{-1/2}`, where `K v`
+//! is the directional derivative of the internal forces (tets and joints
+//! together, at the initial state) taken by a small finite difference. The
+//! largest Ritz value converges to `ω_max²` from below, and fast at the edge
+//! of the spectrum (plain power iteration stalls when the top of the
+//! spectrum is clustered, which happens when joint and tet modes have
+//! similar frequencies, and then underestimates `ω_max`). The user-facing
 //! step is `safety × Δt_crit` (safety < 1 covers the residual error and the
 //! stiffening of large deformation).
 //!
-//! For the Kelvin–Voigt stress `σ = Mε + ηε̇` of a bar, the damping ratio
-//! of a mode of angular frequency `ω` is `ξ = ηω / (2M)`, `M = λ + 2μ`; the
-//! largest over the materials is used.
+//! The viscous term of Eq. 1 adds a damping matrix `C` (the viscous force
+//! of a velocity field `w` is `−C w`); the largest damping rate
+//! `β_max = λ_max(M⁻¹C)` is found by a second Lanczos iteration, and the two
+//! are combined as explained at [`stable_time_step`].
 //!
 //! An element-by-element estimate is also given for reference: the
 //! smallest `ℓ / c_p` over tets (`ℓ` the shortest altitude, `c_p` the P-wave
@@ -30,37 +32,36 @@ use crate::model::{Model, RIGID};
 /// The result of [`stable_time_step`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StableStep {
-    /// Largest angular frequency found, rad/s.
+    /// Largest angular frequency found, `√λ_max(M⁻¹K)`, rad/s.
     pub omega_max: Real,
-    /// Damping ratio of that mode.
+    /// Largest damping rate found, `λ_max(M⁻¹C)`, 1/s.
+    pub beta_max: Real,
+    /// `β_max / (2 ω_max)`: the damping ratio the bound assumes.
     pub damping_ratio: Real,
-    /// Critical time step `(2/ω)(√(1+ξ²) − ξ)`, s.
+    /// Critical time step `2 / (√(ω² + β²/4) + β/2)`, s.
     pub critical: Real,
     /// The smallest `ℓ_min / c_p` over the deformable tets, s (for
     /// reference).
     pub element_transit: Real,
-    /// Power iterations used.
+    /// Power iterations used (stiffness and damping together).
     pub iterations: usize,
 }
 
-/// Estimates the critical time step of `model` with the nodes in `held`
-/// (prescribed or rigid) excluded. `max_iterations` bounds the power
-/// iteration; it stops earlier when the Rayleigh quotient changes by less
-/// than 1e-6 relative over 10 iterations.
-pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> StableStep {
-    let n = model.num_nodes();
-    let free = |i: usize| !held[i] && model.mass[i] > 0.0;
-    let inv_sqrt_m: Vec<Real> = (0..n)
-        .map(|i| {
-            if free(i) {
-                1.0 / model.mass[i].sqrt()
-            } else {
-                0.0
-            }
-        })
-        .collect();
+/// Largest eigenvalue of the symmetric operator `z ↦ apply(z)` restricted
+/// to the free nodes, by the Lanczos iteration (no reorthogonalisation: only
+/// the extreme Ritz value is wanted, and it converges first and is not
+/// disturbed by the loss of orthogonality, which only duplicates converged
+/// values). The largest eigenvalue of the tridiagonal matrix is checked
+/// every 10 iterations; the iteration stops when it changes by less than
+/// 1e-9 relative. Returns the estimate and the iterations used.
+fn lanczos_max(
+    n: usize,
+    free: &[bool],
+    max_iterations: usize,
+    mut apply: impl FnMut(&[Vec3]) -> Vec<Vec3>,
+) -> (Real, usize) {
     // Deterministic start vector (a fixed hash of the index).
-    let mut z: Vec<Vec3> = (0..n)
+    let mut q: Vec<Vec3> = (0..n)
         .map(|i| {
             let h = |k: u64| {
                 let mut s = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
@@ -70,14 +71,90 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
                 s ^= s >> 29;
                 (s >> 11) as Real / (1u64 << 53) as Real - 0.5
             };
-            if free(i) {
+            if free[i] {
                 Vec3::new(h(1), h(2), h(3))
             } else {
                 Vec3::zeros()
             }
         })
         .collect();
-    let min_edge = model
+    let norm = |v: &[Vec3]| v.iter().map(|x| x.norm_squared()).sum::<Real>().sqrt();
+    let q_norm = norm(&q);
+    if q_norm == 0.0 {
+        return (0.0, 0);
+    }
+    q.iter_mut().for_each(|v| *v /= q_norm);
+    let mut q_prev = vec![Vec3::zeros(); n];
+    let mut alpha: Vec<Real> = Vec::new();
+    let mut beta: Vec<Real> = Vec::new();
+    let mut estimate = 0.0;
+    for it in 0..max_iterations {
+        let mut w = apply(&q);
+        let b_prev = beta.last().copied().unwrap_or(0.0);
+        for i in 0..n {
+            w[i] -= q_prev[i] * b_prev;
+        }
+        let a: Real = w.iter().zip(&q).map(|(x, y)| x.dot(y)).sum();
+        for i in 0..n {
+            w[i] -= q[i] * a;
+        }
+        alpha.push(a);
+        let b = norm(&w);
+        let done = b <= 1e-14 * a.abs() || it + 1 == max_iterations;
+        if (it + 1) % 10 == 0 || done {
+            let k = alpha.len();
+            let t = nalgebra::DMatrix::from_fn(k, k, |r, c| {
+                if r == c {
+                    alpha[r]
+                } else if r + 1 == c {
+                    beta[r]
+                } else if c + 1 == r {
+                    beta[c]
+                } else {
+                    0.0
+                }
+            });
+            let top = t
+                .symmetric_eigenvalues()
+                .iter()
+                .copied()
+                .fold(Real::NEG_INFINITY, Real::max);
+            let converged = (top - estimate).abs() <= 1e-9 * top.abs();
+            estimate = top;
+            if converged || done {
+                return (estimate, it + 1);
+            }
+        }
+        beta.push(b);
+        std::mem::swap(&mut q_prev, &mut q);
+        q = w.into_iter().map(|v| v / b).collect();
+    }
+    (estimate, max_iterations)
+}
+
+/// Estimates the critical time step of `model` with the nodes in `held`
+/// (prescribed or rigid) excluded; `max_iterations` bounds each Lanczos
+/// iteration.
+///
+/// For a mode of frequency `ω` and damping rate `β = c/m` (ratio
+/// `ξ = β/2ω`) the leapfrog update with lagged viscous forces is stable for
+/// `Δt ≤ 2/(√(ω² + β²/4) + β/2)`; using the largest `ω` and the largest `β`
+/// over all modes (which need not be the same mode: the stiffest mode may be
+/// a joint mode the tets' viscosity hardly damps, while the most damped one
+/// is a tet mode) gives a bound that holds for every mode.
+pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> StableStep {
+    let n = model.num_nodes();
+    let free: Vec<bool> = (0..n).map(|i| !held[i] && model.mass[i] > 0.0).collect();
+    let inv_sqrt_m: Vec<Real> = (0..n)
+        .map(|i| {
+            if free[i] {
+                1.0 / model.mass[i].sqrt()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let min_size = model
         .joint_law
         .iter()
         .map(|j| j.h)
@@ -88,62 +165,54 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
     internal_forces(model, &model.x0, &zero_v, &mut ws, Want::default());
     let f0 = ws.internal.clone();
     let mut xp = model.x0.clone();
-    let mut lambda = 0.0;
-    let mut history = Vec::new();
-    let mut iterations = 0;
-    for it in 0..max_iterations {
-        iterations = it + 1;
-        let norm = z.iter().map(|v| v.norm_squared()).sum::<Real>().sqrt();
-        if norm == 0.0 {
-            break;
-        }
-        // w = M^{-1/2} z, scaled so the largest nodal move is 1e-6 of the smallest size.
+
+    // Stiffness: K w ≈ −(f(x0 + εw) − f0)/ε, ε making the largest move 1e-6 of the smallest size.
+    let (lambda, it_k) = lanczos_max(n, &free, max_iterations, |z| {
         let wmax = z
             .iter()
             .zip(&inv_sqrt_m)
             .map(|(v, s)| v.norm() * s)
             .fold(0.0, Real::max);
-        let eps = 1e-6 * min_edge / wmax;
+        let eps = 1e-6 * min_size / wmax;
         xp.par_iter_mut()
             .enumerate()
             .for_each(|(i, p)| *p = model.x0[i] + z[i] * (inv_sqrt_m[i] * eps));
         internal_forces(model, &xp, &zero_v, &mut ws, Want::default());
-        // y = M^{-1/2} K w / eps-normalised; K w ≈ −(f(x0 + εw) − f0)/ε.
-        let y: Vec<Vec3> = (0..n)
+        (0..n)
             .map(|i| -(ws.internal[i] - f0[i]) * (inv_sqrt_m[i] / eps))
-            .collect();
-        let zz: Real = z.iter().map(|v| v.norm_squared()).sum();
-        lambda = z.iter().zip(&y).map(|(a, b)| a.dot(b)).sum::<Real>() / zz;
-        let ynorm = y.iter().map(|v| v.norm_squared()).sum::<Real>().sqrt();
-        if ynorm == 0.0 {
-            break;
-        }
-        z = y.into_iter().map(|v| v / ynorm).collect();
-        history.push(lambda);
-        if history.len() > 10 {
-            let old = history[history.len() - 11];
-            if (lambda - old).abs() <= 1e-6 * lambda.abs() {
-                break;
-            }
-        }
-    }
-    let omega = lambda.max(0.0).sqrt();
-    let damping_ratio = model
-        .materials
-        .iter()
-        .map(|(_, m)| m.viscosity() * omega / (2.0 * m.p_wave_modulus()))
-        .fold(0.0, Real::max);
-    let critical = if omega > 0.0 {
-        2.0 / omega * ((1.0 + damping_ratio * damping_ratio).sqrt() - damping_ratio)
+            .collect()
+    });
+    // Damping: C w = −(f(x0, v = w) − f0), exactly linear in w.
+    let viscous = model.materials.iter().any(|(_, m)| m.viscosity() > 0.0);
+    let (beta, it_c) = if viscous {
+        lanczos_max(n, &free, max_iterations, |z| {
+            let w: Vec<Vec3> = z.iter().zip(&inv_sqrt_m).map(|(v, s)| v * *s).collect();
+            internal_forces(model, &model.x0, &w, &mut ws, Want::default());
+            (0..n)
+                .map(|i| -(ws.internal[i] - f0[i]) * inv_sqrt_m[i])
+                .collect()
+        })
     } else {
-        Real::INFINITY
+        (0.0, 0)
     };
+    let omega = lambda.max(0.0).sqrt();
+    let beta = beta.max(0.0);
+    let rate = (omega * omega + 0.25 * beta * beta).sqrt() + 0.5 * beta;
     StableStep {
         omega_max: omega,
-        damping_ratio,
-        critical,
+        beta_max: beta,
+        damping_ratio: if omega > 0.0 {
+            beta / (2.0 * omega)
+        } else {
+            0.0
+        },
+        critical: if rate > 0.0 {
+            2.0 / rate
+        } else {
+            Real::INFINITY
+        },
         element_transit: element_transit(model),
-        iterations,
+        iterations: it_k + it_c,
     }
 }
 

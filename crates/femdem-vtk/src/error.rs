@@ -101,7 +101,7 @@ pub enum VtkError {
     },
     /// A series time that is NaN or infinite, or not after the previous one.
     #[error(
-        "series time {time:e} is not finite and strictly after the previous step ({previous:?})"
+        "series time {time:e} must be finite and later than the previous step's ({previous:?})"
     )]
     BadTime {
         /// The time given.

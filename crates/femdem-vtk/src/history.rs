@@ -130,10 +130,15 @@ impl Drop for HistoryWriter {
 mod tests {
     use super::*;
 
+    /// A fresh directory per test (they run in parallel), and a file in it.
     fn temp_path(name: &str) -> PathBuf {
-        std::env::temp_dir()
-            .join(format!("femdem-vtk-history-{}", std::process::id()))
-            .join(name)
+        let dir = std::env::temp_dir().join(format!("femdem-vtk-{name}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        dir.join(name)
+    }
+
+    fn clean(path: &Path) {
+        fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }
 
     /// Parses a CSV written by `HistoryWriter` (unquoted fields only).
@@ -177,6 +182,7 @@ mod tests {
             assert_eq!(a, b, "{text}");
         }
         assert!(text.contains("1e-7"), "{text}");
+        clean(&path);
     }
 
     #[test]
@@ -187,6 +193,7 @@ mod tests {
         h.flush().unwrap();
         let (_, rows) = parse(&fs::read_to_string(&path).unwrap());
         assert!(rows[0][0].is_nan());
+        clean(&path);
     }
 
     #[test]
@@ -197,6 +204,8 @@ mod tests {
         h.flush().unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "a,b\n1,2\n");
         assert_eq!(h.path(), path);
+        drop(h);
+        clean(&path);
     }
 
     #[test]
@@ -216,6 +225,8 @@ mod tests {
         );
         h.flush().unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "a,b\n");
+        drop(h);
+        clean(&path);
     }
 
     #[test]
@@ -231,6 +242,7 @@ mod tests {
             let err = HistoryWriter::create(&path, bad).unwrap_err();
             assert!(matches!(err, VtkError::InvalidColumn { .. }), "{err}");
         }
+        clean(&path);
     }
 
     #[test]

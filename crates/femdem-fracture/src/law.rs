@@ -57,13 +57,31 @@ fn branch_energy(f: Real, dp: Real, r: Real) -> Real {
     }
 }
 
-/// An intact joint: parameters and its reference mean edge length `h`.
+/// An intact joint: parameters, its reference mean edge length `h`, and
+/// the quantities of the law that depend only on them (precomputed: the
+/// force kernel runs for every joint at every step).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IntactJoint {
     /// The law's parameters.
     pub params: JointParams,
     /// Mean length of the joint's edges in the reference configuration, m.
     pub h: Real,
+    /// `δ_np = 2 f_t h / p0` (Eq. 6), m.
+    pub delta_np: Real,
+    /// `tan φ`.
+    pub tan_phi: Real,
+}
+
+impl IntactJoint {
+    /// The joint of parameters `params` and reference mean edge `h`.
+    pub fn new(params: JointParams, h: Real) -> IntactJoint {
+        IntactJoint {
+            params,
+            h,
+            delta_np: 2.0 * params.tensile_strength * h / params.penalty,
+            tan_phi: params.friction_angle.tan(),
+        }
+    }
 }
 
 /// Forces of one joint on its six nodes, and its stored energy.
@@ -71,8 +89,9 @@ pub struct IntactJoint {
 pub struct JointForces {
     /// Force on `N1 … N6`, N. They sum to zero.
     pub forces: [Vec3; 6],
-    /// Stored (elastic) energy, J: the area-weighted integral of the work
-    /// done along Eq. 11 to reach the current opening and slip.
+    /// Stored (elastic) energy, J, when asked for (else 0): the
+    /// area-weighted integral of the work done along Eq. 11 to reach the
+    /// current opening and slip.
     pub energy: Real,
     /// Mean normal stress over the three points, Pa (tension positive).
     pub normal_stress: Real,
@@ -83,9 +102,9 @@ pub struct JointForces {
 /// it towards b when the joint is open) and `−t` on side b; each is
 /// integrated with weight `A/3` and shared among the face's nodes by the
 /// point's barycentric coordinates. A collapsed joint (no frame) exerts no
-/// force.
+/// force. The stored energy is computed only when `with_energy` is set.
 #[inline]
-pub fn joint_forces(joint: &IntactJoint, x: &[Vec3; 6]) -> JointForces {
+pub fn joint_forces(joint: &IntactJoint, x: &[Vec3; 6], with_energy: bool) -> JointForces {
     let mut out = JointForces {
         forces: [Vec3::zeros(); 6],
         energy: 0.0,
@@ -95,28 +114,47 @@ pub fn joint_forces(joint: &IntactJoint, x: &[Vec3; 6]) -> JointForces {
         return out;
     };
     let p = &joint.params;
-    let h = joint.h;
+    let ft = p.tensile_strength;
+    let dnp = joint.delta_np;
     let weight = k.frame.area / 3.0;
-    let tan_phi = p.friction_angle.tan();
+    let two_h_over_p0 = 2.0 * joint.h / p.penalty;
     for (i, w) in GAUSS.iter().enumerate() {
-        let sigma = normal_stress(p, h, k.opening[i]);
+        // Eq. 11, normal.
+        let r = k.opening[i] / dnp;
+        let sigma = if r < 0.0 {
+            2.0 * r * ft
+        } else if r <= 1.0 {
+            (2.0 * r - r * r) * ft
+        } else {
+            ft
+        };
+        // Eq. 5 and Eq. 11, shear.
+        let fs = p.cohesion - sigma * joint.tan_phi;
         let ds = k.slip[i].norm();
-        let tau = shear_stress(p, h, sigma, ds);
         let mut t = k.frame.z * sigma;
-        if ds > 0.0 {
-            t += k.slip[i] * (tau / ds);
-        }
-        let ft = t * weight;
-        for (node_a, node_b, xi) in [(0, 5, w[0]), (1, 4, w[1]), (2, 3, w[2])] {
-            out.forces[node_a] += ft * xi;
-            out.forces[node_b] -= ft * xi;
-        }
-        let dnp = 2.0 * p.tensile_strength * h / p.penalty;
-        let fs = (p.cohesion - sigma * tan_phi).max(0.0);
-        let dsp = 2.0 * fs * h / p.penalty;
-        out.energy += weight * branch_energy(p.tensile_strength, dnp, k.opening[i] / dnp);
+        let mut dsp = 0.0;
         if fs > 0.0 {
-            out.energy += weight * branch_energy(fs, dsp, ds / dsp);
+            dsp = fs * two_h_over_p0;
+            let rs = ds / dsp;
+            let tau = if rs <= 1.0 {
+                (2.0 * rs - rs * rs) * fs
+            } else {
+                fs
+            };
+            if ds > 0.0 {
+                t += k.slip[i] * (tau / ds);
+            }
+        }
+        let ft_w = t * weight;
+        for (node_a, node_b, xi) in [(0, 5, w[0]), (1, 4, w[1]), (2, 3, w[2])] {
+            out.forces[node_a] += ft_w * xi;
+            out.forces[node_b] -= ft_w * xi;
+        }
+        if with_energy {
+            out.energy += weight * branch_energy(ft, dnp, r);
+            if fs > 0.0 {
+                out.energy += weight * branch_energy(fs, dsp, ds / dsp);
+            }
         }
         out.normal_stress += sigma / 3.0;
     }
@@ -160,6 +198,42 @@ mod tests {
         assert!((below - above).abs() < 1e-6 * p.tensile_strength);
     }
 
+    /// The kernel's inlined law agrees with the reference functions.
+    #[test]
+    fn kernel_matches_normal_and_shear_stress_functions() {
+        let p = params();
+        let joint = IntactJoint::new(p, 1e-3);
+        let base = [
+            Vec3::zeros(),
+            Vec3::new(1e-3, 0.0, 0.0),
+            Vec3::new(0.0, 1e-3, 0.0),
+        ];
+        for (dn, ds) in [(-3e-8, 2e-8), (1e-8, 5e-8), (4e-8, 1e-9), (1e-9, 3e-7)] {
+            let d = Vec3::new(ds, 0.0, dn);
+            let x = [
+                base[0],
+                base[1],
+                base[2],
+                base[2] + d,
+                base[1] + d,
+                base[0] + d,
+            ];
+            let f = joint_forces(&joint, &x, false);
+            let sigma = normal_stress(&p, joint.h, dn);
+            let tau = shear_stress(&p, joint.h, sigma, ds);
+            let area = 0.5e-6;
+            let fb: Vec3 = f.forces[3..].iter().sum();
+            assert!(
+                (fb.z + sigma * area).abs() < 1e-9 * (sigma.abs() * area).max(1e-12),
+                "normal at {dn}"
+            );
+            assert!(
+                (fb.x + tau * area).abs() < 1e-9 * (tau.abs() * area).max(1e-12),
+                "shear at {ds}"
+            );
+        }
+    }
+
     #[test]
     fn shear_strength_follows_mohr_coulomb() {
         let p = params();
@@ -176,7 +250,7 @@ mod tests {
     #[test]
     fn forces_are_energy_gradient_in_pure_opening() {
         let p = params();
-        let joint = IntactJoint { params: p, h: 1e-3 };
+        let joint = IntactJoint::new(p, 1e-3);
         let base = [
             Vec3::zeros(),
             Vec3::new(1e-3, 0.0, 0.0),
@@ -192,7 +266,7 @@ mod tests {
             base[1] + open,
             base[0] + open,
         ];
-        let f = joint_forces(&joint, &x);
+        let f = joint_forces(&joint, &x, true);
         let sum: Vec3 = f.forces.iter().sum();
         assert!(sum.norm() < 1e-9 * f.forces[0].norm());
         // Moving the whole side b by ε along z changes the energy by −Σ f_b · ε.
@@ -203,8 +277,8 @@ mod tests {
             xp[n].z += eps;
             xm[n].z -= eps;
         }
-        let de =
-            (joint_forces(&joint, &xp).energy - joint_forces(&joint, &xm).energy) / (2.0 * eps);
+        let de = (joint_forces(&joint, &xp, true).energy - joint_forces(&joint, &xm, true).energy)
+            / (2.0 * eps);
         let fb: Real = (3..6).map(|n| f.forces[n].z).sum();
         assert!(
             (de + fb).abs() < 1e-6 * fb.abs(),

@@ -153,7 +153,7 @@ fn joint_pass(model: &Model, x: &[Vec3], ws: &mut Workspace, want: Want) {
             for (k, slot) in slots.iter_mut().enumerate() {
                 let j = c * CHUNK + k;
                 let xp = model.joints[j].map(|n| x[n as usize]);
-                let out = joint_forces(&model.joint_law[j], &xp);
+                let out = joint_forces(&model.joint_law[j], &xp, want.energy);
                 *slot = out.forces;
                 if want.energy {
                     sums.joint_energy += out.energy;

@@ -210,7 +210,7 @@ impl Model {
             };
             let p = [jn[0], jn[1], jn[2]].map(|n| x0[n as usize]);
             let h = ((p[1] - p[0]).norm() + (p[2] - p[1]).norm() + (p[0] - p[2]).norm()) / 3.0;
-            joint_law.push(IntactJoint { params, h });
+            joint_law.push(IntactJoint::new(params, h));
         }
         let n = x0.len();
         let tet_gather = Gather::build(

@@ -53,7 +53,7 @@ pub struct StableStep {
 /// disturbed by the loss of orthogonality, which only duplicates converged
 /// values). The largest eigenvalue of the tridiagonal matrix is checked
 /// every 10 iterations; the iteration stops when it changes by less than
-/// 1e-9 relative. Returns the estimate and the iterations used.
+/// 1e-7 relative. Returns the estimate and the iterations used.
 fn lanczos_max(
     n: usize,
     free: &[bool],
@@ -119,7 +119,7 @@ fn lanczos_max(
                 .iter()
                 .copied()
                 .fold(Real::NEG_INFINITY, Real::max);
-            let converged = (top - estimate).abs() <= 1e-9 * top.abs();
+            let converged = (top - estimate).abs() <= 1e-7 * top.abs();
             estimate = top;
             if converged || done {
                 return (estimate, it + 1);

@@ -60,6 +60,7 @@ struct TimeStepReport {
     damping_ratio: f64,
     steps: u64,
     deformable_tets: usize,
+    lanczos_iterations: usize,
 }
 
 /// Runs the command.
@@ -129,6 +130,7 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
             damping_ratio: r.stable.damping_ratio,
             steps: r.steps,
             deformable_tets: r.solver.model.num_deformable_tets(),
+            lanczos_iterations: r.stable.iterations,
         }),
     };
     if json {

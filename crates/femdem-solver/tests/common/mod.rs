@@ -78,3 +78,92 @@ pub fn displace(s: &mut Solver, u: impl Fn(&Vec3) -> Vec3) {
         *x = x0 + u(x0);
     }
 }
+
+// ---------------------------------------------------------------------------
+// Effective compliance of a joint-meshed solid (average-strain theorem).
+// Voigt order xx, yy, zz, yz, xz, xy; strains with engineering shears
+// (γ = 2ε), so that `ε_v = S σ_v` and `S` is symmetric.
+
+/// The (row, column) of each Voigt component.
+pub const VOIGT: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)];
+
+/// The unit stress tensor of Voigt component `k` (both off-diagonal
+/// entries set for a shear).
+pub fn voigt_unit_stress(k: usize) -> femdem_core::Mat3 {
+    let (i, j) = VOIGT[k];
+    let mut s = femdem_core::Mat3::zeros();
+    s[(i, j)] = 1.0;
+    s[(j, i)] = 1.0;
+    s
+}
+
+/// A symmetric strain tensor in Voigt form with engineering shears.
+pub fn voigt_strain(e: &femdem_core::Mat3) -> nalgebra::Vector6<f64> {
+    nalgebra::Vector6::from_fn(|k, _| {
+        let (i, j) = VOIGT[k];
+        if i == j {
+            e[(i, i)]
+        } else {
+            e[(i, j)] + e[(j, i)]
+        }
+    })
+}
+
+/// The 6×6 compliance of an isotropic linear solid:
+/// `ε = ((1 + ν) σ − ν tr σ I) / E`.
+pub fn isotropic_compliance(m: &Material) -> nalgebra::Matrix6<f64> {
+    let (e, nu) = (m.young(), m.poisson());
+    let mut s = nalgebra::Matrix6::zeros();
+    for k in 0..6 {
+        let sigma = voigt_unit_stress(k);
+        let eps = (sigma * (1.0 + nu) - femdem_core::Mat3::identity() * (nu * sigma.trace())) / e;
+        s.set_column(k, &voigt_strain(&eps));
+    }
+    s
+}
+
+/// The extra compliance of the intact joints of `model` over a solid of
+/// volume `volume`, assuming the same uniform stress `σ` in every tet:
+/// a joint of reference area `A`, unit normal `n` and mean edge length `h`
+/// carries the traction `σ n` with the jump `[u] = (h / p0) σ n` (normal
+/// and shear stiffness `p0 / h`), and by the average-strain theorem adds
+/// `ε_j = (1/V) Σ A sym(n ⊗ [u])`, i.e.
+/// `S_j = (1/V) Σ (A h / p0) sym(n ⊗ (·) n)`. Geometry is taken from the
+/// reference positions of the joint's side-a face `N1 N2 N3`; `keep`
+/// chooses the joints counted (by the centroid of that face).
+pub fn joint_compliance(
+    model: &Model,
+    volume: f64,
+    keep: impl Fn(&Vec3) -> bool,
+) -> nalgebra::Matrix6<f64> {
+    let mut s = nalgebra::Matrix6::zeros();
+    for (j, nodes) in model.joints.iter().enumerate() {
+        let [a, b, c] = [nodes[0], nodes[1], nodes[2]].map(|n| model.x0[n as usize]);
+        if !keep(&((a + b + c) / 3.0)) {
+            continue;
+        }
+        let cross = (b - a).cross(&(c - a));
+        let area = 0.5 * cross.norm();
+        let n = cross.normalize();
+        let h = ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
+        let w = area * h / (model.joint_law[j].params.penalty * volume);
+        for k in 0..6 {
+            let t = voigt_unit_stress(k) * n;
+            let jump = n * t.transpose();
+            let eps = (jump + jump.transpose()) * (0.5 * w);
+            let col = s.column(k) + voigt_strain(&eps);
+            s.set_column(k, &col);
+        }
+    }
+    s
+}
+
+/// The nodes whose reference position lies in the box `[lo, hi]`.
+pub fn nodes_in_box(model: &Model, lo: [f64; 3], hi: [f64; 3]) -> Vec<u32> {
+    (0..model.num_nodes() as u32)
+        .filter(|&i| {
+            let p = model.x0[i as usize];
+            (0..3).all(|a| p[a] >= lo[a] && p[a] <= hi[a])
+        })
+        .collect()
+}

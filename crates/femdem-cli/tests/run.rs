@@ -104,3 +104,55 @@ fn bad_material_parameter_is_named() {
         "{err}"
     );
 }
+
+/// Ctrl-C (SIGINT) stops the run cleanly: the current state is written as
+/// a last frame, the `.pvd` lists it, and the exit status says so.
+#[test]
+fn ctrl_c_stops_cleanly_after_writing_the_state() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("interrupted-run");
+    let _ = std::fs::remove_dir_all(&out);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_femdem"))
+        .args([
+            "run",
+            "cases/paper/brazilian.toml",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .current_dir(root())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The first frame (t = 0) is written once the handler is installed.
+    let pvd = out.join("brazilian.pvd");
+    let start = std::time::Instant::now();
+    while !pvd.exists() {
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "no first frame after 2 minutes"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let o = child.wait_with_output().unwrap();
+    assert!(
+        !o.status.success(),
+        "an interrupted run must not report success"
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stdout.contains("interrupted after"), "{stdout}");
+    assert!(stderr.contains("interrupted by Ctrl-C"), "{stderr}");
+    let text = std::fs::read_to_string(&pvd).unwrap();
+    let frames = text.matches("<DataSet").count();
+    assert!(
+        frames >= 2,
+        "the state at the interruption must be written ({frames} frames)"
+    );
+    assert!(out.join("history.csv").is_file());
+}

@@ -65,6 +65,9 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
         tensile_strength: 3e6,
         cohesion: 15e6,
         friction_angle: 30f64.to_radians(),
+        gf_tension: 50.0,
+        gf_shear: 50.0,
+        calibration: femdem_fracture::GfCalibration::Paper,
     });
     let model = Model::new(
         &jointed,

@@ -111,7 +111,7 @@ fn bad_material_parameter_is_named() {
 fn ctrl_c_stops_cleanly_after_writing_the_state() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("interrupted-run");
     let _ = std::fs::remove_dir_all(&out);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_femdem"))
+    let child = Command::new(env!("CARGO_BIN_EXE_femdem"))
         .args([
             "run",
             "cases/paper/brazilian.toml",

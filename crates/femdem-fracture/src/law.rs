@@ -1,162 +1,330 @@
-//! The stress–displacement law of an intact joint (reference paper Fig. 3,
-//! Eq. 5–7, 11) and the joint's nodal forces.
+//! The stress–displacement law of a joint (reference paper Fig. 3,
+//! Eq. 5–13), its damage history, failure, and nodal forces.
+//!
+//! At each integration point, from the opening `δn` and the slip magnitude
+//! `δs`:
+//!
+//! 1. the normal stress without shear damage gives the shear strength
+//!    `f_s = c − σ tan φ` (Eq. 5; `σ ≤ f_t` makes the tension cut-off
+//!    automatic), hence `δsp = 2 f_s h / p0` (Eq. 7) and `δsc` (Eq. 10 for
+//!    `G_fs`); `δnp = 2 f_t h / p0` (Eq. 6) and `δnc` (Eq. 10 for `G_ft`);
+//! 2. the damage `D` of Eq. 13 from the normalised softening displacements
+//!    `Dn = (δn − δnp)/(δnc − δnp)`, `Ds = (δs − δsp)/(δsc − δsp)`: `Dn` or
+//!    `Ds` when one direction softens, `√(Dn² + Ds²)` when both do, 1 once
+//!    `δn ≥ δnc` or `δs ≥ δsc`; it never decreases: `D = max(D, D_hist)`;
+//! 3. the stresses of Eq. 11: `σ = 2 (δn/δnp) f_t` in compression (not
+//!    affected by damage), `[2 δn/δnp − (δn/δnp)²] f_t` on the hardening
+//!    branch, `z(D) f_t` beyond `δnp`; `τ` likewise with `f_s`, along the
+//!    slip. A damaged point's hardening branch is capped at `z(D_hist) f`, so
+//!    unloading and reloading never exceed the damaged strength.
+//!
+//! A point with `D = 1` carries no tensile or shear stress. A joint fails
+//! when at least two of its three points do (§2.2); its failure mode is
+//! the mode that broke the last of them: tensile (`δn ≥ δnc`), shear
+//! (`δs ≥ δsc`) or mixed (the combined `D` of Eq. 13 reached 1).
+//!
+//! Energy: the work dissipated on the softening branch is
+//! `[f_t (δnc − δnp) wn + f_s (δsc − δsp) ws] (Z(D) − Z(D_hist))` per unit
+//! area, with `Z(D) = ∫₀ᴰ z`, `wn = Dn²/(Dn² + Ds²)`, `ws = 1 − wn` (exact for
+//! a pure mode); the stored energy counts the compression and hardening
+//! branches up to `min(δ, δp)`; when the joint fails, its stored energy is
+//! released (`JointHistory::released`). Note that the shear part of it,
+//! `2/3 f_s δsp = 4/3 f_s² h / p0`, is not small when `c ≫ f_t`.
 
 use femdem_core::{Real, Vec3};
 
+use crate::softening::{z, z_integral};
 use crate::{GAUSS, JointParams, joint_kinematics};
 
-/// Normal stress of Eq. 11 (tension positive) for opening `dn`, with
-/// `δ_np = 2 f_t h / p0` (Eq. 6):
-///
-/// * `σ = 2 (δn / δnp) f_t` for `δn < 0` (compression, linear, slope `p0/h`);
-/// * `σ = [2 δn/δnp − (δn/δnp)²] f_t` for `0 ≤ δn ≤ δnp` (hardening);
-/// * `σ = f_t` beyond `δnp` (held at the peak: softening is not yet
-///   implemented).
-#[inline]
-pub fn normal_stress(p: &JointParams, h: Real, dn: Real) -> Real {
-    let ft = p.tensile_strength;
-    let dnp = 2.0 * ft * h / p.penalty;
-    let r = dn / dnp;
-    if r < 0.0 {
-        2.0 * r * ft
-    } else if r <= 1.0 {
-        (2.0 * r - r * r) * ft
-    } else {
-        ft
+/// How a joint (or an integration point) failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FailureMode {
+    /// The opening reached `δnc`.
+    Tensile,
+    /// The slip reached `δsc`.
+    Shear,
+    /// The combined damage of Eq. 13 reached 1.
+    Mixed,
+}
+
+impl FailureMode {
+    /// A code for output: 1 tensile, 2 shear, 3 mixed.
+    pub fn code(self) -> u8 {
+        match self {
+            FailureMode::Tensile => 1,
+            FailureMode::Shear => 2,
+            FailureMode::Mixed => 3,
+        }
     }
 }
 
-/// Shear stress magnitude for slip magnitude `ds ≥ 0` under normal stress
-/// `sigma`: the shear strength is `f_s = c − σ tan φ` (Eq. 5, Mohr–Coulomb;
-/// tension positive, and `σ ≤ f_t` gives the tension cut-off), `δ_sp =
-/// 2 f_s h / p0` (Eq. 7), and `τ` follows the branches of Eq. 11 with `f_s`
-/// for `f_t`. Returns 0 where `f_s ≤ 0`.
-#[inline]
-pub fn shear_stress(p: &JointParams, h: Real, sigma: Real, ds: Real) -> Real {
-    let fs = p.cohesion - sigma * p.friction_angle.tan();
-    if fs <= 0.0 {
-        return 0.0;
-    }
-    let dsp = 2.0 * fs * h / p.penalty;
-    let r = ds / dsp;
-    if r <= 1.0 { (2.0 * r - r * r) * fs } else { fs }
-}
-
-/// Stored energy per unit area of one branch of Eq. 11 at ratio `r = δ/δp`,
-/// for peak `f` and peak displacement `dp`: `f dp r²` in compression (the
-/// linear branch `2 r f`), `f dp (r² − r³/3)` on the hardening branch, and
-/// `f dp (2/3 + (r − 1))` beyond the peak.
-#[inline]
-fn branch_energy(f: Real, dp: Real, r: Real) -> Real {
-    if r < 0.0 {
-        f * dp * r * r
-    } else if r <= 1.0 {
-        f * dp * (r * r - r * r * r / 3.0)
-    } else {
-        f * dp * (2.0 / 3.0 + (r - 1.0))
-    }
-}
-
-/// An intact joint: parameters, its reference mean edge length `h`, and
-/// the quantities of the law that depend only on them (precomputed: the
-/// force kernel runs for every joint at every step).
+/// A joint: parameters, its reference mean edge length `h`, and what
+/// follows from them alone (precomputed: the kernel runs for every joint at
+/// every step).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct IntactJoint {
+pub struct Joint {
     /// The law's parameters.
     pub params: JointParams,
     /// Mean length of the joint's edges in the reference configuration, m.
     pub h: Real,
     /// `δ_np = 2 f_t h / p0` (Eq. 6), m.
     pub delta_np: Real,
+    /// `δ_nc` (Eq. 10 with `G_ft`), m.
+    pub delta_nc: Real,
     /// `tan φ`.
     pub tan_phi: Real,
 }
 
-impl IntactJoint {
+impl Joint {
     /// The joint of parameters `params` and reference mean edge `h`.
-    pub fn new(params: JointParams, h: Real) -> IntactJoint {
-        IntactJoint {
+    pub fn new(params: JointParams, h: Real) -> Joint {
+        let delta_np = 2.0 * params.tensile_strength * h / params.penalty;
+        Joint {
             params,
             h,
-            delta_np: 2.0 * params.tensile_strength * h / params.penalty,
+            delta_np,
+            delta_nc: params.critical_displacement(
+                params.tensile_strength,
+                delta_np,
+                params.gf_tension,
+            ),
             tan_phi: params.friction_angle.tan(),
         }
     }
 }
 
-/// Forces of one joint on its six nodes, and its stored energy.
+/// What a joint remembers between steps.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointHistory {
+    /// The largest damage `D` reached at each integration point.
+    pub damage: [Real; 3],
+    /// Energy dissipated on the softening branches so far, J.
+    pub dissipated: Real,
+    /// Stored energy the joint held when it failed, J (lost with it).
+    pub released: Real,
+    /// Whether the joint has failed (it then exerts no force).
+    pub failed: bool,
+}
+
+/// The state of one integration point.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct JointForces {
-    /// Force on `N1 … N6`, N. They sum to zero.
+pub struct PointStress {
+    /// Normal stress, Pa (tension positive).
+    pub sigma: Real,
+    /// Shear stress magnitude, Pa, along the slip.
+    pub tau: Real,
+    /// Damage after this evaluation (≥ the history).
+    pub damage: Real,
+    /// Set when the point reaches `D = 1` in this evaluation.
+    pub broke: Option<FailureMode>,
+    /// Energy dissipated per unit area by the damage increment, J/m².
+    pub dissipated: Real,
+    /// Stored energy per unit area, J/m².
+    pub stored: Real,
+}
+
+/// Area under the compression or hardening branch up to ratio `r = δ/δp`
+/// (capped at the peak), for peak `f`, per unit area: `f δp r²` for `r < 0`,
+/// `f δp (r² − r³/3)` for `0 ≤ r ≤ 1`, `2/3 f δp` beyond.
+#[inline]
+fn stored(f: Real, dp: Real, r: Real) -> Real {
+    if r < 0.0 {
+        f * dp * r * r
+    } else {
+        let r = r.min(1.0);
+        f * dp * (r * r - r * r * r / 3.0)
+    }
+}
+
+/// The hardening branch of Eq. 11, `[2r − r²] f`, for `0 ≤ r ≤ 1`.
+#[inline]
+fn hardening(f: Real, r: Real) -> Real {
+    (2.0 * r - r * r) * f
+}
+
+/// Evaluates one integration point at opening `dn` and slip magnitude
+/// `ds ≥ 0` with damage history `d_hist` (see the module doc).
+#[inline]
+pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStress {
+    let p = &joint.params;
+    let ft = p.tensile_strength;
+    let (dnp, dnc) = (joint.delta_np, joint.delta_nc);
+    let rn = dn / dnp;
+    // Normal softening displacement, and the normal stress without shear
+    // damage, which sets the shear strength (Eq. 5).
+    let dn_soft = if dn > dnp {
+        ((dn - dnp) / (dnc - dnp)).min(1.0)
+    } else {
+        0.0
+    };
+    let sigma_trial = if rn < 0.0 {
+        2.0 * rn * ft
+    } else if rn <= 1.0 {
+        hardening(ft, rn).min(z(d_hist) * ft)
+    } else {
+        z(dn_soft.max(d_hist)) * ft
+    };
+    let fs = p.cohesion - sigma_trial * joint.tan_phi;
+    let (dsp, dsc) = if fs > 0.0 {
+        let dsp = 2.0 * fs * joint.h / p.penalty;
+        (dsp, p.critical_displacement(fs, dsp, p.gf_shear))
+    } else {
+        (0.0, 0.0)
+    };
+    let ds_soft = if fs <= 0.0 {
+        1.0
+    } else if ds > dsp {
+        ((ds - dsp) / (dsc - dsp)).min(1.0)
+    } else {
+        0.0
+    };
+    // Eq. 13.
+    let d_now = if dn >= dnc || (fs > 0.0 && ds >= dsc) {
+        1.0
+    } else if dn_soft > 0.0 && ds_soft > 0.0 {
+        (dn_soft * dn_soft + ds_soft * ds_soft).sqrt().min(1.0)
+    } else {
+        dn_soft + ds_soft
+    };
+    let damage = d_now.max(d_hist);
+    let zd = z(damage);
+    let sigma = if rn < 0.0 {
+        2.0 * rn * ft
+    } else if rn <= 1.0 {
+        hardening(ft, rn).min(zd * ft)
+    } else {
+        zd * ft
+    };
+    let tau = if fs <= 0.0 {
+        0.0
+    } else {
+        let rs = ds / dsp;
+        if rs <= 1.0 {
+            hardening(fs, rs).min(zd * fs)
+        } else {
+            zd * fs
+        }
+    };
+    let broke = (d_hist < 1.0 && damage >= 1.0).then(|| {
+        if dn >= dnc {
+            FailureMode::Tensile
+        } else if fs <= 0.0 || ds >= dsc {
+            FailureMode::Shear
+        } else {
+            FailureMode::Mixed
+        }
+    });
+    let dissipated = if damage > d_hist {
+        let (wn2, ws2) = (dn_soft * dn_soft, ds_soft * ds_soft);
+        let total = wn2 + ws2;
+        let (wn, ws) = if total > 0.0 {
+            (wn2 / total, ws2 / total)
+        } else {
+            (1.0, 0.0)
+        };
+        let scale = ft * (dnc - dnp) * wn + if fs > 0.0 { fs * (dsc - dsp) * ws } else { 0.0 };
+        scale * z_integral(d_hist, damage)
+    } else {
+        0.0
+    };
+    let stored = stored(ft, dnp, rn)
+        + if fs > 0.0 {
+            stored(fs, dsp, ds / dsp)
+        } else {
+            0.0
+        };
+    PointStress {
+        sigma,
+        tau,
+        damage,
+        broke,
+        dissipated,
+        stored,
+    }
+}
+
+/// The normal stress of a point with no slip and no history (Fig. 3, the
+/// normal curve): for plotting and tests.
+pub fn normal_stress(joint: &Joint, dn: Real) -> Real {
+    point_stress(joint, dn, 0.0, 0.0).sigma
+}
+
+/// What a joint evaluation returns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointOutput {
+    /// Force on `N1 … N6`, N. They sum to zero; zero for a failed joint.
     pub forces: [Vec3; 6],
-    /// Stored (elastic) energy, J, when asked for (else 0): the
-    /// area-weighted integral of the work done along Eq. 11 to reach the
-    /// current opening and slip.
+    /// Stored (elastic) energy, J, when asked for (else 0).
     pub energy: Real,
     /// Mean normal stress over the three points, Pa (tension positive).
     pub normal_stress: Real,
+    /// Set when the joint failed in this evaluation.
+    pub failed: Option<FailureMode>,
 }
 
-/// Nodal forces of a joint at current positions `x = [N1 … N6]`: at each
-/// Hammer point the traction `t = σ z′ + τ δs/|δs|` acts on side a (pulling
-/// it towards b when the joint is open) and `−t` on side b; each is
-/// integrated with weight `A/3` and shared among the face's nodes by the
-/// point's barycentric coordinates. A collapsed joint (no frame) exerts no
-/// force. The stored energy is computed only when `with_energy` is set.
+/// Evaluates a joint at current positions `x = [N1 … N6]` and updates its
+/// history: at each Hammer point the traction `t = σ z′ + τ δs/|δs|` acts on
+/// side a (pulling it towards b when the joint is open) and `−t` on side b;
+/// each is integrated with weight `A/3` (mid-plane area) and shared among
+/// the face's nodes by the point's barycentric coordinates.
+///
+/// A failed joint, or one whose mid-plane has collapsed, exerts no force.
+/// On failure the joint's stored energy is kept in `history.released`.
 #[inline]
-pub fn joint_forces(joint: &IntactJoint, x: &[Vec3; 6], with_energy: bool) -> JointForces {
-    let mut out = JointForces {
+pub fn joint_update(
+    joint: &Joint,
+    history: &mut JointHistory,
+    x: &[Vec3; 6],
+    with_energy: bool,
+) -> JointOutput {
+    let mut out = JointOutput {
         forces: [Vec3::zeros(); 6],
         energy: 0.0,
         normal_stress: 0.0,
+        failed: None,
     };
+    if history.failed {
+        return out;
+    }
     let Some(k) = joint_kinematics(x) else {
         return out;
     };
-    let p = &joint.params;
-    let ft = p.tensile_strength;
-    let dnp = joint.delta_np;
     let weight = k.frame.area / 3.0;
-    let two_h_over_p0 = 2.0 * joint.h / p.penalty;
+    let mut broken_points = 0;
+    let mut mode = None;
+    let mut stored_total = 0.0;
     for (i, w) in GAUSS.iter().enumerate() {
-        // Eq. 11, normal.
-        let r = k.opening[i] / dnp;
-        let sigma = if r < 0.0 {
-            2.0 * r * ft
-        } else if r <= 1.0 {
-            (2.0 * r - r * r) * ft
-        } else {
-            ft
-        };
-        // Eq. 5 and Eq. 11, shear.
-        let fs = p.cohesion - sigma * joint.tan_phi;
         let ds = k.slip[i].norm();
-        let mut t = k.frame.z * sigma;
-        let mut dsp = 0.0;
-        if fs > 0.0 {
-            dsp = fs * two_h_over_p0;
-            let rs = ds / dsp;
-            let tau = if rs <= 1.0 {
-                (2.0 * rs - rs * rs) * fs
-            } else {
-                fs
-            };
-            if ds > 0.0 {
-                t += k.slip[i] * (tau / ds);
-            }
+        let ps = point_stress(joint, k.opening[i], ds, history.damage[i]);
+        history.damage[i] = ps.damage;
+        history.dissipated += weight * ps.dissipated;
+        if ps.damage >= 1.0 {
+            broken_points += 1;
         }
-        let ft_w = t * weight;
+        if ps.broke.is_some() {
+            mode = ps.broke;
+        }
+        let mut t = k.frame.z * ps.sigma;
+        if ds > 0.0 {
+            t += k.slip[i] * (ps.tau / ds);
+        }
+        let f = t * weight;
         for (node_a, node_b, xi) in [(0, 5, w[0]), (1, 4, w[1]), (2, 3, w[2])] {
-            out.forces[node_a] += ft_w * xi;
-            out.forces[node_b] -= ft_w * xi;
+            out.forces[node_a] += f * xi;
+            out.forces[node_b] -= f * xi;
         }
-        if with_energy {
-            out.energy += weight * branch_energy(ft, dnp, r);
-            if fs > 0.0 {
-                out.energy += weight * branch_energy(fs, dsp, ds / dsp);
-            }
-        }
-        out.normal_stress += sigma / 3.0;
+        stored_total += weight * ps.stored;
+        out.normal_stress += ps.sigma / 3.0;
+    }
+    if broken_points >= 2 {
+        history.failed = true;
+        history.released = stored_total;
+        out.failed = Some(mode.unwrap_or(FailureMode::Mixed));
+        out.forces = [Vec3::zeros(); 6];
+        return out;
+    }
+    if with_energy {
+        out.energy = stored_total;
     }
     out
 }
@@ -164,6 +332,7 @@ pub fn joint_forces(joint: &IntactJoint, x: &[Vec3; 6], with_energy: bool) -> Jo
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::GfCalibration;
 
     fn params() -> JointParams {
         JointParams {
@@ -171,44 +340,50 @@ mod tests {
             tensile_strength: 3e6,
             cohesion: 15e6,
             friction_angle: 30f64.to_radians(),
+            gf_tension: 50.0,
+            gf_shear: 500.0,
+            calibration: GfCalibration::Paper,
         }
     }
 
     #[test]
     fn initial_slopes_equal_p0_over_h() {
-        let p = params();
-        let h = 1e-3;
-        let k = p.penalty / h;
+        let j = Joint::new(params(), 1e-3);
+        let k = j.params.penalty / j.h;
         // At r = δ/δp the secant slope of the hardening branch is (1 − r/2)·k.
-        let d = 1e-3 * 2.0 * p.tensile_strength * h / p.penalty;
-        assert!((normal_stress(&p, h, d) / d / k - (1.0 - 0.5e-3)).abs() < 1e-9);
-        assert!((normal_stress(&p, h, -d) / -d / k - 1.0).abs() < 1e-12);
-        let ds = 1e-3 * 2.0 * p.cohesion * h / p.penalty;
-        assert!((shear_stress(&p, h, 0.0, ds) / ds / k - (1.0 - 0.5e-3)).abs() < 1e-9);
+        let d = 1e-3 * j.delta_np;
+        assert!((normal_stress(&j, d) / d / k - (1.0 - 0.5e-3)).abs() < 1e-9);
+        assert!((normal_stress(&j, -d) / -d / k - 1.0).abs() < 1e-12);
+        let dsp = 2.0 * j.params.cohesion * j.h / j.params.penalty;
+        let ds = 1e-3 * dsp;
+        assert!((point_stress(&j, 0.0, ds, 0.0).tau / ds / k - (1.0 - 0.5e-3)).abs() < 1e-9);
     }
 
     #[test]
-    fn peak_is_reached_at_delta_p_and_continuous() {
-        let p = params();
-        let h = 1e-3;
-        let dnp = 2.0 * p.tensile_strength * h / p.penalty;
-        assert!((normal_stress(&p, h, dnp) - p.tensile_strength).abs() < 1e-6);
-        let below = normal_stress(&p, h, dnp * (1.0 - 1e-9));
-        let above = normal_stress(&p, h, dnp * (1.0 + 1e-9));
-        assert!((below - above).abs() < 1e-6 * p.tensile_strength);
+    fn shear_strength_follows_mohr_coulomb_with_tension_cut_off() {
+        let j = Joint::new(params(), 1e-3);
+        for dn in [-1e-6, -1e-7, 0.0, 0.5 * j.delta_np] {
+            let sigma = normal_stress(&j, dn);
+            let fs = j.params.cohesion - sigma * j.tan_phi;
+            let dsp = 2.0 * fs * j.h / j.params.penalty;
+            let at_peak = point_stress(&j, dn, dsp, 0.0).tau;
+            assert!(
+                (at_peak - fs).abs() < 1e-9 * fs,
+                "δn = {dn}: τ = {at_peak}, f_s = {fs}"
+            );
+        }
     }
 
-    /// The kernel's inlined law agrees with the reference functions.
+    /// The kernel's forces carry the point law's stresses.
     #[test]
-    fn kernel_matches_normal_and_shear_stress_functions() {
-        let p = params();
-        let joint = IntactJoint::new(p, 1e-3);
+    fn kernel_forces_match_point_stresses() {
+        let j = Joint::new(params(), 1e-3);
         let base = [
             Vec3::zeros(),
             Vec3::new(1e-3, 0.0, 0.0),
             Vec3::new(0.0, 1e-3, 0.0),
         ];
-        for (dn, ds) in [(-3e-8, 2e-8), (1e-8, 5e-8), (4e-8, 1e-9), (1e-9, 3e-7)] {
+        for (dn, ds) in [(-3e-8, 2e-8), (1e-8, 5e-8), (4e-9, 1e-9)] {
             let d = Vec3::new(ds, 0.0, dn);
             let x = [
                 base[0],
@@ -218,71 +393,42 @@ mod tests {
                 base[1] + d,
                 base[0] + d,
             ];
-            let f = joint_forces(&joint, &x, false);
-            let sigma = normal_stress(&p, joint.h, dn);
-            let tau = shear_stress(&p, joint.h, sigma, ds);
+            let mut h = JointHistory::default();
+            let f = joint_update(&j, &mut h, &x, false);
+            let ps = point_stress(&j, dn, ds, 0.0);
             let area = 0.5e-6;
             let fb: Vec3 = f.forces[3..].iter().sum();
-            assert!(
-                (fb.z + sigma * area).abs() < 1e-9 * (sigma.abs() * area).max(1e-12),
-                "normal at {dn}"
-            );
-            assert!(
-                (fb.x + tau * area).abs() < 1e-9 * (tau.abs() * area).max(1e-12),
-                "shear at {ds}"
-            );
+            assert!((fb.z + ps.sigma * area).abs() < 1e-9 * (ps.sigma.abs() * area).max(1e-12));
+            assert!((fb.x + ps.tau * area).abs() < 1e-9 * (ps.tau.abs() * area).max(1e-12));
+            let sum: Vec3 = f.forces.iter().sum();
+            assert!(sum.norm() < 1e-12 * fb.norm().max(1e-12));
         }
     }
 
     #[test]
-    fn shear_strength_follows_mohr_coulomb() {
-        let p = params();
-        let h = 1e-3;
-        for sigma in [-20e6, -5e6, 0.0, 2e6] {
-            let fs = p.cohesion - sigma * p.friction_angle.tan();
-            let far = shear_stress(&p, h, sigma, 1.0);
-            assert!((far - fs).abs() < 1e-9 * fs, "σ = {sigma}");
-        }
-    }
-
-    /// Forces are minus the gradient of the stored energy on the hardening
-    /// branch (with no slip, the normal law is conservative).
-    #[test]
-    fn forces_are_energy_gradient_in_pure_opening() {
-        let p = params();
-        let joint = IntactJoint::new(p, 1e-3);
+    fn a_failed_joint_exerts_nothing() {
+        let j = Joint::new(params(), 1e-3);
         let base = [
             Vec3::zeros(),
             Vec3::new(1e-3, 0.0, 0.0),
             Vec3::new(0.0, 1e-3, 0.0),
         ];
-        let dn = 0.4 * 2.0 * p.tensile_strength * joint.h / p.penalty;
-        let open = Vec3::new(0.0, 0.0, dn);
+        let d = Vec3::new(0.0, 0.0, 2.0 * j.delta_nc);
         let x = [
             base[0],
             base[1],
             base[2],
-            base[2] + open,
-            base[1] + open,
-            base[0] + open,
+            base[2] + d,
+            base[1] + d,
+            base[0] + d,
         ];
-        let f = joint_forces(&joint, &x, true);
-        let sum: Vec3 = f.forces.iter().sum();
-        assert!(sum.norm() < 1e-9 * f.forces[0].norm());
-        // Moving the whole side b by ε along z changes the energy by −Σ f_b · ε.
-        let eps = dn * 1e-5;
-        let mut xp = x;
-        let mut xm = x;
-        for n in 3..6 {
-            xp[n].z += eps;
-            xm[n].z -= eps;
-        }
-        let de = (joint_forces(&joint, &xp, true).energy - joint_forces(&joint, &xm, true).energy)
-            / (2.0 * eps);
-        let fb: Real = (3..6).map(|n| f.forces[n].z).sum();
-        assert!(
-            (de + fb).abs() < 1e-6 * fb.abs(),
-            "dE/dz = {de}, f_b = {fb}"
-        );
+        let mut h = JointHistory::default();
+        let out = joint_update(&j, &mut h, &x, true);
+        assert_eq!(out.failed, Some(FailureMode::Tensile));
+        assert!(h.failed && out.forces.iter().all(|f| f.norm() == 0.0));
+        // Closing it again does not heal it.
+        let closed = [base[0], base[1], base[2], base[2], base[1], base[0]];
+        let again = joint_update(&j, &mut h, &closed, true);
+        assert!(again.failed.is_none() && again.forces.iter().all(|f| f.norm() == 0.0));
     }
 }

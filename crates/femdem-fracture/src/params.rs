@@ -15,6 +15,20 @@ pub struct JointError {
     pub reason: &'static str,
 }
 
+/// How the critical displacement δc follows from the fracture energy.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GfCalibration {
+    /// The paper's Eq. 10: `δc = 3 Gf / f` (the area under a parabola). With
+    /// the softening curve of Eq. 12 a joint then dissipates
+    /// `f (δc − δp) ∫₀¹ z dD ≈ 3 × 0.386 Gf ≈ 1.16 Gf` per unit area
+    /// (slightly less, since δp > 0).
+    #[default]
+    Paper,
+    /// `δc = δp + Gf / (f ∫₀¹ z dD)`: the softening branch dissipates exactly
+    /// Gf per unit area.
+    Exact,
+}
+
 /// Parameters of the cohesive law. SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointParams {
@@ -26,11 +40,17 @@ pub struct JointParams {
     pub cohesion: Real,
     /// Internal friction angle `φ`, radians (Eq. 5).
     pub friction_angle: Real,
+    /// Fracture energy in tension `G_ft`, J/m² (Eq. 10).
+    pub gf_tension: Real,
+    /// Fracture energy in shear `G_fs`, J/m² (Eq. 10).
+    pub gf_shear: Real,
+    /// How δc follows from Gf.
+    pub calibration: GfCalibration,
 }
 
 impl JointParams {
-    /// Checks every parameter: `p0 > 0`, `f_t > 0`, `c > 0`,
-    /// `0 ≤ φ < π/2`, all finite.
+    /// Checks every parameter: `p0, f_t, c, G_ft, G_fs > 0`, `0 ≤ φ < 90°`,
+    /// all finite.
     ///
     /// # Errors
     /// The first parameter out of range, with the reason.
@@ -49,6 +69,8 @@ impl JointParams {
         positive("penalty", self.penalty)?;
         positive("tensile_strength", self.tensile_strength)?;
         positive("cohesion", self.cohesion)?;
+        positive("fracture_energy_tension", self.gf_tension)?;
+        positive("fracture_energy_shear", self.gf_shear)?;
         if !(self.friction_angle.is_finite()
             && (0.0..std::f64::consts::FRAC_PI_2).contains(&self.friction_angle))
         {
@@ -66,5 +88,16 @@ impl JointParams {
     /// (Eq. 6). The shear slope `2 f_s / δ_sp` is the same (Eq. 7).
     pub fn stiffness(&self, h: Real) -> Real {
         self.penalty / h
+    }
+
+    /// The critical displacement for peak `f`, peak displacement `dp` and
+    /// fracture energy `gf` (Eq. 10, or its exact calibration). Never less
+    /// than `dp` (a tiny Gf gives immediate failure at the peak).
+    pub fn critical_displacement(&self, f: Real, dp: Real, gf: Real) -> Real {
+        let dc = match self.calibration {
+            GfCalibration::Paper => 3.0 * gf / f,
+            GfCalibration::Exact => dp + gf / (f * crate::softening::softening_area()),
+        };
+        dc.max(dp * (1.0 + 1e-12))
     }
 }

@@ -9,7 +9,7 @@
 //! chunk order, for the same reason.
 
 use femdem_core::{Mat3, Real, Vec3};
-use femdem_fracture::joint_forces;
+use femdem_fracture::{JointHistory, joint_update};
 use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
@@ -38,6 +38,10 @@ pub struct ForceSums {
     pub joint_energy: Real,
     /// Rate of viscous dissipation in the tets, W.
     pub dissipation_rate: Real,
+    /// Energy dissipated by the joints since the start (fracture), J.
+    pub fracture: Real,
+    /// Joints that failed in this evaluation.
+    pub newly_failed: usize,
 }
 
 impl ForceSums {
@@ -46,6 +50,8 @@ impl ForceSums {
             tet_energy: self.tet_energy + o.tet_energy,
             joint_energy: self.joint_energy + o.joint_energy,
             dissipation_rate: self.dissipation_rate + o.dissipation_rate,
+            fracture: self.fracture + o.fracture,
+            newly_failed: self.newly_failed + o.newly_failed,
         }
     }
 }
@@ -61,6 +67,9 @@ pub struct Workspace {
     pub internal: Vec<Vec3>,
     /// Cauchy stress per tet (filled when asked for).
     pub stress: Vec<Mat3>,
+    /// Failure mode code of each joint that failed in the last evaluation
+    /// (0: none; see `FailureMode::code`).
+    pub failed_now: Vec<u8>,
     tet_partials: Vec<ForceSums>,
     joint_partials: Vec<ForceSums>,
 }
@@ -73,6 +82,7 @@ impl Workspace {
             joint_slots: vec![[Vec3::zeros(); 6]; model.joints.len()],
             internal: vec![Vec3::zeros(); model.num_nodes()],
             stress: vec![Mat3::zeros(); model.tets.len()],
+            failed_now: vec![0; model.joints.len()],
             tet_partials: vec![ForceSums::default(); model.tets.len().div_ceil(CHUNK)],
             joint_partials: vec![ForceSums::default(); model.joints.len().div_ceil(CHUNK)],
         }
@@ -81,16 +91,19 @@ impl Workspace {
 
 /// Computes the internal force on every node at positions `x` and
 /// velocities `v` (the velocities enter only the viscous term of Eq. 1)
-/// into `ws.internal`, and the sums asked for in `want`.
+/// into `ws.internal`, updates the joints' damage `history`, and returns
+/// the sums asked for in `want` (the count of newly failed joints always;
+/// `ws.failed_now` says which).
 pub fn internal_forces(
     model: &Model,
     x: &[Vec3],
     v: &[Vec3],
+    history: &mut [JointHistory],
     ws: &mut Workspace,
     want: Want,
 ) -> ForceSums {
     tet_pass(model, x, v, ws, want);
-    joint_pass(model, x, ws, want);
+    joint_pass(model, x, history, ws, want);
     gather(model, ws);
     let tets = ws
         .tet_partials
@@ -143,20 +156,46 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
         });
 }
 
-fn joint_pass(model: &Model, x: &[Vec3], ws: &mut Workspace, want: Want) {
+fn joint_pass(
+    model: &Model,
+    x: &[Vec3],
+    history: &mut [JointHistory],
+    ws: &mut Workspace,
+    want: Want,
+) {
     ws.joint_slots
         .par_chunks_mut(CHUNK)
+        .zip(history.par_chunks_mut(CHUNK))
+        .zip(ws.failed_now.par_chunks_mut(CHUNK))
         .zip(ws.joint_partials.par_iter_mut())
         .enumerate()
-        .for_each(|(c, (slots, partial))| {
+        .for_each(|(c, (((slots, hist), failed), partial))| {
             let mut sums = ForceSums::default();
-            for (k, slot) in slots.iter_mut().enumerate() {
+            for (k, ((slot, h), f)) in slots
+                .iter_mut()
+                .zip(hist.iter_mut())
+                .zip(failed.iter_mut())
+                .enumerate()
+            {
                 let j = c * CHUNK + k;
+                *f = 0;
+                if h.failed {
+                    // Left the force loop when it failed.
+                    if want.energy {
+                        sums.fracture += h.dissipated + h.released;
+                    }
+                    continue;
+                }
                 let xp = model.joints[j].map(|n| x[n as usize]);
-                let out = joint_forces(&model.joint_law[j], &xp, want.energy);
+                let out = joint_update(&model.joint_law[j], h, &xp, want.energy);
                 *slot = out.forces;
+                if let Some(mode) = out.failed {
+                    *f = mode.code();
+                    sums.newly_failed += 1;
+                }
                 if want.energy {
                     sums.joint_energy += out.energy;
+                    sums.fracture += h.dissipated + h.released;
                 }
             }
             *partial = sums;

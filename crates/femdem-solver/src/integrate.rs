@@ -27,6 +27,8 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
 use crate::SolverError;
+use femdem_fracture::{FailureMode, JointHistory, joint_kinematics};
+
 use crate::forces::{CHUNK, ForceSums, Want, Workspace, internal_forces};
 use crate::loads::{Loads, surface_forces};
 use crate::model::Model;
@@ -45,6 +47,8 @@ pub struct State {
     pub time: Real,
     /// Step count `n`.
     pub step: u64,
+    /// Damage history of every joint.
+    pub joints: Vec<JointHistory>,
 }
 
 /// Energies, J, at the last step that asked for them.
@@ -60,19 +64,40 @@ pub struct Energies {
     pub damping: Real,
     /// Work of loads, gravity and prescribed motions since the start.
     pub external_work: Real,
+    /// Energy dissipated by joint softening and failure since the start.
+    pub fracture: Real,
 }
 
 impl Energies {
     /// `kinetic + elastic + dissipated − external work`: constant in an
     /// exact solution (equal to the initial kinetic + elastic energy).
     pub fn balance(&self) -> Real {
-        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping - self.external_work
+        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping + self.fracture
+            - self.external_work
     }
+}
+
+/// A joint failure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Failure {
+    /// Joint index.
+    pub joint: u32,
+    /// Time of failure, s (the start of the step that broke it).
+    pub time: Real,
+    /// Centroid of the joint's mid-plane at failure, m.
+    pub centroid: Vec3,
+    /// Mid-plane area at failure, m².
+    pub area: Real,
+    /// How it failed.
+    pub mode: FailureMode,
 }
 
 /// What one step reports.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct StepReport {
+    /// Joints that failed in this step (their records are appended to
+    /// [`Solver::failures`]).
+    pub newly_failed: usize,
     /// Reaction force of each velocity drive (in [`Loads::drives`] order), N.
     pub drive_forces: Vec<Vec3>,
     /// Total force of each surface load, N.
@@ -95,6 +120,8 @@ pub struct Solver {
     pub report: StepReport,
     /// The force workspace (holds the last stresses when asked for).
     pub workspace: Workspace,
+    /// Every joint failure so far, in order.
+    pub failures: Vec<Failure>,
     prescribed: Vec<[u16; 3]>,
     surface_nodes: Vec<u32>,
     f_surface: Vec<Vec3>,
@@ -165,12 +192,14 @@ impl Solver {
             v: vec![Vec3::zeros(); n],
             time: 0.0,
             step: 0,
+            joints: vec![JointHistory::default(); model.joints.len()],
         };
         Ok(Solver {
             workspace: Workspace::new(&model),
             f_surface: vec![Vec3::zeros(); n],
             partials: vec![[0.0; 2]; n.div_ceil(CHUNK)],
             report: StepReport {
+                newly_failed: 0,
                 drive_forces: vec![Vec3::zeros(); loads.drives.len()],
                 surface_forces: vec![Vec3::zeros(); loads.surfaces.len()],
             },
@@ -179,6 +208,7 @@ impl Solver {
             state,
             dt,
             energies: Energies::default(),
+            failures: Vec::new(),
             prescribed,
             surface_nodes,
             viscous,
@@ -212,9 +242,14 @@ impl Solver {
             &self.model,
             &self.state.x,
             &self.state.v,
+            &mut self.state.joints,
             &mut self.workspace,
             want,
         );
+        self.report.newly_failed = sums.newly_failed;
+        if sums.newly_failed > 0 {
+            self.record_failures(t);
+        }
 
         // Surface loads at t_n on the current geometry, in a fixed order.
         for &n in &self.surface_nodes {
@@ -310,9 +345,35 @@ impl Solver {
             self.energies.kinetic = kinetic;
             self.energies.tet_elastic = sums.tet_energy;
             self.energies.joint_elastic = sums.joint_energy;
+            self.energies.fracture = sums.fracture;
         }
         self.state.time += dt;
         self.state.step += 1;
         sums
+    }
+
+    /// Appends the joints that failed in the last force evaluation to
+    /// [`Solver::failures`], in joint order.
+    fn record_failures(&mut self, time: Real) {
+        for (j, &code) in self.workspace.failed_now.iter().enumerate() {
+            if code == 0 {
+                continue;
+            }
+            let mode = match code {
+                1 => FailureMode::Tensile,
+                2 => FailureMode::Shear,
+                _ => FailureMode::Mixed,
+            };
+            let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
+            let centroid = xp.iter().sum::<Vec3>() / 6.0;
+            let area = joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
+            self.failures.push(Failure {
+                joint: j as u32,
+                time,
+                centroid,
+                area,
+                mode,
+            });
+        }
     }
 }

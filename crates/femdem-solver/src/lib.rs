@@ -18,7 +18,7 @@ mod timestep;
 
 pub use error::SolverError;
 pub use forces::{ForceSums, Want, Workspace};
-pub use integrate::{Energies, Solver, State, StepReport};
+pub use integrate::{Energies, Failure, Solver, State, StepReport};
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RIGID, RegionBehaviour};
 pub use timestep::{StableStep, element_transit, stable_time_step};

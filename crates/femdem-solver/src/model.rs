@@ -2,7 +2,8 @@
 //! masses, element properties and the node-to-slot gather tables.
 
 use femdem_core::{Real, Vec3};
-use femdem_fracture::{IntactJoint, JointParams};
+use femdem_fracture::heterogeneity::{Distribution, strength_factors};
+use femdem_fracture::{Joint, JointParams};
 use femdem_material::{Law, Material, TetReference};
 use femdem_mesh::JointedMesh;
 
@@ -84,8 +85,10 @@ pub struct Model {
     pub materials: Vec<(Law, Material)>,
     /// Joint connectivity `[N1 … N6]`.
     pub joints: Vec<[u32; 6]>,
-    /// Law and reference size of each joint.
-    pub joint_law: Vec<IntactJoint>,
+    /// Law, parameters and reference size of each joint.
+    pub joint_law: Vec<Joint>,
+    /// The tets on either side of each joint (`N1 N2 N3` side first).
+    pub joint_tets: Vec<[u32; 2]>,
     /// Node → tet slots (`tet * 4 + local`).
     pub tet_gather: Gather,
     /// Node → joint slots (`joint * 6 + k`).
@@ -210,7 +213,7 @@ impl Model {
             };
             let p = [jn[0], jn[1], jn[2]].map(|n| x0[n as usize]);
             let h = ((p[1] - p[0]).norm() + (p[2] - p[1]).norm() + (p[0] - p[2]).norm()) / 3.0;
-            joint_law.push(IntactJoint::new(params, h));
+            joint_law.push(Joint::new(params, h));
         }
         let n = x0.len();
         let tet_gather = Gather::build(
@@ -237,11 +240,40 @@ impl Model {
             materials,
             joints: mesh.joints.clone(),
             joint_law,
+            joint_tets: mesh
+                .joint_faces
+                .iter()
+                .map(|(a, b)| [a.tet, b.tet])
+                .collect(),
             tet_gather,
             joint_gather,
             rigid_node,
             mass_scaling,
         })
+    }
+
+    /// Makes the joints' tensile strength and cohesion heterogeneous: each
+    /// is multiplied by an independent factor of mean 1 drawn from `dist`
+    /// (streams `seed` for `f_t` and `seed + 1` for `c`), and the derived
+    /// quantities are recomputed.
+    ///
+    /// # Errors
+    /// [`SolverError::Setup`] for a bad distribution parameter.
+    pub fn randomise_strengths(
+        &mut self,
+        dist: Distribution,
+        seed: u64,
+    ) -> Result<(), SolverError> {
+        let n = self.joint_law.len();
+        let ft = strength_factors(n, dist, seed).map_err(SolverError::Setup)?;
+        let c = strength_factors(n, dist, seed.wrapping_add(1)).map_err(SolverError::Setup)?;
+        for (j, joint) in self.joint_law.iter_mut().enumerate() {
+            let mut p = joint.params;
+            p.tensile_strength *= ft[j];
+            p.cohesion *= c[j];
+            *joint = Joint::new(p, joint.h);
+        }
+        Ok(())
     }
 
     /// Number of nodes.

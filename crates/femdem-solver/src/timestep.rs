@@ -24,6 +24,7 @@
 //! speed).
 
 use femdem_core::{Real, Vec3};
+use femdem_fracture::JointHistory;
 use rayon::prelude::*;
 
 use crate::forces::{Want, Workspace, internal_forces};
@@ -162,7 +163,16 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
         .fold(Real::INFINITY, Real::min);
     let mut ws = Workspace::new(model);
     let zero_v = vec![Vec3::zeros(); n];
-    internal_forces(model, &model.x0, &zero_v, &mut ws, Want::default());
+    // A scratch history: the probing moves are far below any peak opening.
+    let mut history = vec![JointHistory::default(); model.joints.len()];
+    internal_forces(
+        model,
+        &model.x0,
+        &zero_v,
+        &mut history,
+        &mut ws,
+        Want::default(),
+    );
     let f0 = ws.internal.clone();
     let mut xp = model.x0.clone();
 
@@ -177,7 +187,7 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
         xp.par_iter_mut()
             .enumerate()
             .for_each(|(i, p)| *p = model.x0[i] + z[i] * (inv_sqrt_m[i] * eps));
-        internal_forces(model, &xp, &zero_v, &mut ws, Want::default());
+        internal_forces(model, &xp, &zero_v, &mut history, &mut ws, Want::default());
         (0..n)
             .map(|i| -(ws.internal[i] - f0[i]) * (inv_sqrt_m[i] / eps))
             .collect()
@@ -187,7 +197,7 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
     let (beta, it_c) = if viscous {
         lanczos_max(n, &free, max_iterations, |z| {
             let w: Vec<Vec3> = z.iter().zip(&inv_sqrt_m).map(|(v, s)| v * *s).collect();
-            internal_forces(model, &model.x0, &w, &mut ws, Want::default());
+            internal_forces(model, &model.x0, &w, &mut history, &mut ws, Want::default());
             (0..n)
                 .map(|i| -(ws.internal[i] - f0[i]) * inv_sqrt_m[i])
                 .collect()

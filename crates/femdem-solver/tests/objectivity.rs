@@ -14,6 +14,10 @@
 
 mod common;
 
+fn history(m: &femdem_solver::Model) -> Vec<femdem_fracture::JointHistory> {
+    vec![femdem_fracture::JointHistory::default(); m.joints.len()]
+}
+
 use common::{box_mesh, model, rock, solver};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::Law;
@@ -37,6 +41,7 @@ fn rigid_rotation_by_90_degrees_makes_no_stress() {
         &m,
         &x,
         &vec![Vec3::zeros(); x.len()],
+        &mut history(&m),
         &mut ws,
         Want {
             stress: true,
@@ -71,6 +76,7 @@ fn rotated_stretch_gives_rotated_stress() {
         &m,
         &stretched,
         &zero,
+        &mut history(&m),
         &mut ws,
         Want {
             stress: true,
@@ -83,6 +89,7 @@ fn rotated_stretch_gives_rotated_stress() {
         &m,
         &rotated,
         &zero,
+        &mut history(&m),
         &mut ws,
         Want {
             stress: true,

@@ -15,6 +15,10 @@
 
 mod common;
 
+fn history(m: &femdem_solver::Model) -> Vec<femdem_fracture::JointHistory> {
+    vec![femdem_fracture::JointHistory::default(); m.joints.len()]
+}
+
 use common::{box_mesh, model, rock};
 use femdem_core::{Mat3, Vec3};
 use femdem_material::{Law, cauchy_stress};
@@ -34,6 +38,7 @@ fn run_patch(breakable: bool, law: Law) {
         &m,
         &x,
         &v,
+        &mut history(&m),
         &mut ws,
         Want {
             stress: true,

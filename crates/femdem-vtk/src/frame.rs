@@ -116,8 +116,12 @@ impl<'a> Field<'a> {
 pub struct Frame<'a> {
     /// Point coordinates.
     pub points: &'a [[f64; 3]],
-    /// Tets as four indices into `points`.
+    /// Tets as four indices into `points` (cells `0..tets.len()`).
     pub tets: &'a [[u32; 4]],
+    /// Triangles as three indices into `points`, written after the tets as
+    /// VTK_TRIANGLE (5) cells; a fracture surface is a frame of triangles
+    /// only.
+    pub triangles: &'a [[u32; 3]],
     /// Fields with one tuple per point.
     pub point_fields: &'a [Field<'a>],
     /// Fields with one tuple per tet.
@@ -130,9 +134,20 @@ impl<'a> Frame<'a> {
         Frame {
             points,
             tets,
+            triangles: &[],
             point_fields: &[],
             cell_fields: &[],
         }
+    }
+
+    /// The same frame with these triangles (after the tets).
+    pub fn with_triangles(self, triangles: &'a [[u32; 3]]) -> Self {
+        Frame { triangles, ..self }
+    }
+
+    /// Number of cells: tets then triangles.
+    pub fn num_cells(&self) -> usize {
+        self.tets.len() + self.triangles.len()
     }
 
     /// The same frame with these point fields.
@@ -165,10 +180,10 @@ impl<'a> Frame<'a> {
                 max,
             });
         }
-        if self.tets.len() > max {
+        if self.num_cells() > max {
             return Err(VtkError::TooLarge {
                 what: "cells",
-                count: self.tets.len(),
+                count: self.num_cells(),
                 max,
             });
         }
@@ -182,8 +197,17 @@ impl<'a> Frame<'a> {
                 });
             }
         }
+        for (k, nodes) in self.triangles.iter().enumerate() {
+            if let Some(&node) = nodes.iter().find(|&&n| n as usize >= num_points) {
+                return Err(VtkError::NodeOutOfRange {
+                    tet: self.tets.len() + k,
+                    node,
+                    num_points,
+                });
+            }
+        }
         check_fields(self.point_fields, Location::Point, num_points)?;
-        check_fields(self.cell_fields, Location::Cell, self.tets.len())?;
+        check_fields(self.cell_fields, Location::Cell, self.num_cells())?;
         Ok(())
     }
 }

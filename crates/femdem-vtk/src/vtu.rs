@@ -85,7 +85,7 @@ pub fn write_vtu_with(path: &Path, frame: &Frame<'_>, options: VtuOptions) -> Re
         message,
     };
     let vtk_file = encode(frame, options).map_err(|e| encode_error(e.to_string()))?;
-    if frame.points.is_empty() || frame.tets.is_empty() {
+    if frame.points.is_empty() || frame.num_cells() == 0 {
         // vtkio leaves out `NumberOfPoints="0"` / `NumberOfCells="0"`, and
         // VTK and meshio refuse a piece without them. Such files are small
         // unless one count is huge, so patch the text in memory.
@@ -121,7 +121,7 @@ fn add_zero_counts(mut text: Vec<u8>, frame: &Frame<'_>) -> Result<Vec<u8>, Stri
     if frame.points.is_empty() {
         counts.push_str(r#" NumberOfPoints="0""#);
     }
-    if frame.tets.is_empty() {
+    if frame.num_cells() == 0 {
         counts.push_str(r#" NumberOfCells="0""#);
     }
     text.splice(at..at, counts.bytes());
@@ -135,9 +135,18 @@ fn encode(frame: &Frame<'_>, options: VtuOptions) -> Result<VTKFile, vtkio::xml:
         .tets
         .as_flattened()
         .iter()
+        .chain(frame.triangles.as_flattened())
         .map(|&n| n.into())
         .collect();
-    let offsets: Vec<u64> = (1..=num_tets).map(|i| 4 * i).collect();
+    let offsets: Vec<u64> = (1..=num_tets)
+        .map(|i| 4 * i)
+        .chain((1..=frame.triangles.len() as u64).map(|i| 4 * num_tets + 3 * i))
+        .collect();
+    let mut types = vec![CellType::Tetra; frame.tets.len()];
+    types.extend(std::iter::repeat_n(
+        CellType::Triangle,
+        frame.triangles.len(),
+    ));
     let piece = UnstructuredGridPiece {
         points: IOBuffer::F64(frame.points.as_flattened().to_vec()),
         cells: Cells {
@@ -145,7 +154,7 @@ fn encode(frame: &Frame<'_>, options: VtuOptions) -> Result<VTKFile, vtkio::xml:
                 connectivity,
                 offsets,
             },
-            types: vec![CellType::Tetra; frame.tets.len()],
+            types,
         },
         data: Attributes {
             point: frame.point_fields.iter().map(attribute).collect(),

@@ -28,6 +28,8 @@ pub struct Case {
     /// `[[loads]]`: constraints, velocities, pressures, tractions.
     #[serde(default)]
     pub loads: Vec<Spanned<LoadSpec>>,
+    /// `[heterogeneity]`: random joint strengths.
+    pub heterogeneity: Option<Spanned<HeterogeneitySpec>>,
     /// `[solver]`: time span and the speed/accuracy knobs.
     pub solver: Option<Spanned<SolverSpec>>,
     /// `[output]`: what is written and how often.
@@ -63,6 +65,28 @@ pub struct MaterialSpec {
     pub cohesion: Option<f64>,
     /// Internal friction angle φ, degrees (breakable regions).
     pub friction_angle: Option<f64>,
+    /// Fracture energy in tension G_ft, J/m² (breakable regions; Eq. 10).
+    pub fracture_energy: Option<f64>,
+    /// Fracture energy in shear G_fs, J/m² (default: `fracture_energy`).
+    pub fracture_energy_shear: Option<f64>,
+    /// `"paper"` (δc = 3 Gf / f, Eq. 10; default) or `"exact"` (δc set so the
+    /// softening branch dissipates exactly Gf).
+    pub gf_calibration: Option<String>,
+}
+
+/// `[heterogeneity]`: random joint strengths (f_t and c each times an
+/// independent factor of mean 1).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeterogeneitySpec {
+    /// `"weibull"` or `"normal"`.
+    pub distribution: String,
+    /// Weibull modulus (for `"weibull"`).
+    pub modulus: Option<f64>,
+    /// Coefficient of variation (for `"normal"`).
+    pub cov: Option<f64>,
+    /// Seed of the draws (default: `mesh.seed`).
+    pub seed: Option<u64>,
 }
 
 fn default_law() -> String {

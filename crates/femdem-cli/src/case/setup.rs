@@ -2,7 +2,8 @@
 //! solver model and its loads.
 
 use femdem_core::Vec3;
-use femdem_fracture::JointParams;
+use femdem_fracture::heterogeneity::Distribution;
+use femdem_fracture::{GfCalibration, JointParams};
 use femdem_material::{ElasticParams, Law};
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
@@ -115,11 +116,24 @@ pub fn behaviours(
                     ))
                 })
             };
+            let calibration = match s.gf_calibration.as_deref() {
+                None | Some("paper") => GfCalibration::Paper,
+                Some("exact") => GfCalibration::Exact,
+                Some(other) => {
+                    return Err(at(format!(
+                        "gf_calibration `{other}` is not `paper` or `exact`"
+                    )));
+                }
+            };
+            let gf = need(s.fracture_energy, "fracture_energy")?;
             let params = JointParams {
                 penalty: s.penalty.unwrap_or(DEFAULT_PENALTY_FACTOR * s.young),
                 tensile_strength: need(s.tensile_strength, "tensile_strength")?,
                 cohesion: need(s.cohesion, "cohesion")?,
                 friction_angle: need(s.friction_angle, "friction_angle")?.to_radians(),
+                gf_tension: gf,
+                gf_shear: s.fracture_energy_shear.unwrap_or(gf),
+                calibration,
             };
             Some(params.validate().map_err(|e| at(e.to_string()))?)
         } else {
@@ -302,9 +316,34 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
 /// As [`behaviours`], plus model set-up errors.
 pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result<Model, CaseError> {
     let b = behaviours(case, mesh)?;
-    Model::new(mesh, &b, mass_scaling).map_err(|e| CaseError {
+    let mut model = Model::new(mesh, &b, mass_scaling).map_err(|e| CaseError {
         path: case.path.clone(),
         at: None,
         message: e.to_string(),
-    })
+    })?;
+    if let Some(h) = &case.case.heterogeneity {
+        let spec = h.get_ref();
+        let at = |msg: String| case.error_at(h.span(), format!("heterogeneity: {msg}"));
+        let dist = match spec.distribution.as_str() {
+            "weibull" => Distribution::Weibull {
+                modulus: spec
+                    .modulus
+                    .ok_or_else(|| at("`modulus` is required for a Weibull distribution".into()))?,
+            },
+            "normal" => Distribution::Normal {
+                cov: spec
+                    .cov
+                    .ok_or_else(|| at("`cov` is required for a normal distribution".into()))?,
+            },
+            other => {
+                return Err(at(format!(
+                    "distribution `{other}` is not `weibull` or `normal`"
+                )));
+            }
+        };
+        model
+            .randomise_strengths(dist, spec.seed.unwrap_or(case.case.mesh.seed))
+            .map_err(|e| at(e.to_string()))?;
+    }
+    Ok(model)
 }

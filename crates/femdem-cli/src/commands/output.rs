@@ -21,20 +21,30 @@ pub const FIELDS: [&str; 6] = [
 /// The run's writers.
 pub struct Output {
     series: SeriesWriter,
+    fractures: SeriesWriter,
     history: HistoryWriter,
     fields: Vec<String>,
+    /// Pre-existing fracture faces (node triples of one side).
+    pre_existing: Vec<[u32; 3]>,
 }
 
 impl Output {
     /// Creates the writers in `dir`; `fields` are checked against
     /// [`FIELDS`].
-    pub fn create(dir: &Path, stem: &str, fields: Vec<String>, solver: &Solver) -> Result<Output> {
+    pub fn create(
+        dir: &Path,
+        stem: &str,
+        fields: Vec<String>,
+        solver: &Solver,
+        pre_existing: Vec<[u32; 3]>,
+    ) -> Result<Output> {
         for f in &fields {
             if !FIELDS.contains(&f.as_str()) {
                 bail!("output.fields: `{f}` is not one of {}", FIELDS.join(", "));
             }
         }
         let series = SeriesWriter::new(dir, stem)?;
+        let fractures = SeriesWriter::new(dir, &format!("{stem}_fractures"))?;
         let mut columns: Vec<String> = [
             "time",
             "step",
@@ -58,8 +68,10 @@ impl Output {
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
         Ok(Output {
             series,
+            fractures,
             history,
             fields,
+            pre_existing,
         })
     }
 
@@ -154,6 +166,49 @@ impl Output {
             .with_cell_fields(&cell_fields);
         self.series.write(t, &frame)?;
         Ok(())
+    }
+
+    /// Writes the fracture surface of time `t`: every failed joint's face
+    /// (side `N1 N2 N3`, at positions `x_n`) and every pre-existing fracture
+    /// face, as triangles with cell data `mode` (0 pre-existing, 1 tensile,
+    /// 2 shear, 3 mixed), `failure_time` (s; −1 for pre-existing) and
+    /// `pre_existing` (1 or 0).
+    pub fn fracture_frame(&mut self, solver: &Solver, t: f64) -> Result<()> {
+        let s = &solver.state;
+        let at = |n: u32| -> [f64; 3] { (s.x[n as usize] - s.v[n as usize] * solver.dt).into() };
+        let mut points = Vec::new();
+        let mut triangles = Vec::new();
+        let (mut mode, mut time, mut pre) = (Vec::new(), Vec::new(), Vec::new());
+        let mut push = |nodes: [u32; 3], m: f64, ft: f64, p: f64| {
+            let base = points.len() as u32;
+            points.extend(nodes.map(at));
+            triangles.push([base, base + 1, base + 2]);
+            mode.push(m);
+            time.push(ft);
+            pre.push(p);
+        };
+        for &f in &self.pre_existing {
+            push(f, 0.0, -1.0, 1.0);
+        }
+        for f in &solver.failures {
+            let j = solver.model.joints[f.joint as usize];
+            push([j[0], j[1], j[2]], f64::from(f.mode.code()), f.time, 0.0);
+        }
+        let cell_fields = [
+            Field::scalar("mode", &mode),
+            Field::scalar("failure_time", &time),
+            Field::scalar("pre_existing", &pre),
+        ];
+        let frame = Frame::new(&points, &[])
+            .with_triangles(&triangles)
+            .with_cell_fields(&cell_fields);
+        self.fractures.write(t, &frame)?;
+        Ok(())
+    }
+
+    /// The fracture-surface `.pvd`.
+    pub fn fracture_pvd(&self) -> std::path::PathBuf {
+        self.fractures.pvd_path()
     }
 
     /// Flushes the history.

@@ -41,7 +41,14 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
         .clone()
         .unwrap_or_else(|| FIELDS.iter().map(|s| s.to_string()).collect());
     let solver = &mut run.solver;
-    let mut output = Output::create(&dir, &stem, fields, solver)
+    let m = &prepared.jointed.mesh;
+    let pre_existing: Vec<[u32; 3]> = prepared
+        .jointed
+        .initial_contacts
+        .iter()
+        .map(|(a, _)| a.nodes(&m.tets))
+        .collect();
+    let mut output = Output::create(&dir, &stem, fields, solver, pre_existing)
         .with_context(|| format!("output directory {}", dir.display()))?;
 
     let stop = Arc::new(AtomicBool::new(false));
@@ -86,6 +93,7 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
         }
         if frame_due {
             output.frame(solver, t)?;
+            output.fracture_frame(solver, t)?;
             output.flush()?;
             next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
         }
@@ -115,6 +123,11 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
         rayon::current_num_threads()
     );
     println!("results     {}", output.pvd().display());
+    println!(
+        "fractures   {} ({} joints failed)",
+        output.fracture_pvd().display(),
+        solver.failures.len()
+    );
     println!("history     {}", output.history_path().display());
     if interrupted {
         bail!(

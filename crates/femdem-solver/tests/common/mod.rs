@@ -20,6 +20,18 @@ pub fn rock(viscosity: f64) -> Material {
     .unwrap()
 }
 
+/// The paper's rock with Poisson's ratio `nu`.
+pub fn rock_nu(viscosity: f64, nu: f64) -> Material {
+    ElasticParams {
+        young: 26e9,
+        poisson: nu,
+        density: 2340.0,
+        viscosity,
+    }
+    .validate()
+    .unwrap()
+}
+
 /// The paper's joint strengths with penalty `p0`.
 pub fn joints(penalty: f64) -> JointParams {
     JointParams {
@@ -27,6 +39,9 @@ pub fn joints(penalty: f64) -> JointParams {
         tensile_strength: 3e6,
         cohesion: 15e6,
         friction_angle: 30f64.to_radians(),
+        gf_tension: 50.0,
+        gf_shear: 50.0,
+        calibration: femdem_fracture::GfCalibration::Paper,
     }
 }
 

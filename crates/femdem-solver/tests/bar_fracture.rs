@@ -1,0 +1,194 @@
+//! A joint-meshed bar pulled slowly in uniaxial tension (reference paper
+//! §2.2: Eq. 6–13, failure when two of a joint's three points carry no
+//! stress).
+//!
+//! Expected, for a bar of cross-section `A` and tensile strength `f_t`:
+//!
+//! * the largest reaction, divided by `A`, equals `f_t` within 5% (the
+//!   lattice has joint planes normal to the load; jitter tilts them by a few
+//!   degrees, which lowers their normal stress by `cos²θ ≈ 1 − θ²`; and the
+//!   loading is quasi-static: the pull reaches the peak after about 8 wave
+//!   transit times, with damping, so the dynamic overshoot is small);
+//! * one crack forms: the failed joints lie in a band of two cells along
+//!   the bar (softening localises: once one section softens, the rest
+//!   unloads). The bar's stored energy at the peak, `f_t² L / 2E` ≈ 3.5 J/m²
+//!   for L = 20 mm, is below `G_f` = 10 J/m², so the softening is stable
+//!   (no snap-back); the two halves then carry no force;
+//! * the energy dissipated on the softening branches of the crack's joints,
+//!   per unit cross-section, equals the documented relation: with the
+//!   paper's Eq. 10 (`δc = 3 G_f / f_t`) `f_t (δc − δp) ∫₀¹ z ≈ 3 × 0.386
+//!   G_f`, with the exact calibration `G_f`. Tolerance 15% (the issue's
+//!   bound): the crack faces are tilted by the jitter (more area, mixed-mode
+//!   damage).
+//!
+//! Not asserted, printed (`--nocapture`): the stored energy released when
+//! the joints fail (dominated by the shear part `2/3 f_s δsp`, ~3 J/m² for
+//! c = 15 MPa and p0 = 10 E, since the tilted crack faces slip past the tiny
+//! `δsp`), and the shear damage of joints next to the crack that do not
+//! fail; together they make the total fracture energy about 1.7 × G_f A.
+
+mod common;
+
+use common::{box_mesh, rock};
+use femdem_core::Vec3;
+use femdem_fracture::{GfCalibration, JointParams, softening::softening_area};
+use femdem_material::Law;
+use femdem_mesh::insert_joints;
+use femdem_solver::select::{NodeSelection, select_nodes};
+use femdem_solver::{
+    Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want, stable_time_step,
+};
+
+const FT: f64 = 3e6;
+/// Pull velocity, m/s: the peak (strain f_t/E over the bar) is reached after
+/// about 8 wave transit times.
+const V: f64 = 0.05;
+const GF: f64 = 10.0;
+
+fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64) {
+    let (w, len, h) = (0.01, 0.02, 0.0025);
+    let mesh = box_mesh([0.0; 3], [w, w, len], h, 0.1, true);
+    let jointed = insert_joints(&mesh).unwrap();
+    let p0 = 10.0 * 26e9;
+    let params = JointParams {
+        penalty: p0,
+        tensile_strength: FT,
+        cohesion: 15e6,
+        friction_angle: 30f64.to_radians(),
+        gf_tension: GF,
+        gf_shear: GF,
+        calibration,
+    };
+    let viscosity = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 0.1;
+    let behaviour = [RegionBehaviour::Deformable {
+        law: Law::NeoHookean,
+        material: rock(viscosity),
+        joints: Some(params),
+    }];
+    let model = Model::new(&jointed, &behaviour, 1.0).unwrap();
+    let sel = |group: &str, within: Option<([f64; 3], [f64; 3])>| {
+        select_nodes(
+            &jointed,
+            &NodeSelection {
+                group: Some(group.into()),
+                within,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let eps = 1e-9;
+    let loads = Loads {
+        fixed: vec![
+            Fixed {
+                nodes: sel("zmin", None),
+                components: [false, false, true],
+            },
+            // Roller supports: x held on the edge x = 0, y on the edge y = 0.
+            Fixed {
+                nodes: sel("zmin", Some(([-eps; 3], [eps, w + eps, eps]))),
+                components: [true, false, false],
+            },
+            Fixed {
+                nodes: sel("zmin", Some(([-eps; 3], [w + eps, eps, eps]))),
+                components: [false, true, false],
+            },
+        ],
+        drives: vec![VelocityDrive {
+            name: "pull".into(),
+            nodes: sel("zmax", None),
+            velocity: Vec3::new(0.0, 0.0, V),
+            components: [false, false, true],
+            ramp: Ramp {
+                ramp_time: 5e-5,
+                stop_time: None,
+            },
+        }],
+        ..Loads::default()
+    };
+    let mut s = Solver::new(model, loads, 1.0).unwrap();
+    s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
+    let mut peak: f64 = 0.0;
+    // Pull until the top has moved 1.5 δc past the peak displacement.
+    let joint = s.model.joint_law[0];
+    let target = 1.5 * joint.delta_nc + 2.0 * FT / 26e9 * len;
+    let end = 5e-5 / 2.0 + target / V;
+    while s.state.time < end {
+        s.step(Want {
+            energy: false,
+            ..Want::default()
+        });
+        peak = peak.max(s.report.drive_forces[0].z);
+    }
+    s.step(Want {
+        energy: true,
+        ..Want::default()
+    });
+    let zs: Vec<f64> = s.failures.iter().map(|f| f.centroid.z).collect();
+    let crack: f64 = s
+        .state
+        .joints
+        .iter()
+        .filter(|h| h.failed)
+        .map(|h| h.dissipated)
+        .sum();
+    let released: f64 = s.state.joints.iter().map(|h| h.released).sum();
+    let damaged = s
+        .state
+        .joints
+        .iter()
+        .filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0))
+        .count();
+    let residual = s.report.drive_forces[0].z;
+    let a = w * w;
+    eprintln!(
+        "{calibration:?}: peak {:.4e} Pa, {} joints failed (area {:.4e} m² for A = {a:.1e} m²), crack softening {:.3} J/m², \
+         released at failure {:.3} J/m², all fracture energy {:.3} J/m², {damaged} joints damaged but intact",
+        peak / a,
+        s.failures.len(),
+        s.failures.iter().map(|f| f.area).sum::<f64>(),
+        crack / a,
+        released / a,
+        s.energies.fracture / a
+    );
+    (peak / a, zs, crack / a, residual)
+}
+
+fn check(calibration: GfCalibration, per_area: f64) {
+    let (strength, zs, dissipated, residual) = pull(calibration);
+    assert!(
+        (strength / FT - 1.0).abs() < 0.05,
+        "peak stress {strength} vs f_t {FT}"
+    );
+    assert!(!zs.is_empty(), "the bar did not break");
+    let (lo, hi) = zs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| {
+            (a.min(z), b.max(z))
+        });
+    assert!(
+        hi - lo <= 2.0 * 0.0025 + 1e-9,
+        "failed joints spread over z in [{lo}, {hi}]: more than one crack"
+    );
+    assert!(
+        residual.abs() < 0.01 * strength * 1e-4,
+        "the halves still pull: {residual} N"
+    );
+    assert!(
+        (dissipated / per_area - 1.0).abs() < 0.15,
+        "dissipated {dissipated} J/m² vs {per_area} J/m²"
+    );
+}
+
+#[test]
+fn pulled_bar_breaks_at_ft_and_dissipates_the_paper_energy() {
+    let dc = 3.0 * GF / FT;
+    // δp = 2 f_t h / p0 (Eq. 6) with h ≈ 2.85 mm, the mean joint edge.
+    let dp = 2.0 * FT * 0.00285 / 2.6e11;
+    check(GfCalibration::Paper, FT * (dc - dp) * softening_area());
+}
+
+#[test]
+fn pulled_bar_with_exact_calibration_dissipates_gf() {
+    check(GfCalibration::Exact, GF);
+}

@@ -14,29 +14,20 @@ pub fn box_with_tets(tets: usize) -> BoxSpec {
         element_size: 1.0 / cells_per_axis,
         jitter: 0.1,
         seed: 1,
-        region: Region {
-            name: "rock".into(),
-            breakable: true,
-        },
+        region: Region { name: "rock".into(), breakable: true },
     }
 }
 
 /// The Brazilian disc of the reference paper (40 mm × 15 mm, 10 layers).
 pub fn disc_extrusion(element_size: f64) -> ExtrusionSpec {
     ExtrusionSpec {
-        outline: Outline::Circle {
-            center: [0.0, 0.0],
-            radius: 0.02,
-        },
+        outline: Outline::Circle { center: [0.0, 0.0], radius: 0.02 },
         traces: vec![],
         z0: 0.0,
         thickness: 0.015,
         element_size,
         layers: Some(10),
-        region: Region {
-            name: "disc".into(),
-            breakable: true,
-        },
+        region: Region { name: "disc".into(), breakable: true },
     }
 }
 
@@ -52,14 +43,7 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
     let mesh = femdem_mesh::generate::generate_extrusion(&spec).expect("disc");
     let jointed = femdem_mesh::insert_joints(&mesh).expect("joints");
     let viscosity = femdem_material::critical_viscosity(element_size, 26e9, 2340.0) * 0.05;
-    let material = ElasticParams {
-        young: 26e9,
-        poisson: 0.2,
-        density: 2340.0,
-        viscosity,
-    }
-    .validate()
-    .expect("rock");
+    let material = ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().expect("rock");
     let joints = breakable.then_some(JointParams {
         penalty: 2.6e11,
         tensile_strength: 3e6,
@@ -69,16 +53,8 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
         gf_shear: 50.0,
         calibration: femdem_fracture::GfCalibration::Paper,
     });
-    let model = Model::new(
-        &jointed,
-        &[RegionBehaviour::Deformable {
-            law: Law::NeoHookean,
-            material,
-            joints,
-        }],
-        1.0,
-    )
-    .expect("model");
+    let model = Model::new(&jointed, &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints }], 1.0)
+        .expect("model");
     let mut s = Solver::new(model, Loads::default(), 1.0).expect("solver");
     s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     s.set_velocity(|x| femdem_core::Vec3::new(x.y, -x.x, 0.0) * 10.0);

@@ -15,20 +15,14 @@ fn generation(c: &mut Criterion) {
         let spec = box_with_tets(target);
         let n = generate_box(&spec).unwrap().num_tets() as u64;
         g.throughput(Throughput::Elements(n));
-        g.bench_with_input(BenchmarkId::new("box", n), &spec, |b, s| {
-            b.iter(|| generate_box(s).unwrap())
-        });
+        g.bench_with_input(BenchmarkId::new("box", n), &spec, |b, s| b.iter(|| generate_box(s).unwrap()));
     }
     let spec = disc_extrusion(1.2e-3);
-    let n = femdem_mesh::generate::generate_extrusion(&spec)
-        .unwrap()
-        .num_tets() as u64;
+    let n = femdem_mesh::generate::generate_extrusion(&spec).unwrap().num_tets() as u64;
     g.throughput(Throughput::Elements(n));
-    g.bench_with_input(
-        BenchmarkId::new("brazilian_disc_extrusion", n),
-        &spec,
-        |b, s| b.iter(|| femdem_mesh::generate::generate_extrusion(s).unwrap()),
-    );
+    g.bench_with_input(BenchmarkId::new("brazilian_disc_extrusion", n), &spec, |b, s| {
+        b.iter(|| femdem_mesh::generate::generate_extrusion(s).unwrap())
+    });
     g.finish();
 }
 

@@ -12,16 +12,9 @@ fn step(c: &mut Criterion) {
     let mut g = c.benchmark_group("step");
     g.sample_size(20);
     for breakable in [true, false] {
-        let label = if breakable {
-            "disc_with_joints"
-        } else {
-            "disc_without_joints"
-        };
+        let label = if breakable { "disc_with_joints" } else { "disc_without_joints" };
         for threads in [1usize, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .expect("pool");
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
             let mut s = disc_solver(1.2e-3, breakable);
             g.throughput(Throughput::Elements(s.model.num_deformable_tets() as u64));
             g.bench_function(BenchmarkId::new(label, format!("{threads}_threads")), |b| {

@@ -15,10 +15,7 @@ fn peak_rss_kib() -> Option<u64> {
 }
 
 fn main() {
-    let target: usize = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(1_000_000);
+    let target: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(1_000_000);
     let t0 = Instant::now();
     let mesh = generate_box(&box_with_tets(target)).expect("box");
     let t_gen = t0.elapsed();
@@ -28,18 +25,11 @@ fn main() {
     let t_ins = t1.elapsed();
     println!("tets            {}", mesh.num_tets());
     println!("joints          {}", jointed.joints.len());
-    println!(
-        "nodes           {} (from {} vertices)",
-        jointed.mesh.num_nodes(),
-        mesh.num_nodes()
-    );
+    println!("nodes           {} (from {} vertices)", jointed.mesh.num_nodes(), mesh.num_nodes());
     println!("cores           {}", available_cores());
     println!("generate        {:.3} s", t_gen.as_secs_f64());
     println!("insert_joints   {:.3} s", t_ins.as_secs_f64());
-    println!(
-        "arrays          {:.1} MiB",
-        jointed.array_bytes() as f64 / 1048576.0
-    );
+    println!("arrays          {:.1} MiB", jointed.array_bytes() as f64 / 1048576.0);
     if let (Some(before), Some(peak)) = (rss_mesh, peak_rss_kib()) {
         println!(
             "peak RSS        {:.1} MiB (after generation: {:.1} MiB)",

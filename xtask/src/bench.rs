@@ -19,9 +19,5 @@ pub fn run(args: &[String]) -> Result<()> {
             "1000000",
         ]));
     }
-    crate::run_in_root(
-        Command::new(&cargo)
-            .args(["bench", "-p", "femdem-benches", "--"])
-            .args(args),
-    )
+    crate::run_in_root(Command::new(&cargo).args(["bench", "-p", "femdem-benches", "--"]).args(args))
 }

@@ -12,20 +12,12 @@ fn root() -> PathBuf {
 }
 
 fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("run femdem")
+    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
 }
 
 fn check_json(case: &str) -> Value {
     let out = femdem(&["check", case, "--json"]);
-    assert!(
-        out.status.success(),
-        "{case}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "{case}: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("one JSON object")
 }
 
@@ -67,10 +59,7 @@ fn polyaxial_cube_fills_half_a_metre_cubed() {
     assert_eq!(r["joints"], r["interior_faces"]);
     // Each tet has four faces: 4T = 2·interior + boundary, boundary = 6 sides × 20² cells × 2.
     let tets = r["tets"].as_u64().unwrap();
-    assert_eq!(
-        4 * tets,
-        2 * r["interior_faces"].as_u64().unwrap() + 6 * 400 * 2
-    );
+    assert_eq!(4 * tets, 2 * r["interior_faces"].as_u64().unwrap() + 6 * 400 * 2);
     assert_eq!(r["nodes"].as_u64().unwrap(), 4 * tets);
 }
 
@@ -82,10 +71,7 @@ fn gmsh_case_joints_the_breakable_matrix_and_its_interface() {
     assert_eq!(region(&r, "inclusion")["tets"], 68);
     // The inclusion's 66 boundary triangles separate matrix from inclusion.
     assert_eq!(r["interface_joints"], 66);
-    assert_eq!(
-        r["joints"].as_u64().unwrap(),
-        r["interior_faces"].as_u64().unwrap() + 66
-    );
+    assert_eq!(r["joints"].as_u64().unwrap(), r["interior_faces"].as_u64().unwrap() + 66);
 }
 
 #[test]
@@ -100,15 +86,7 @@ fn text_report_names_the_counts() {
     let out = femdem(&["check", "cases/paper/brazilian.toml"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for word in [
-        "tets",
-        "joints",
-        "initial contact faces",
-        "min inradius",
-        "aspect ratio",
-        "memory",
-        "disc",
-    ] {
+    for word in ["tets", "joints", "initial contact faces", "min inradius", "aspect ratio", "memory", "disc"] {
         assert!(text.contains(word), "missing `{word}` in:\n{text}");
     }
 }
@@ -119,34 +97,19 @@ fn bad_cases_are_refused_with_file_line_and_key() {
     let dir = "crates/femdem-cli/tests/cases/bad";
     let expected = [
         ("unknown_key.toml", ":12:1:", "elemnt_size"),
-        (
-            "undeclared_region.toml",
-            ":7:1:",
-            "mesh.parts[0].region: `granite` is not declared",
-        ),
+        ("undeclared_region.toml", ":7:1:", "mesh.parts[0].region: `granite` is not declared"),
         ("wrong_version.toml", ":1:11:", "version"),
-        (
-            "platen_first.toml",
-            ":7:1:",
-            "needs a specimen part before it",
-        ),
+        ("platen_first.toml", ":7:1:", "needs a specimen part before it"),
         ("negative_size.toml", ":7:1:", "element_size"),
         ("missing_msh.toml", ":7:1:", "does_not_exist.msh"),
-        (
-            "undeclared_physical_volume.toml",
-            ":7:1:",
-            "physical volume `inclusion`",
-        ),
+        ("undeclared_physical_volume.toml", ":7:1:", "physical volume `inclusion`"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");
         let out = femdem(&["check", &path]);
         assert!(!out.status.success(), "{file} was accepted");
         let err = String::from_utf8(out.stderr).unwrap();
-        assert!(
-            err.contains(&format!("{path}{at}")),
-            "{file}: expected location {at} in: {err}"
-        );
+        assert!(err.contains(&format!("{path}{at}")), "{file}: expected location {at} in: {err}");
         assert!(err.contains(words), "{file}: expected `{words}` in: {err}");
     }
 }

@@ -11,36 +11,20 @@ fn root() -> PathBuf {
 }
 
 fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("run femdem")
+    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
 }
 
 #[test]
 fn elastic_bar_runs_and_writes_a_series_and_a_history() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("elastic-bar-run");
     let _ = std::fs::remove_dir_all(&out);
-    let o = femdem(&[
-        "run",
-        "cases/elastic-bar.toml",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = femdem(&["run", "cases/elastic-bar.toml", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8(o.stdout).unwrap();
-    assert!(
-        stdout.contains("finished") && stdout.contains("tet-steps/s"),
-        "{stdout}"
-    );
+    assert!(stdout.contains("finished") && stdout.contains("tet-steps/s"), "{stdout}");
 
     let pvd = std::fs::read_to_string(out.join("elastic-bar.pvd")).unwrap();
-    let files: Vec<&str> = pvd
-        .split("file=\"")
-        .skip(1)
-        .map(|s| s.split('"').next().unwrap())
-        .collect();
+    let files: Vec<&str> = pvd.split("file=\"").skip(1).map(|s| s.split('"').next().unwrap()).collect();
     // end_time / interval = 20 frames, plus the frame at t = 0.
     assert!(files.len() >= 20, "{} frames", files.len());
     for f in &files {
@@ -50,59 +34,34 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
     let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
     let mut lines = history.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    for col in [
-        "time",
-        "kinetic",
-        "tet_elastic",
-        "external_work",
-        "balance",
-        "piston_fz",
-    ] {
+    for col in ["time", "kinetic", "tet_elastic", "external_work", "balance", "piston_fz"] {
         assert!(header.contains(&col), "missing column {col}");
     }
     let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert!(rows.len() > 100);
     let last = rows.last().unwrap();
     let work = last[col("external_work")];
     assert!(work > 0.0);
     // The piston's energy input is accounted for (the reported kinetic
     // energy uses the mid-step velocity: O(Δt) mismatch on the driven end).
-    assert!(
-        last[col("balance")].abs() < 0.02 * work,
-        "balance {} vs work {work}",
-        last[col("balance")]
-    );
+    assert!(last[col("balance")].abs() < 0.02 * work, "balance {} vs work {work}", last[col("balance")]);
 }
 
 #[test]
 fn too_large_a_time_step_is_refused_with_the_estimate() {
-    let o = femdem(&[
-        "run",
-        "crates/femdem-cli/tests/cases/bad/unstable_step.toml",
-    ]);
+    let o = femdem(&["run", "crates/femdem-cli/tests/cases/bad/unstable_step.toml"]);
     assert!(!o.status.success());
     let err = String::from_utf8(o.stderr).unwrap();
-    assert!(
-        err.contains("exceeds the stable limit") && err.contains("unstable_step.toml:"),
-        "{err}"
-    );
+    assert!(err.contains("exceeds the stable limit") && err.contains("unstable_step.toml:"), "{err}");
 }
 
 #[test]
 fn bad_material_parameter_is_named() {
-    let o = femdem(&[
-        "check",
-        "crates/femdem-cli/tests/cases/bad/bad_poisson.toml",
-    ]);
+    let o = femdem(&["check", "crates/femdem-cli/tests/cases/bad/bad_poisson.toml"]);
     assert!(!o.status.success());
     let err = String::from_utf8(o.stderr).unwrap();
-    assert!(
-        err.contains("materials[0]") && err.contains("poisson") && err.contains(":14:1:"),
-        "{err}"
-    );
+    assert!(err.contains("materials[0]") && err.contains("poisson") && err.contains(":14:1:"), "{err}");
 }
 
 /// Ctrl-C (SIGINT) stops the run cleanly: the current state is written as
@@ -112,12 +71,7 @@ fn ctrl_c_stops_cleanly_after_writing_the_state() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("interrupted-run");
     let _ = std::fs::remove_dir_all(&out);
     let child = Command::new(env!("CARGO_BIN_EXE_femdem"))
-        .args([
-            "run",
-            "cases/paper/brazilian.toml",
-            "--out",
-            out.to_str().unwrap(),
-        ])
+        .args(["run", "cases/paper/brazilian.toml", "--out", out.to_str().unwrap()])
         .current_dir(root())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
@@ -127,32 +81,20 @@ fn ctrl_c_stops_cleanly_after_writing_the_state() {
     let pvd = out.join("brazilian.pvd");
     let start = std::time::Instant::now();
     while !pvd.exists() {
-        assert!(
-            start.elapsed().as_secs() < 120,
-            "no first frame after 2 minutes"
-        );
+        assert!(start.elapsed().as_secs() < 120, "no first frame after 2 minutes");
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
     std::thread::sleep(std::time::Duration::from_millis(500));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
+    let status = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     assert!(status.success());
     let o = child.wait_with_output().unwrap();
-    assert!(
-        !o.status.success(),
-        "an interrupted run must not report success"
-    );
+    assert!(!o.status.success(), "an interrupted run must not report success");
     let stdout = String::from_utf8_lossy(&o.stdout);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(stdout.contains("interrupted after"), "{stdout}");
     assert!(stderr.contains("interrupted by Ctrl-C"), "{stderr}");
     let text = std::fs::read_to_string(&pvd).unwrap();
     let frames = text.matches("<DataSet").count();
-    assert!(
-        frames >= 2,
-        "the state at the interruption must be written ({frames} frames)"
-    );
+    assert!(frames >= 2, "the state at the interruption must be written ({frames} frames)");
     assert!(out.join("history.csv").is_file());
 }

@@ -30,20 +30,13 @@ pub fn triangle_area(p0: &Vec3, p1: &Vec3, p2: &Vec3) -> Real {
 
 /// Sum of the four face areas.
 pub fn surface_area(p: &[Vec3; 4]) -> Real {
-    FACES
-        .iter()
-        .map(|f| triangle_area(&p[f[0]], &p[f[1]], &p[f[2]]))
-        .sum()
+    FACES.iter().map(|f| triangle_area(&p[f[0]], &p[f[1]], &p[f[2]])).sum()
 }
 
 /// Radius of the inscribed sphere, `r = 3|V| / A` with `A` the surface area.
 pub fn inradius(p: &[Vec3; 4]) -> Real {
     let a = surface_area(p);
-    if a > 0.0 {
-        3.0 * signed_volume(p).abs() / a
-    } else {
-        0.0
-    }
+    if a > 0.0 { 3.0 * signed_volume(p).abs() / a } else { 0.0 }
 }
 
 /// Lengths of the six edges, in [`EDGES`] order.
@@ -57,11 +50,7 @@ pub fn edge_lengths(p: &[Vec3; 4]) -> [Real; 6] {
 pub fn aspect_ratio(p: &[Vec3; 4]) -> Real {
     let lmax = edge_lengths(p).into_iter().fold(0.0, Real::max);
     let r = inradius(p);
-    if r > 0.0 {
-        lmax / (2.0 * 6.0_f64.sqrt() * r)
-    } else {
-        Real::INFINITY
-    }
+    if r > 0.0 { lmax / (2.0 * 6.0_f64.sqrt() * r) } else { Real::INFINITY }
 }
 
 /// Centroid of the four points.
@@ -75,12 +64,7 @@ mod tests {
     use super::*;
 
     fn regular() -> [Vec3; 4] {
-        [
-            Vec3::new(1.0, 1.0, 1.0),
-            Vec3::new(1.0, -1.0, -1.0),
-            Vec3::new(-1.0, 1.0, -1.0),
-            Vec3::new(-1.0, -1.0, 1.0),
-        ]
+        [Vec3::new(1.0, 1.0, 1.0), Vec3::new(1.0, -1.0, -1.0), Vec3::new(-1.0, 1.0, -1.0), Vec3::new(-1.0, -1.0, 1.0)]
     }
 
     #[test]

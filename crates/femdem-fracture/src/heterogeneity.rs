@@ -95,14 +95,8 @@ mod tests {
     #[test]
     fn same_seed_same_strengths() {
         let d = Distribution::Weibull { modulus: 6.0 };
-        assert_eq!(
-            strength_factors(1000, d, 7).unwrap(),
-            strength_factors(1000, d, 7).unwrap()
-        );
-        assert_ne!(
-            strength_factors(1000, d, 7).unwrap(),
-            strength_factors(1000, d, 8).unwrap()
-        );
+        assert_eq!(strength_factors(1000, d, 7).unwrap(), strength_factors(1000, d, 7).unwrap());
+        assert_ne!(strength_factors(1000, d, 7).unwrap(), strength_factors(1000, d, 8).unwrap());
     }
 
     /// With n = 200,000 samples the standard error of the mean is σ/√n

@@ -20,11 +20,8 @@ use femdem_core::{Real, Vec3};
 /// Hammer's three-point rule on a triangle (Hammer, Marlowe & Stroud 1956):
 /// barycentric coordinates of the points A, B, C, each of weight 1/3 of the
 /// area; exact for quadratic integrands.
-pub const GAUSS: [[Real; 3]; 3] = [
-    [2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0],
-    [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
-    [1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0],
-];
+pub const GAUSS: [[Real; 3]; 3] =
+    [[2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0], [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0], [1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0]];
 
 /// The joint's local frame and mid-plane area.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,10 +51,7 @@ pub struct JointKinematics {
 impl JointKinematics {
     /// The slip at point `i` in the local `(x′, y′)` components.
     pub fn local_slip(&self, i: usize) -> [Real; 2] {
-        [
-            self.slip[i].dot(&self.frame.x),
-            self.slip[i].dot(&self.frame.y),
-        ]
+        [self.slip[i].dot(&self.frame.x), self.slip[i].dot(&self.frame.y)]
     }
 }
 
@@ -78,12 +72,7 @@ pub fn joint_kinematics(x: &[Vec3; 6]) -> Option<JointKinematics> {
     }
     let z = n / twice_area;
     let xa = e1 / len1;
-    let frame = JointFrame {
-        x: xa,
-        y: z.cross(&xa),
-        z,
-        area: 0.5 * twice_area,
-    };
+    let frame = JointFrame { x: xa, y: z.cross(&xa), z, area: 0.5 * twice_area };
     let mut opening = [0.0; 3];
     let mut slip = [Vec3::zeros(); 3];
     for (i, w) in GAUSS.iter().enumerate() {
@@ -93,11 +82,7 @@ pub fn joint_kinematics(x: &[Vec3; 6]) -> Option<JointKinematics> {
         opening[i] = g.dot(&z);
         slip[i] = g - z * opening[i];
     }
-    Some(JointKinematics {
-        frame,
-        opening,
-        slip,
-    })
+    Some(JointKinematics { frame, opening, slip })
 }
 
 #[cfg(test)]
@@ -116,10 +101,7 @@ mod tests {
         assert_eq!(k.opening, [0.0; 3]);
         assert!(k.slip.iter().all(|s| s.norm() == 0.0));
         assert!((k.frame.area - 0.5).abs() < 1e-15);
-        assert!(
-            (k.frame.z - Vec3::z()).norm() < 1e-15,
-            "normal points from a to b"
-        );
+        assert!((k.frame.z - Vec3::z()).norm() < 1e-15, "normal points from a to b");
     }
 
     #[test]

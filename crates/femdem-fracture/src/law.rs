@@ -83,11 +83,7 @@ impl Joint {
             params,
             h,
             delta_np,
-            delta_nc: params.critical_displacement(
-                params.tensile_strength,
-                delta_np,
-                params.gf_tension,
-            ),
+            delta_nc: params.critical_displacement(params.tensile_strength, delta_np, params.gf_tension),
             tan_phi: params.friction_angle.tan(),
         }
     }
@@ -102,6 +98,13 @@ pub struct JointHistory {
     pub dissipated: Real,
     /// Stored energy the joint held when it failed, J (lost with it).
     pub released: Real,
+    /// Work done on the joint by its nodes since the start, J: the sum over
+    /// steps of `A/3 (σ Δδn + τ ŝ·Δδs)` at each point (rectangle rule with
+    /// the new stresses). `work − stored energy` is what the joint has
+    /// dissipated, whatever the path, so the run's energy account closes.
+    pub work: Real,
+    /// Opening and slip vector of each point at the last evaluation.
+    pub last: [[Real; 4]; 3],
     /// Whether the joint has failed (it then exerts no force).
     pub failed: bool,
 }
@@ -152,11 +155,7 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
     let rn = dn / dnp;
     // Normal softening displacement, and the normal stress without shear
     // damage, which sets the shear strength (Eq. 5).
-    let dn_soft = if dn > dnp {
-        ((dn - dnp) / (dnc - dnp)).min(1.0)
-    } else {
-        0.0
-    };
+    let dn_soft = if dn > dnp { ((dn - dnp) / (dnc - dnp)).min(1.0) } else { 0.0 };
     let sigma_trial = if rn < 0.0 {
         2.0 * rn * ft
     } else if rn <= 1.0 {
@@ -199,11 +198,7 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
         0.0
     } else {
         let rs = ds / dsp;
-        if rs <= 1.0 {
-            hardening(fs, rs).min(zd * fs)
-        } else {
-            zd * fs
-        }
+        if rs <= 1.0 { hardening(fs, rs).min(zd * fs) } else { zd * fs }
     };
     let broke = (d_hist < 1.0 && damage >= 1.0).then(|| {
         if dn >= dnc {
@@ -217,30 +212,14 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
     let dissipated = if damage > d_hist {
         let (wn2, ws2) = (dn_soft * dn_soft, ds_soft * ds_soft);
         let total = wn2 + ws2;
-        let (wn, ws) = if total > 0.0 {
-            (wn2 / total, ws2 / total)
-        } else {
-            (1.0, 0.0)
-        };
+        let (wn, ws) = if total > 0.0 { (wn2 / total, ws2 / total) } else { (1.0, 0.0) };
         let scale = ft * (dnc - dnp) * wn + if fs > 0.0 { fs * (dsc - dsp) * ws } else { 0.0 };
         scale * z_integral(d_hist, damage)
     } else {
         0.0
     };
-    let stored = stored(ft, dnp, rn)
-        + if fs > 0.0 {
-            stored(fs, dsp, ds / dsp)
-        } else {
-            0.0
-        };
-    PointStress {
-        sigma,
-        tau,
-        damage,
-        broke,
-        dissipated,
-        stored,
-    }
+    let stored = stored(ft, dnp, rn) + if fs > 0.0 { stored(fs, dsp, ds / dsp) } else { 0.0 };
+    PointStress { sigma, tau, damage, broke, dissipated, stored }
 }
 
 /// The normal stress of a point with no slip and no history (Fig. 3, the
@@ -271,18 +250,8 @@ pub struct JointOutput {
 /// A failed joint, or one whose mid-plane has collapsed, exerts no force.
 /// On failure the joint's stored energy is kept in `history.released`.
 #[inline]
-pub fn joint_update(
-    joint: &Joint,
-    history: &mut JointHistory,
-    x: &[Vec3; 6],
-    with_energy: bool,
-) -> JointOutput {
-    let mut out = JointOutput {
-        forces: [Vec3::zeros(); 6],
-        energy: 0.0,
-        normal_stress: 0.0,
-        failed: None,
-    };
+pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], with_energy: bool) -> JointOutput {
+    let mut out = JointOutput { forces: [Vec3::zeros(); 6], energy: 0.0, normal_stress: 0.0, failed: None };
     if history.failed {
         return out;
     }
@@ -297,6 +266,11 @@ pub fn joint_update(
         let ds = k.slip[i].norm();
         let ps = point_stress(joint, k.opening[i], ds, history.damage[i]);
         history.damage[i] = ps.damage;
+        let [ln, lx, ly, lz] = history.last[i];
+        let d_slip = k.slip[i] - Vec3::new(lx, ly, lz);
+        let shear_work = if ds > 0.0 { ps.tau / ds * k.slip[i].dot(&d_slip) } else { 0.0 };
+        history.work += weight * (ps.sigma * (k.opening[i] - ln) + shear_work);
+        history.last[i] = [k.opening[i], k.slip[i].x, k.slip[i].y, k.slip[i].z];
         history.dissipated += weight * ps.dissipated;
         if ps.damage >= 1.0 {
             broken_points += 1;
@@ -367,10 +341,7 @@ mod tests {
             let fs = j.params.cohesion - sigma * j.tan_phi;
             let dsp = 2.0 * fs * j.h / j.params.penalty;
             let at_peak = point_stress(&j, dn, dsp, 0.0).tau;
-            assert!(
-                (at_peak - fs).abs() < 1e-9 * fs,
-                "δn = {dn}: τ = {at_peak}, f_s = {fs}"
-            );
+            assert!((at_peak - fs).abs() < 1e-9 * fs, "δn = {dn}: τ = {at_peak}, f_s = {fs}");
         }
     }
 
@@ -378,21 +349,10 @@ mod tests {
     #[test]
     fn kernel_forces_match_point_stresses() {
         let j = Joint::new(params(), 1e-3);
-        let base = [
-            Vec3::zeros(),
-            Vec3::new(1e-3, 0.0, 0.0),
-            Vec3::new(0.0, 1e-3, 0.0),
-        ];
+        let base = [Vec3::zeros(), Vec3::new(1e-3, 0.0, 0.0), Vec3::new(0.0, 1e-3, 0.0)];
         for (dn, ds) in [(-3e-8, 2e-8), (1e-8, 5e-8), (4e-9, 1e-9)] {
             let d = Vec3::new(ds, 0.0, dn);
-            let x = [
-                base[0],
-                base[1],
-                base[2],
-                base[2] + d,
-                base[1] + d,
-                base[0] + d,
-            ];
+            let x = [base[0], base[1], base[2], base[2] + d, base[1] + d, base[0] + d];
             let mut h = JointHistory::default();
             let f = joint_update(&j, &mut h, &x, false);
             let ps = point_stress(&j, dn, ds, 0.0);
@@ -408,20 +368,9 @@ mod tests {
     #[test]
     fn a_failed_joint_exerts_nothing() {
         let j = Joint::new(params(), 1e-3);
-        let base = [
-            Vec3::zeros(),
-            Vec3::new(1e-3, 0.0, 0.0),
-            Vec3::new(0.0, 1e-3, 0.0),
-        ];
+        let base = [Vec3::zeros(), Vec3::new(1e-3, 0.0, 0.0), Vec3::new(0.0, 1e-3, 0.0)];
         let d = Vec3::new(0.0, 0.0, 2.0 * j.delta_nc);
-        let x = [
-            base[0],
-            base[1],
-            base[2],
-            base[2] + d,
-            base[1] + d,
-            base[0] + d,
-        ];
+        let x = [base[0], base[1], base[2], base[2] + d, base[1] + d, base[0] + d];
         let mut h = JointHistory::default();
         let out = joint_update(&j, &mut h, &x, true);
         assert_eq!(out.failed, Some(FailureMode::Tensile));

@@ -22,8 +22,5 @@ mod params;
 pub mod softening;
 
 pub use kinematics::{GAUSS, JointFrame, JointKinematics, joint_kinematics};
-pub use law::{
-    FailureMode, Joint, JointHistory, JointOutput, PointStress, joint_update, normal_stress,
-    point_stress,
-};
+pub use law::{FailureMode, Joint, JointHistory, JointOutput, PointStress, joint_update, normal_stress, point_stress};
 pub use params::{GfCalibration, JointError, JointParams};

@@ -59,11 +59,7 @@ impl JointParams {
             if value.is_finite() && value > 0.0 {
                 Ok(())
             } else {
-                Err(JointError {
-                    name,
-                    value,
-                    reason: "must be finite and > 0",
-                })
+                Err(JointError { name, value, reason: "must be finite and > 0" })
             }
         };
         positive("penalty", self.penalty)?;
@@ -71,9 +67,7 @@ impl JointParams {
         positive("cohesion", self.cohesion)?;
         positive("fracture_energy_tension", self.gf_tension)?;
         positive("fracture_energy_shear", self.gf_shear)?;
-        if !(self.friction_angle.is_finite()
-            && (0.0..std::f64::consts::FRAC_PI_2).contains(&self.friction_angle))
-        {
+        if !(self.friction_angle.is_finite() && (0.0..std::f64::consts::FRAC_PI_2).contains(&self.friction_angle)) {
             return Err(JointError {
                 name: "friction_angle",
                 value: self.friction_angle,

@@ -91,11 +91,7 @@ mod tests {
                 h / 6.0 * (z(a) + 4.0 * z(a + 0.5 * h) + z(a + h))
             })
             .sum();
-        assert!(
-            (softening_area() - simpson).abs() < 1e-10,
-            "{} vs {simpson}",
-            softening_area()
-        );
+        assert!((softening_area() - simpson).abs() < 1e-10, "{} vs {simpson}", softening_area());
         assert!((softening_area() - 0.386).abs() < 0.001);
     }
 

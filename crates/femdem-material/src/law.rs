@@ -107,14 +107,7 @@ pub(crate) fn sym(a: &Mat3) -> Mat3 {
 /// Evaluates `law` at deformation gradient `f`, velocity gradient `l` and
 /// `cof = cof f`, `j = det f` (computed once by the caller).
 #[inline]
-pub(crate) fn response(
-    law: Law,
-    m: &Material,
-    f: &Mat3,
-    l: &Mat3,
-    cof: &Mat3,
-    j: Real,
-) -> Response {
+pub(crate) fn response(law: Law, m: &Material, f: &Mat3, l: &Mat3, cof: &Mat3, j: Real) -> Response {
     let (lambda, mu, eta) = (m.lambda(), m.mu(), m.viscosity());
     let d = sym(l);
     match law {
@@ -129,8 +122,7 @@ pub(crate) fn response(
             let p = f * mu + (Mat3::identity() * du + d * eta) * cof;
             // Eq. 1 with Ĵ: T = (μ (B − I) + λ ln Ĵ I)/Ĵ + η D.
             let b = f * f.transpose();
-            let cauchy =
-                b * (mu / jh) + Mat3::from_diagonal_element((lambda * ln_jh - mu) / jh) + d * eta;
+            let cauchy = b * (mu / jh) + Mat3::from_diagonal_element((lambda * ln_jh - mu) / jh) + d * eta;
             Response { p, cauchy, energy }
         }
         Law::LinearElastic => {
@@ -138,11 +130,7 @@ pub(crate) fn response(
             let tr = eps.trace();
             let cauchy = Mat3::from_diagonal_element(lambda * tr) + eps * (2.0 * mu) + d * eta;
             let energy = 0.5 * lambda * tr * tr + mu * eps.norm_squared();
-            Response {
-                p: cauchy,
-                cauchy,
-                energy,
-            }
+            Response { p: cauchy, cauchy, energy }
         }
     }
 }
@@ -200,14 +188,7 @@ mod tests {
     use crate::ElasticParams;
 
     fn material(viscosity: Real) -> Material {
-        ElasticParams {
-            young: 26e9,
-            poisson: 0.2,
-            density: 2340.0,
-            viscosity,
-        }
-        .validate()
-        .unwrap()
+        ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().unwrap()
     }
 
     const LAWS: [Law; 2] = [Law::NeoHookean, Law::LinearElastic];
@@ -230,10 +211,7 @@ mod tests {
         for law in LAWS {
             let s = cauchy_stress(law, &m, &Mat3::identity(), &Mat3::zeros());
             assert_eq!(s, Mat3::zeros(), "{law:?}");
-            assert_eq!(
-                first_piola_kirchhoff(law, &m, &Mat3::identity(), &Mat3::zeros()),
-                Mat3::zeros()
-            );
+            assert_eq!(first_piola_kirchhoff(law, &m, &Mat3::identity(), &Mat3::zeros()), Mat3::zeros());
             assert_eq!(strain_energy_density(law, &m, &Mat3::identity()), 0.0);
         }
     }
@@ -278,11 +256,7 @@ mod tests {
     fn crushed_and_inverted_elements_stay_finite_and_restoring() {
         let m = material(1e5);
         let w = |j: Real| {
-            strain_energy_density(
-                Law::NeoHookean,
-                &m,
-                &Mat3::from_diagonal(&femdem_core::Vec3::new(j, 1.0, 1.0)),
-            )
+            strain_energy_density(Law::NeoHookean, &m, &Mat3::from_diagonal(&femdem_core::Vec3::new(j, 1.0, 1.0)))
         };
         let h = 1e-9;
         let (below, at, above) = (w(J_FLOOR - h), w(J_FLOOR), w(J_FLOOR + h));
@@ -293,10 +267,7 @@ mod tests {
         // (0 below), i.e. ≈ 2.5e5 Pa against |W'| ≈ 4.4e12 Pa (6e-8
         // relative); round-off adds ~1e-16 · W / h ≈ 13 Pa. A kink would
         // show as an O(1) relative jump.
-        assert!(
-            (slope_below - slope_above).abs() < 1e-6 * slope_above.abs(),
-            "{slope_below} vs {slope_above}"
-        );
+        assert!((slope_below - slope_above).abs() < 1e-6 * slope_above.abs(), "{slope_below} vs {slope_above}");
         for j in [J_FLOOR / 2.0, 0.0, -0.5, -3.0] {
             let f = Mat3::from_diagonal(&femdem_core::Vec3::new(j, 1.0, 1.0));
             let l = Mat3::from_diagonal(&femdem_core::Vec3::new(-1.0, 0.0, 0.0));

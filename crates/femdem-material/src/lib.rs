@@ -47,6 +47,4 @@ pub mod tet;
 pub use invariants::{principal_stresses, von_mises};
 pub use law::{J_FLOOR, Law, cauchy_stress, first_piola_kirchhoff, strain_energy_density};
 pub use params::{ElasticParams, Material, MaterialError, critical_viscosity};
-pub use tet::{
-    TetReference, TetResult, deformation_gradient, nodal_forces, tet_forces, velocity_gradient,
-};
+pub use tet::{TetReference, TetResult, deformation_gradient, nodal_forces, tet_forces, velocity_gradient};

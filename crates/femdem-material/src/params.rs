@@ -67,30 +67,15 @@ impl ElasticParams {
     /// `K = E / (3(1 − 2ν))` must be positive and finite, the shear modulus
     /// `μ = E / (2(1 + ν))` positive), `ρ ≤ 0` and `η < 0`.
     pub fn validate(self) -> Result<Material, MaterialError> {
-        let ElasticParams {
-            young,
-            poisson,
-            density,
-            viscosity,
-        } = self;
-        check(
-            "young",
-            young,
-            young > 0.0,
-            "Young's modulus must be > 0 Pa",
-        )?;
+        let ElasticParams { young, poisson, density, viscosity } = self;
+        check("young", young, young > 0.0, "Young's modulus must be > 0 Pa")?;
         check(
             "poisson",
             poisson,
             poisson > -1.0 && poisson < 0.5,
             "Poisson's ratio must lie in the open interval (-1, 0.5) for positive, finite shear and bulk moduli",
         )?;
-        check(
-            "density",
-            density,
-            density > 0.0,
-            "density must be > 0 kg/m³",
-        )?;
+        check("density", density, density > 0.0, "density must be > 0 kg/m³")?;
         check(
             "viscosity",
             viscosity,
@@ -99,31 +84,15 @@ impl ElasticParams {
         )?;
         let mu = young / (2.0 * (1.0 + poisson));
         let lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
-        Ok(Material {
-            young,
-            poisson,
-            density,
-            viscosity,
-            lambda,
-            mu,
-        })
+        Ok(Material { young, poisson, density, viscosity, lambda, mu })
     }
 }
 
-fn check(
-    name: &'static str,
-    value: Real,
-    in_range: bool,
-    reason: &'static str,
-) -> Result<(), MaterialError> {
+fn check(name: &'static str, value: Real, in_range: bool, reason: &'static str) -> Result<(), MaterialError> {
     if !value.is_finite() {
         Err(MaterialError::NotFinite { name, value })
     } else if !in_range {
-        Err(MaterialError::OutOfRange {
-            name,
-            value,
-            reason,
-        })
+        Err(MaterialError::OutOfRange { name, value, reason })
     } else {
         Ok(())
     }
@@ -203,12 +172,7 @@ impl Material {
 
     /// The parameters this material was validated from.
     pub fn params(&self) -> ElasticParams {
-        ElasticParams {
-            young: self.young,
-            poisson: self.poisson,
-            density: self.density,
-            viscosity: self.viscosity,
-        }
+        ElasticParams { young: self.young, poisson: self.poisson, density: self.density, viscosity: self.viscosity }
     }
 }
 
@@ -259,12 +223,7 @@ mod tests {
 
     fn rock() -> ElasticParams {
         // Table 1 of the reference paper (Brazilian test).
-        ElasticParams {
-            young: 26e9,
-            poisson: 0.2,
-            density: 2340.0,
-            viscosity: 0.0,
-        }
+        ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity: 0.0 }
     }
 
     fn rel(a: Real, b: Real) -> Real {
@@ -275,14 +234,7 @@ mod tests {
     /// binary up to one rounding each).
     #[test]
     fn quarter_poisson_gives_equal_lame_constants() {
-        let m = ElasticParams {
-            young: 1.0,
-            poisson: 0.25,
-            density: 1.0,
-            viscosity: 0.0,
-        }
-        .validate()
-        .unwrap();
+        let m = ElasticParams { young: 1.0, poisson: 0.25, density: 1.0, viscosity: 0.0 }.validate().unwrap();
         assert!(rel(m.lambda(), 0.4) < 1e-15);
         assert!(rel(m.mu(), 0.4) < 1e-15);
         assert!(rel(m.p_wave_modulus(), 1.2) < 1e-15);
@@ -325,17 +277,9 @@ mod tests {
 
     #[test]
     fn error_names_the_parameter_and_reason() {
-        let err = ElasticParams {
-            poisson: 0.5,
-            ..rock()
-        }
-        .validate()
-        .unwrap_err();
+        let err = ElasticParams { poisson: 0.5, ..rock() }.validate().unwrap_err();
         assert_eq!(err.name(), "poisson");
         let msg = err.to_string();
-        assert!(
-            msg.contains("`poisson`") && msg.contains("(-1, 0.5)"),
-            "{msg}"
-        );
+        assert!(msg.contains("`poisson`") && msg.contains("(-1, 0.5)"), "{msg}");
     }
 }

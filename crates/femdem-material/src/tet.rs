@@ -35,8 +35,7 @@ fn edge_matrix(p: &[Vec3; 4]) -> Mat3 {
 /// the sum zero.
 #[inline]
 fn forces_from_columns(h: &Mat3) -> [Vec3; 4] {
-    let (f1, f2, f3): (Vec3, Vec3, Vec3) =
-        (h.column(0).into(), h.column(1).into(), h.column(2).into());
+    let (f1, f2, f3): (Vec3, Vec3, Vec3) = (h.column(0).into(), h.column(1).into(), h.column(2).into());
     [-(f1 + f2 + f3), f1, f2, f3]
 }
 
@@ -66,13 +65,7 @@ impl TetReference {
             return None;
         }
         let inv_dm = cof.transpose() / det;
-        inv_dm
-            .iter()
-            .all(|x| x.is_finite())
-            .then_some(TetReference {
-                inv_dm,
-                volume: det / 6.0,
-            })
+        inv_dm.iter().all(|x| x.is_finite()).then_some(TetReference { inv_dm, volume: det / 6.0 })
     }
 }
 
@@ -141,13 +134,7 @@ pub struct TetResult {
 /// `stress` is [`cauchy_stress`](crate::cauchy_stress) at `F` and the
 /// (guarded) current velocity gradient; `energy = W(F) V₀`.
 #[inline]
-pub fn tet_forces(
-    law: Law,
-    material: &Material,
-    reference: &TetReference,
-    x: &[Vec3; 4],
-    v: &[Vec3; 4],
-) -> TetResult {
+pub fn tet_forces(law: Law, material: &Material, reference: &TetReference, x: &[Vec3; 4], v: &[Vec3; 4]) -> TetResult {
     let f = deformation_gradient(reference, x);
     let cof = cofactor(&f);
     let j = f.column(0).dot(&cof.column(0));
@@ -156,11 +143,7 @@ pub fn tet_forces(
     let l = f_dot * cof.transpose() / j.max(J_FLOOR);
     let r = response(law, material, &f, &l, &cof, j);
     let h = r.p * reference.inv_dm.transpose() * (-reference.volume);
-    TetResult {
-        forces: forces_from_columns(&h),
-        stress: r.cauchy,
-        energy: r.energy * reference.volume,
-    }
+    TetResult { forces: forces_from_columns(&h), stress: r.cauchy, energy: r.energy * reference.volume }
 }
 
 #[cfg(test)]
@@ -173,14 +156,7 @@ mod tests {
     }
 
     fn material(viscosity: Real) -> Material {
-        ElasticParams {
-            young: 1e9,
-            poisson: 0.25,
-            density: 2500.0,
-            viscosity,
-        }
-        .validate()
-        .unwrap()
+        ElasticParams { young: 1e9, poisson: 0.25, density: 2500.0, viscosity }.validate().unwrap()
     }
 
     /// The unit corner tet has Dm = I, V₀ = 1/6; swapping two nodes inverts
@@ -193,19 +169,9 @@ mod tests {
         let mut inverted = corner();
         inverted.swap(1, 2);
         assert_eq!(TetReference::new(&inverted), None);
-        let flat = [
-            Vec3::zeros(),
-            Vec3::x(),
-            Vec3::y(),
-            Vec3::new(1.0, 1.0, 0.0),
-        ];
+        let flat = [Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::new(1.0, 1.0, 0.0)];
         assert_eq!(TetReference::new(&flat), None);
-        let nan = [
-            Vec3::zeros(),
-            Vec3::x(),
-            Vec3::y(),
-            Vec3::new(0.0, 0.0, Real::NAN),
-        ];
+        let nan = [Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::new(0.0, 0.0, Real::NAN)];
         assert_eq!(TetReference::new(&nan), None);
     }
 
@@ -214,12 +180,8 @@ mod tests {
     /// amplified by the condition number of Dm, ≈ 10 here).
     #[test]
     fn affine_fields_give_their_own_gradients() {
-        let x0 = [
-            Vec3::new(0.1, 0.0, 0.2),
-            Vec3::new(1.3, 0.1, 0.0),
-            Vec3::new(0.2, 0.9, 0.1),
-            Vec3::new(0.4, 0.3, 1.1),
-        ];
+        let x0 =
+            [Vec3::new(0.1, 0.0, 0.2), Vec3::new(1.3, 0.1, 0.0), Vec3::new(0.2, 0.9, 0.1), Vec3::new(0.4, 0.3, 1.1)];
         let r = TetReference::new(&x0).unwrap();
         let a = Mat3::new(1.1, 0.2, -0.1, 0.05, 0.95, 0.3, -0.2, 0.1, 1.05);
         let c = Vec3::new(3.0, -1.0, 2.0);
@@ -256,12 +218,8 @@ mod tests {
         let r = TetReference::new(&x0).unwrap();
         let a = Mat3::new(1.2, 0.1, -0.2, 0.15, 0.8, 0.3, -0.1, 0.2, 1.1);
         let x = x0.map(|p| a * p);
-        let v = [
-            Vec3::new(1.0, 2.0, 0.0),
-            Vec3::new(-1.0, 0.5, 3.0),
-            Vec3::new(0.0, 0.0, -2.0),
-            Vec3::new(2.0, -1.0, 1.0),
-        ];
+        let v =
+            [Vec3::new(1.0, 2.0, 0.0), Vec3::new(-1.0, 0.5, 3.0), Vec3::new(0.0, 0.0, -2.0), Vec3::new(2.0, -1.0, 1.0)];
         let out = tet_forces(Law::NeoHookean, &m, &r, &x, &v);
         let expected = cauchy_stress(Law::NeoHookean, &m, &a, &velocity_gradient(&x, &v));
         assert!((out.stress - expected).norm() < 1e-12 * expected.norm());

@@ -29,10 +29,7 @@ fn check_balance(x: &[Vec3; 4], f: &[Vec3; 4], torque_too: bool) -> Result<(), T
     if torque_too {
         let torque: Vec3 = x.iter().zip(f).map(|(x, f)| x.cross(f)).sum();
         let scale: Real = x.iter().zip(f).map(|(x, f)| x.norm() * f.norm()).sum();
-        prop_assert!(
-            torque.norm() <= 1e-12 * scale,
-            "torque {torque}, scale {scale}"
-        );
+        prop_assert!(torque.norm() <= 1e-12 * scale, "torque {torque}, scale {scale}");
     }
     Ok(())
 }

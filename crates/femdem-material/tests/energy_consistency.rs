@@ -29,8 +29,8 @@ mod common;
 use common::{any_rotation, good_tet, max_edge, reference, rock, vec3};
 use femdem_core::{Real, Vec3};
 use femdem_material::{
-    Law, Material, TetReference, deformation_gradient, nodal_forces, strain_energy_density,
-    tet_forces, velocity_gradient,
+    Law, Material, TetReference, deformation_gradient, nodal_forces, strain_energy_density, tet_forces,
+    velocity_gradient,
 };
 use proptest::prelude::*;
 
@@ -38,11 +38,7 @@ fn stored_energy(law: Law, m: &Material, r: &TetReference, x: &[Vec3; 4]) -> Rea
     strain_energy_density(law, m, &deformation_gradient(r, x)) * r.volume
 }
 
-fn check_forces_are_energy_gradient(
-    law: Law,
-    x0: &[Vec3; 4],
-    x: &[Vec3; 4],
-) -> Result<(), TestCaseError> {
+fn check_forces_are_energy_gradient(law: Law, x0: &[Vec3; 4], x: &[Vec3; 4]) -> Result<(), TestCaseError> {
     // Viscosity present but velocities zero: no viscous force.
     let m = rock(1e5);
     let r = reference(x0);
@@ -55,8 +51,7 @@ fn check_forces_are_energy_gradient(
             let (mut xp, mut xm) = (*x, *x);
             xp[a][i] += h;
             xm[a][i] -= h;
-            let grad =
-                (stored_energy(law, &m, &r, &xp) - stored_energy(law, &m, &r, &xm)) / (2.0 * h);
+            let grad = (stored_energy(law, &m, &r, &xp) - stored_energy(law, &m, &r, &xm)) / (2.0 * h);
             prop_assert!(
                 (out.forces[a][i] + grad).abs() < 1e-6 * scale,
                 "{law:?}, node {a}, axis {i}: f = {}, −∂E/∂x = {}, scale {scale}",

@@ -67,13 +67,7 @@ fn linear_law_is_not_objective() {
     let m = rock(0.0);
     let x0 = skew_tet();
     let r = rotation(Vec3::z(), FRAC_PI_2);
-    let out = tet_forces(
-        Law::LinearElastic,
-        &m,
-        &reference(&x0),
-        &map(&x0, &r, &Vec3::zeros()),
-        &[Vec3::zeros(); 4],
-    );
+    let out = tet_forces(Law::LinearElastic, &m, &reference(&x0), &map(&x0, &r, &Vec3::zeros()), &[Vec3::zeros(); 4]);
     assert!(out.stress.norm() > 0.5 * m.young());
 }
 

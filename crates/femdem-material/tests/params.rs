@@ -9,12 +9,7 @@
 
 use femdem_material::{ElasticParams, MaterialError};
 
-const GOOD: ElasticParams = ElasticParams {
-    young: 26e9,
-    poisson: 0.2,
-    density: 2340.0,
-    viscosity: 1.0e4,
-};
+const GOOD: ElasticParams = ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity: 1.0e4 };
 
 /// (description, params, expected parameter name, expected message).
 fn bad_cases() -> Vec<(&'static str, ElasticParams, &'static str, &'static str)> {
@@ -29,19 +24,11 @@ fn bad_cases() -> Vec<(&'static str, ElasticParams, &'static str, &'static str)>
         ),
         (
             "negative E",
-            ElasticParams {
-                young: -1e9,
-                ..GOOD
-            },
+            ElasticParams { young: -1e9, ..GOOD },
             "young",
             "material parameter `young` = -1000000000 is out of range: Young's modulus must be > 0 Pa",
         ),
-        (
-            "NaN E",
-            ElasticParams { young: nan, ..GOOD },
-            "young",
-            "material parameter `young` must be finite, got NaN",
-        ),
+        ("NaN E", ElasticParams { young: nan, ..GOOD }, "young", "material parameter `young` must be finite, got NaN"),
         (
             "infinite E",
             ElasticParams { young: inf, ..GOOD },
@@ -50,91 +37,61 @@ fn bad_cases() -> Vec<(&'static str, ElasticParams, &'static str, &'static str)>
         ),
         (
             "ν = 0.5 (incompressible)",
-            ElasticParams {
-                poisson: 0.5,
-                ..GOOD
-            },
+            ElasticParams { poisson: 0.5, ..GOOD },
             "poisson",
             "material parameter `poisson` = 0.5 is out of range: Poisson's ratio must lie in the open interval (-1, 0.5) for positive, finite shear and bulk moduli",
         ),
         (
             "ν > 0.5",
-            ElasticParams {
-                poisson: 0.7,
-                ..GOOD
-            },
+            ElasticParams { poisson: 0.7, ..GOOD },
             "poisson",
             "material parameter `poisson` = 0.7 is out of range: Poisson's ratio must lie in the open interval (-1, 0.5) for positive, finite shear and bulk moduli",
         ),
         (
             "ν = −1",
-            ElasticParams {
-                poisson: -1.0,
-                ..GOOD
-            },
+            ElasticParams { poisson: -1.0, ..GOOD },
             "poisson",
             "material parameter `poisson` = -1 is out of range: Poisson's ratio must lie in the open interval (-1, 0.5) for positive, finite shear and bulk moduli",
         ),
         (
             "NaN ν",
-            ElasticParams {
-                poisson: nan,
-                ..GOOD
-            },
+            ElasticParams { poisson: nan, ..GOOD },
             "poisson",
             "material parameter `poisson` must be finite, got NaN",
         ),
         (
             "zero ρ",
-            ElasticParams {
-                density: 0.0,
-                ..GOOD
-            },
+            ElasticParams { density: 0.0, ..GOOD },
             "density",
             "material parameter `density` = 0 is out of range: density must be > 0 kg/m³",
         ),
         (
             "negative ρ",
-            ElasticParams {
-                density: -2.0,
-                ..GOOD
-            },
+            ElasticParams { density: -2.0, ..GOOD },
             "density",
             "material parameter `density` = -2 is out of range: density must be > 0 kg/m³",
         ),
         (
             "infinite ρ",
-            ElasticParams {
-                density: inf,
-                ..GOOD
-            },
+            ElasticParams { density: inf, ..GOOD },
             "density",
             "material parameter `density` must be finite, got inf",
         ),
         (
             "negative η",
-            ElasticParams {
-                viscosity: -1e-9,
-                ..GOOD
-            },
+            ElasticParams { viscosity: -1e-9, ..GOOD },
             "viscosity",
             "material parameter `viscosity` = -0.000000001 is out of range: viscosity must be >= 0 Pa·s (a negative value would feed energy in)",
         ),
         (
             "NaN η",
-            ElasticParams {
-                viscosity: nan,
-                ..GOOD
-            },
+            ElasticParams { viscosity: nan, ..GOOD },
             "viscosity",
             "material parameter `viscosity` must be finite, got NaN",
         ),
         (
             "−∞ η",
-            ElasticParams {
-                viscosity: -inf,
-                ..GOOD
-            },
+            ElasticParams { viscosity: -inf, ..GOOD },
             "viscosity",
             "material parameter `viscosity` must be finite, got -inf",
         ),
@@ -152,18 +109,8 @@ fn each_bad_parameter_is_rejected_with_its_name_and_reason() {
 
 #[test]
 fn the_first_bad_parameter_is_reported() {
-    let err = ElasticParams {
-        young: -1.0,
-        poisson: 2.0,
-        density: -1.0,
-        viscosity: -1.0,
-    }
-    .validate()
-    .unwrap_err();
-    assert!(matches!(
-        err,
-        MaterialError::OutOfRange { name: "young", .. }
-    ));
+    let err = ElasticParams { young: -1.0, poisson: 2.0, density: -1.0, viscosity: -1.0 }.validate().unwrap_err();
+    assert!(matches!(err, MaterialError::OutOfRange { name: "young", .. }));
 }
 
 /// Edges of the admissible set are accepted: ν just inside (−1, 0.5),
@@ -172,27 +119,11 @@ fn the_first_bad_parameter_is_reported() {
 fn limits_inside_the_ranges_are_accepted() {
     for p in [
         GOOD,
-        ElasticParams {
-            poisson: 0.499_999,
-            ..GOOD
-        },
-        ElasticParams {
-            poisson: -0.999_999,
-            ..GOOD
-        },
-        ElasticParams {
-            poisson: 0.0,
-            ..GOOD
-        },
-        ElasticParams {
-            viscosity: 0.0,
-            ..GOOD
-        },
-        ElasticParams {
-            young: 1e-300,
-            density: 1e-300,
-            ..GOOD
-        },
+        ElasticParams { poisson: 0.499_999, ..GOOD },
+        ElasticParams { poisson: -0.999_999, ..GOOD },
+        ElasticParams { poisson: 0.0, ..GOOD },
+        ElasticParams { viscosity: 0.0, ..GOOD },
+        ElasticParams { young: 1e-300, density: 1e-300, ..GOOD },
     ] {
         let m = p.validate().unwrap_or_else(|e| panic!("{p:?}: {e}"));
         assert!(m.lambda().is_finite() && m.mu() > 0.0 && m.p_wave_speed().is_finite());

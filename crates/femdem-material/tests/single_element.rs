@@ -52,21 +52,14 @@ fn uniaxial_strain_gives_p_wave_modulus_and_lambda_laterally() {
     for e in [1e-4, -1e-3, 0.05, -0.2] {
         let f = Mat3::from_diagonal(&Vec3::new(1.0 + e, 1.0, 1.0));
         let (_, lin) = stress_of(Law::LinearElastic, &f);
-        let expected =
-            Mat3::from_diagonal(&Vec3::new((lambda + 2.0 * mu) * e, lambda * e, lambda * e));
-        assert!(
-            rel_err(&lin.stress, &expected, m.young() * e.abs()) < 1e-10,
-            "linear, ε = {e}"
-        );
+        let expected = Mat3::from_diagonal(&Vec3::new((lambda + 2.0 * mu) * e, lambda * e, lambda * e));
+        assert!(rel_err(&lin.stress, &expected, m.young() * e.abs()) < 1e-10, "linear, ε = {e}");
 
         let (_, nh) = stress_of(Law::NeoHookean, &f);
         let j: Real = 1.0 + e;
         let lat = lambda * j.ln() / j;
         let expected = Mat3::from_diagonal(&Vec3::new(mu * (j * j - 1.0) / j + lat, lat, lat));
-        assert!(
-            rel_err(&nh.stress, &expected, m.young() * e.abs()) < 1e-10,
-            "neo-Hookean, ε = {e}"
-        );
+        assert!(rel_err(&nh.stress, &expected, m.young() * e.abs()) < 1e-10, "neo-Hookean, ε = {e}");
     }
 }
 
@@ -99,11 +92,7 @@ fn hydrostatic_stretch_has_closed_form_pressure() {
 /// state the kernel's forces are those tractions on the current shape.
 #[test]
 fn nodal_forces_are_shared_face_tractions() {
-    let x = map(
-        &skew_tet(),
-        &Mat3::new(1.1, 0.2, 0.0, -0.1, 0.9, 0.1, 0.05, 0.0, 1.2),
-        &Vec3::zeros(),
-    );
+    let x = map(&skew_tet(), &Mat3::new(1.1, 0.2, 0.0, -0.1, 0.9, 0.1, 0.05, 0.0, 1.2), &Vec3::zeros());
     let sigma = Mat3::new(3.0, 1.0, -2.0, 1.0, -4.0, 0.5, -2.0, 0.5, 1.0) * 1e6;
     let f = nodal_forces(&sigma, &x);
     for (a, face) in FACES.iter().enumerate() {
@@ -123,9 +112,6 @@ fn nodal_forces_are_shared_face_tractions() {
     for (a, face) in FACES.iter().enumerate() {
         let [p, q, s] = face.map(|i| x[i]);
         let expected = t * (q - p).cross(&(s - p)) * 0.5 / 3.0;
-        assert!(
-            (out.forces[a] - expected).norm() < 1e-10 * t.norm(),
-            "node {a}"
-        );
+        assert!((out.forces[a] - expected).norm() < 1e-10 * t.norm(), "node {a}");
     }
 }

@@ -37,19 +37,11 @@ fn force_gap(e: Real) -> Real {
     let m = rock(0.0);
     let x0 = skew_tet();
     let r = reference(&x0);
-    let x = map(
-        &x0,
-        &(Mat3::identity() + general_direction() * e),
-        &Vec3::zeros(),
-    );
+    let x = map(&x0, &(Mat3::identity() + general_direction() * e), &Vec3::zeros());
     let v = [Vec3::zeros(); 4];
     let nh = tet_forces(Law::NeoHookean, &m, &r, &x, &v).forces;
     let lin = tet_forces(Law::LinearElastic, &m, &r, &x, &v).forces;
-    nh.iter()
-        .zip(&lin)
-        .map(|(a, b)| (a - b).norm_squared())
-        .sum::<Real>()
-        .sqrt()
+    nh.iter().zip(&lin).map(|(a, b)| (a - b).norm_squared()).sum::<Real>().sqrt()
 }
 
 fn assert_quadratic(gap: impl Fn(Real) -> Real, scale: Real, what: &str) {
@@ -57,10 +49,7 @@ fn assert_quadratic(gap: impl Fn(Real) -> Real, scale: Real, what: &str) {
     while e > 1.5e-4 {
         let (big, small) = (gap(e), gap(e / 2.0));
         let ratio = big / small;
-        assert!(
-            (3.7..=4.3).contains(&ratio),
-            "{what}: ε = {e}: gap ratio {ratio}"
-        );
+        assert!((3.7..=4.3).contains(&ratio), "{what}: ε = {e}: gap ratio {ratio}");
         // The O(ε²) constant is of order E |G|² (here |G| = 1).
         assert!(big < 10.0 * scale * e * e, "{what}: ε = {e}: gap {big}");
         e /= 2.0;

@@ -24,11 +24,7 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
             mesh.tet_region.len()
         )));
     }
-    if let Some(t) = mesh
-        .tet_region
-        .iter()
-        .position(|&r| r as usize >= mesh.regions.len())
-    {
+    if let Some(t) = mesh.tet_region.iter().position(|&r| r as usize >= mesh.regions.len()) {
         return Err(MeshError::Inconsistent(format!(
             "tet {t} has region id {} but only {} regions exist",
             mesh.tet_region[t],
@@ -38,11 +34,7 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
     let n = mesh.coords.len();
     for (t, tet) in mesh.tets.iter().enumerate() {
         if let Some(&node) = tet.iter().find(|&&v| v as usize >= n) {
-            return Err(MeshError::NodeOutOfRange {
-                tet: t,
-                node,
-                num_nodes: n,
-            });
+            return Err(MeshError::NodeOutOfRange { tet: t, node, num_nodes: n });
         }
     }
     let bad = mesh.tets.par_iter().enumerate().find_first(|(t, _)| {
@@ -52,16 +44,8 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
     });
     if let Some((t, _)) = bad {
         let volume = signed_volume(&mesh.tet_points(t));
-        let kind = if volume < 0.0 {
-            "inverted"
-        } else {
-            "degenerate"
-        };
-        return Err(MeshError::BadTet {
-            tet: t,
-            kind,
-            volume,
-        });
+        let kind = if volume < 0.0 { "inverted" } else { "degenerate" };
+        return Err(MeshError::BadTet { tet: t, kind, volume });
     }
     let mut used = vec![false; n];
     for tet in &mesh.tets {
@@ -72,10 +56,7 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
     let unused = used.iter().filter(|&&u| !u).count();
     if unused > 0 {
         let first = used.iter().position(|&u| !u).unwrap_or(0) as u32;
-        return Err(MeshError::UnreferencedNodes {
-            count: unused,
-            first,
-        });
+        return Err(MeshError::UnreferencedNodes { count: unused, first });
     }
     face_adjacency(mesh).map(|_| ())
 }
@@ -90,10 +71,7 @@ mod tests {
             coords: vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], d],
             tets: vec![[0, 1, 2, 3]],
             tet_region: vec![0],
-            regions: vec![Region {
-                name: "r".into(),
-                breakable: true,
-            }],
+            regions: vec![Region { name: "r".into(), breakable: true }],
             ..Default::default()
         }
     }
@@ -105,44 +83,25 @@ mod tests {
 
     #[test]
     fn inverted_tet_is_reported() {
-        assert!(matches!(
-            check(&one_tet([0., 0., -1.])),
-            Err(MeshError::BadTet {
-                tet: 0,
-                kind: "inverted",
-                ..
-            })
-        ));
+        assert!(matches!(check(&one_tet([0., 0., -1.])), Err(MeshError::BadTet { tet: 0, kind: "inverted", .. })));
     }
 
     #[test]
     fn flat_tet_is_degenerate() {
-        assert!(matches!(
-            check(&one_tet([0.3, 0.3, 0.0])),
-            Err(MeshError::BadTet {
-                kind: "degenerate",
-                ..
-            })
-        ));
+        assert!(matches!(check(&one_tet([0.3, 0.3, 0.0])), Err(MeshError::BadTet { kind: "degenerate", .. })));
     }
 
     #[test]
     fn unused_node_is_reported() {
         let mut m = one_tet([0., 0., 1.]);
         m.coords.push([5., 5., 5.]);
-        assert_eq!(
-            check(&m),
-            Err(MeshError::UnreferencedNodes { count: 1, first: 4 })
-        );
+        assert_eq!(check(&m), Err(MeshError::UnreferencedNodes { count: 1, first: 4 }));
     }
 
     #[test]
     fn node_out_of_range_is_reported() {
         let mut m = one_tet([0., 0., 1.]);
         m.tets[0][3] = 9;
-        assert!(matches!(
-            check(&m),
-            Err(MeshError::NodeOutOfRange { node: 9, .. })
-        ));
+        assert!(matches!(check(&m), Err(MeshError::NodeOutOfRange { node: 9, .. })));
     }
 }

@@ -40,10 +40,7 @@ pub fn sorted_face_keys(mesh: &TetMesh) -> Vec<(u128, u32)> {
         .enumerate()
         .flat_map_iter(|(t, _)| {
             (0..4u8).map(move |l| {
-                let f = FaceRef {
-                    tet: t as u32,
-                    local: l,
-                };
+                let f = FaceRef { tet: t as u32, local: l };
                 (face_key(f.nodes(&mesh.tets)), t as u32 * 4 + u32::from(l))
             })
         })
@@ -54,10 +51,7 @@ pub fn sorted_face_keys(mesh: &TetMesh) -> Vec<(u128, u32)> {
 
 #[inline]
 fn face_of(slot: u32) -> FaceRef {
-    FaceRef {
-        tet: slot / 4,
-        local: (slot % 4) as u8,
-    }
+    FaceRef { tet: slot / 4, local: (slot % 4) as u8 }
 }
 
 /// Classifies every face as interior (shared by two tets) or boundary.
@@ -75,14 +69,9 @@ pub fn face_adjacency(mesh: &TetMesh) -> Result<FaceAdjacency, MeshError> {
         }
         match j - i {
             1 => adj.boundary.push(face_of(keys[i].1)),
-            2 => adj
-                .interior
-                .push((face_of(keys[i].1), face_of(keys[i + 1].1))),
+            2 => adj.interior.push((face_of(keys[i].1), face_of(keys[i + 1].1))),
             count => {
-                return Err(MeshError::NonManifoldFace {
-                    nodes: key_nodes(keys[i].0),
-                    count,
-                });
+                return Err(MeshError::NonManifoldFace { nodes: key_nodes(keys[i].0), count });
             }
         }
         i = j;
@@ -97,19 +86,10 @@ mod tests {
 
     fn two_tets() -> TetMesh {
         TetMesh {
-            coords: vec![
-                [0., 0., 0.],
-                [1., 0., 0.],
-                [0., 1., 0.],
-                [0., 0., 1.],
-                [1., 1., 1.],
-            ],
+            coords: vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.], [1., 1., 1.]],
             tets: vec![[0, 1, 2, 3], [1, 2, 3, 4]],
             tet_region: vec![0, 0],
-            regions: vec![Region {
-                name: "r".into(),
-                breakable: true,
-            }],
+            regions: vec![Region { name: "r".into(), breakable: true }],
             ..Default::default()
         }
     }
@@ -129,9 +109,6 @@ mod tests {
         m.coords.push([-1., -1., -1.]);
         m.tets.push([1, 2, 3, 5]);
         m.tet_region.push(0);
-        assert!(matches!(
-            face_adjacency(&m),
-            Err(MeshError::NonManifoldFace { count: 3, .. })
-        ));
+        assert!(matches!(face_adjacency(&m), Err(MeshError::NonManifoldFace { count: 3, .. })));
     }
 }

@@ -55,8 +55,7 @@ impl JointedMesh {
         self.mesh.array_bytes()
             + self.origin.len() * size_of::<u32>()
             + self.joints.len() * size_of::<[u32; 6]>()
-            + (self.joint_faces.len() + self.initial_contacts.len())
-                * size_of::<(FaceRef, FaceRef)>()
+            + (self.joint_faces.len() + self.initial_contacts.len()) * size_of::<(FaceRef, FaceRef)>()
     }
 }
 
@@ -93,18 +92,13 @@ pub fn insert_joints(mesh: &TetMesh) -> Result<JointedMesh, MeshError> {
     drop(shared);
 
     // 2. Joints on interior faces.
-    let fracture: HashSet<u128> = mesh
-        .fracture_faces
-        .iter()
-        .map(|f| face_key(f.nodes(&mesh.tets)))
-        .collect();
+    let fracture: HashSet<u128> = mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
     let adjacency = face_adjacency(mesh)?;
     let mut out = JointedMesh::default();
     let mut matched_fractures = 0usize;
     for &(fa, fb) in &adjacency.interior {
         let (ba, bb) = (is_breakable(fa.tet), is_breakable(fb.tet));
-        let on_fracture =
-            !fracture.is_empty() && fracture.contains(&face_key(fa.nodes(&mesh.tets)));
+        let on_fracture = !fracture.is_empty() && fracture.contains(&face_key(fa.nodes(&mesh.tets)));
         if on_fracture {
             if !ba && !bb {
                 return Err(MeshError::BadFractureFace {
@@ -132,9 +126,7 @@ pub fn insert_joints(mesh: &TetMesh) -> Result<JointedMesh, MeshError> {
             .iter()
             .find(|f| {
                 let k = face_key(f.nodes(&mesh.tets));
-                !out.initial_contacts
-                    .iter()
-                    .any(|(a, _)| face_key(a.nodes(&mesh.tets)) == k)
+                !out.initial_contacts.iter().any(|(a, _)| face_key(a.nodes(&mesh.tets)) == k)
             })
             .copied()
             .unwrap_or(FaceRef { tet: 0, local: 0 });
@@ -144,11 +136,7 @@ pub fn insert_joints(mesh: &TetMesh) -> Result<JointedMesh, MeshError> {
             reason: "is not shared by two tets (a fracture face must be interior)",
         });
     }
-    out.mesh = TetMesh {
-        coords,
-        tets,
-        ..mesh.clone_without_geometry()
-    };
+    out.mesh = TetMesh { coords, tets, ..mesh.clone_without_geometry() };
     out.origin = origin;
     Ok(out)
 }
@@ -160,20 +148,10 @@ fn joint_nodes(mesh: &TetMesh, new_tets: &[[u32; 4]], fa: FaceRef, fb: FaceRef) 
     let n_a = local_a.map(|i| new_tets[a][i]);
     let v_a = local_a.map(|i| mesh.tets[a][i]);
     let on_b = |v: u32| {
-        let i = mesh.tets[b]
-            .iter()
-            .position(|&w| w == v)
-            .expect("shared face vertex is in both tets");
+        let i = mesh.tets[b].iter().position(|&w| w == v).expect("shared face vertex is in both tets");
         new_tets[b][i]
     };
-    [
-        n_a[0],
-        n_a[1],
-        n_a[2],
-        on_b(v_a[2]),
-        on_b(v_a[1]),
-        on_b(v_a[0]),
-    ]
+    [n_a[0], n_a[1], n_a[2], on_b(v_a[2]), on_b(v_a[1]), on_b(v_a[0])]
 }
 
 impl TetMesh {

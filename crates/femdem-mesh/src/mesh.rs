@@ -91,10 +91,7 @@ impl TetMesh {
 
     /// Index of the region called `name`.
     pub fn region_index(&self, name: &str) -> Option<u16> {
-        self.regions
-            .iter()
-            .position(|r| r.name == name)
-            .map(|i| i as u16)
+        self.regions.iter().position(|r| r.name == name).map(|i| i as u16)
     }
 
     /// The boundary group called `name`.
@@ -108,11 +105,7 @@ impl TetMesh {
         self.coords.len() * size_of::<[Real; 3]>()
             + self.tets.len() * size_of::<[u32; 4]>()
             + self.tet_region.len() * size_of::<u16>()
-            + self
-                .boundary
-                .iter()
-                .map(|g| g.faces.len() * size_of::<FaceRef>())
-                .sum::<usize>()
+            + self.boundary.iter().map(|g| g.faces.len() * size_of::<FaceRef>()).sum::<usize>()
             + self.fracture_faces.len() * size_of::<FaceRef>()
     }
 
@@ -135,41 +128,28 @@ impl TetMesh {
             })
             .collect();
         self.coords.extend_from_slice(&other.coords);
-        self.tets
-            .extend(other.tets.iter().map(|t| t.map(|n| n + node_offset)));
-        self.tet_region
-            .extend(other.tet_region.iter().map(|&r| region_map[r as usize]));
-        let shift = |f: &FaceRef| FaceRef {
-            tet: f.tet + tet_offset,
-            local: f.local,
-        };
+        self.tets.extend(other.tets.iter().map(|t| t.map(|n| n + node_offset)));
+        self.tet_region.extend(other.tet_region.iter().map(|&r| region_map[r as usize]));
+        let shift = |f: &FaceRef| FaceRef { tet: f.tet + tet_offset, local: f.local };
         for g in &other.boundary {
             let faces = g.faces.iter().map(shift);
             match self.boundary.iter_mut().find(|h| h.name == g.name) {
                 Some(h) => h.faces.extend(faces),
-                None => self.boundary.push(BoundaryGroup {
-                    name: g.name.clone(),
-                    faces: faces.collect(),
-                }),
+                None => self.boundary.push(BoundaryGroup { name: g.name.clone(), faces: faces.collect() }),
             }
         }
-        self.fracture_faces
-            .extend(other.fracture_faces.iter().map(shift));
+        self.fracture_faces.extend(other.fracture_faces.iter().map(shift));
     }
 
     /// Axis-aligned bounding box `(min, max)`; `None` for an empty mesh.
     pub fn bounding_box(&self) -> Option<([Real; 3], [Real; 3])> {
         let first = *self.coords.first()?;
-        Some(
-            self.coords
-                .iter()
-                .fold((first, first), |(mut lo, mut hi), c| {
-                    for k in 0..3 {
-                        lo[k] = lo[k].min(c[k]);
-                        hi[k] = hi[k].max(c[k]);
-                    }
-                    (lo, hi)
-                }),
-        )
+        Some(self.coords.iter().fold((first, first), |(mut lo, mut hi), c| {
+            for k in 0..3 {
+                lo[k] = lo[k].min(c[k]);
+                hi[k] = hi[k].max(c[k]);
+            }
+            (lo, hi)
+        }))
     }
 }

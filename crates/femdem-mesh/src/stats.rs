@@ -77,10 +77,7 @@ const CHUNK: usize = 4096;
 
 /// Computes the statistics of `mesh`.
 pub fn stats(mesh: &TetMesh) -> MeshStats {
-    let volumes: Vec<f64> = (0..mesh.num_tets())
-        .into_par_iter()
-        .map(|t| signed_volume(&mesh.tet_points(t)))
-        .collect();
+    let volumes: Vec<f64> = (0..mesh.num_tets()).into_par_iter().map(|t| signed_volume(&mesh.tet_points(t))).collect();
     let partials: Vec<Partial> = (0..mesh.num_tets())
         .collect::<Vec<_>>()
         .par_chunks(CHUNK)
@@ -102,12 +99,7 @@ pub fn stats(mesh: &TetMesh) -> MeshStats {
     let mut regions: Vec<RegionStats> = mesh
         .regions
         .iter()
-        .map(|r| RegionStats {
-            name: r.name.clone(),
-            tets: 0,
-            volume: 0.0,
-            breakable: r.breakable,
-        })
+        .map(|r| RegionStats { name: r.name.clone(), tets: 0, volume: 0.0, breakable: r.breakable })
         .collect();
     for (t, &r) in mesh.tet_region.iter().enumerate() {
         regions[r as usize].tets += 1;
@@ -118,11 +110,7 @@ pub fn stats(mesh: &TetMesh) -> MeshStats {
         tets: n,
         nodes: mesh.num_nodes(),
         min_edge: if n > 0 { total.min_edge } else { 0.0 },
-        mean_edge: if n > 0 {
-            total.sum_edge / (6 * n) as f64
-        } else {
-            0.0
-        },
+        mean_edge: if n > 0 { total.sum_edge / (6 * n) as f64 } else { 0.0 },
         min_inradius: if n > 0 { total.min_inradius } else { 0.0 },
         max_aspect_ratio: total.max_aspect,
         min_volume: if n > 0 { total.min_volume } else { 0.0 },

@@ -7,17 +7,13 @@
 use femdem_core::tet::triangle_area;
 use femdem_mesh::check::check;
 use femdem_mesh::generate::{
-    BoxSpec, ExtrusionSpec, Outline, PlatenSpec, Side, generate_box, generate_extrusion,
-    generate_platen,
+    BoxSpec, ExtrusionSpec, Outline, PlatenSpec, Side, generate_box, generate_extrusion, generate_platen,
 };
 use femdem_mesh::{Region, TetMesh, stats};
 use proptest::prelude::*;
 
 fn region() -> Region {
-    Region {
-        name: "rock".into(),
-        breakable: true,
-    }
+    Region { name: "rock".into(), breakable: true }
 }
 
 fn group_area(mesh: &TetMesh, name: &str) -> f64 {
@@ -109,10 +105,7 @@ proptest! {
 #[test]
 fn platen_touches_the_specimen_without_sharing_nodes() {
     let spec = ExtrusionSpec {
-        outline: Outline::Circle {
-            center: [0.0, 0.0],
-            radius: 0.02,
-        },
+        outline: Outline::Circle { center: [0.0, 0.0], radius: 0.02 },
         traces: vec![],
         z0: 0.0,
         thickness: 0.01,
@@ -127,10 +120,7 @@ fn platen_touches_the_specimen_without_sharing_nodes() {
         thickness: 0.005,
         extent: [Some(0.01), None],
         element_size: 0.0025,
-        region: Region {
-            name: "platen".into(),
-            breakable: false,
-        },
+        region: Region { name: "platen".into(), breakable: false },
     };
     let p = generate_platen(&platen, lo, hi).unwrap();
     let (plo, phi) = p.bounding_box().unwrap();
@@ -147,24 +137,12 @@ fn platen_touches_the_specimen_without_sharing_nodes() {
 
 #[test]
 fn bad_parameters_are_rejected_with_their_name() {
-    let mut spec = BoxSpec {
-        min: [0.0; 3],
-        max: [1.0; 3],
-        element_size: 0.0,
-        jitter: 0.1,
-        seed: 0,
-        region: region(),
-    };
+    let mut spec = BoxSpec { min: [0.0; 3], max: [1.0; 3], element_size: 0.0, jitter: 0.1, seed: 0, region: region() };
     let e = generate_box(&spec).unwrap_err().to_string();
     assert!(e.contains("element_size"), "{e}");
     spec.element_size = 0.5;
     spec.jitter = 0.3;
-    assert!(
-        generate_box(&spec)
-            .unwrap_err()
-            .to_string()
-            .contains("jitter")
-    );
+    assert!(generate_box(&spec).unwrap_err().to_string().contains("jitter"));
     spec.jitter = 0.0;
     spec.max[1] = -1.0;
     assert!(generate_box(&spec).unwrap_err().to_string().contains("max"));
@@ -177,10 +155,7 @@ fn bad_parameters_are_rejected_with_their_name() {
         layers: None,
         region: region(),
     };
-    assert!(
-        generate_extrusion(&crossing).is_err(),
-        "a self-intersecting outline must be refused"
-    );
+    assert!(generate_extrusion(&crossing).is_err(), "a self-intersecting outline must be refused");
 }
 
 /// The element size of an extrusion is the in-plane edge length: the mean
@@ -190,10 +165,7 @@ fn bad_parameters_are_rejected_with_their_name() {
 fn extruded_mean_edge_is_close_to_the_element_size() {
     for (r, h) in [(0.02, 1.2e-3), (1.0, 0.05), (1.0, 0.2)] {
         let spec = ExtrusionSpec {
-            outline: Outline::Circle {
-                center: [0.0, 0.0],
-                radius: r,
-            },
+            outline: Outline::Circle { center: [0.0, 0.0], radius: r },
             traces: vec![],
             z0: 0.0,
             thickness: h,
@@ -209,9 +181,6 @@ fn extruded_mean_edge_is_close_to_the_element_size() {
             sum += (b - a).norm() + (c - b).norm() + (a - c).norm();
         }
         let mean = sum / (3 * faces.len()) as f64;
-        assert!(
-            rel(mean, h) < 0.15,
-            "r = {r}, h = {h}: mean in-plane edge {mean}"
-        );
+        assert!(rel(mean, h) < 0.15, "r = {r}, h = {h}: mean in-plane edge {mean}");
     }
 }

@@ -22,16 +22,10 @@ fn two_region_box(h: f64, jitter: f64, seed: u64, split: f64) -> TetMesh {
         element_size: h,
         jitter,
         seed,
-        region: Region {
-            name: "rock".into(),
-            breakable: true,
-        },
+        region: Region { name: "rock".into(), breakable: true },
     };
     let mut mesh = generate_box(&spec).unwrap();
-    mesh.regions.push(Region {
-        name: "steel".into(),
-        breakable: false,
-    });
+    mesh.regions.push(Region { name: "steel".into(), breakable: false });
     for t in 0..mesh.num_tets() {
         if centroid(&mesh.tet_points(t))[0] < split {
             mesh.tet_region[t] = 1;
@@ -52,10 +46,7 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
     for (t, tet) in j.mesh.tets.iter().enumerate() {
         for (k, &n) in tet.iter().enumerate() {
             assert_eq!(j.origin[n as usize], mesh.tets[t][k], "tet {t} node {k}");
-            assert_eq!(
-                j.mesh.coords[n as usize],
-                mesh.coords[mesh.tets[t][k] as usize]
-            );
+            assert_eq!(j.mesh.coords[n as usize], mesh.coords[mesh.tets[t][k] as usize]);
         }
     }
     // Breakable tets own their nodes; unbreakable ones share theirs.
@@ -67,10 +58,7 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
             }
         }
     }
-    assert!(
-        users.values().all(|&c| c == 1),
-        "a breakable tet's node is used by another tet"
-    );
+    assert!(users.values().all(|&c| c == 1), "a breakable tet's node is used by another tet");
     let unbreakable_vertices: HashSet<u32> = mesh
         .tets
         .iter()
@@ -78,21 +66,12 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
         .filter(|(t, _)| !breakable(mesh, *t as u32))
         .flat_map(|(_, tet)| tet.iter().copied())
         .collect();
-    let n_breakable = (0..mesh.num_tets())
-        .filter(|&t| breakable(mesh, t as u32))
-        .count();
-    assert_eq!(
-        j.mesh.num_nodes(),
-        4 * n_breakable + unbreakable_vertices.len()
-    );
+    let n_breakable = (0..mesh.num_tets()).filter(|&t| breakable(mesh, t as u32)).count();
+    assert_eq!(j.mesh.num_nodes(), 4 * n_breakable + unbreakable_vertices.len());
 
     // Exactly one joint per interior face that touches a breakable tet and is
     // not a fracture face; none elsewhere.
-    let fracture: HashSet<u128> = mesh
-        .fracture_faces
-        .iter()
-        .map(|f| face_key(f.nodes(&mesh.tets)))
-        .collect();
+    let fracture: HashSet<u128> = mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
     let mut expected = HashSet::new();
     let mut interface = 0;
     for (a, b) in face_adjacency(mesh).unwrap().interior {
@@ -103,11 +82,8 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
             interface += usize::from(ba != bb);
         }
     }
-    let got: Vec<u128> = j
-        .joints
-        .iter()
-        .map(|jn| face_key([jn[0], jn[1], jn[2]].map(|n| j.origin[n as usize])))
-        .collect();
+    let got: Vec<u128> =
+        j.joints.iter().map(|jn| face_key([jn[0], jn[1], jn[2]].map(|n| j.origin[n as usize]))).collect();
     let got_set: HashSet<u128> = got.iter().copied().collect();
     assert_eq!(got.len(), got_set.len(), "a face has two joints");
     assert_eq!(got_set, expected);
@@ -128,8 +104,7 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
         // The normal of N1N2N3 points from a to b.
         let p = |n: u32| j.mesh.point(n);
         let normal = (p(jn[1]) - p(jn[0])).cross(&(p(jn[2]) - p(jn[0])));
-        let ab = centroid(&j.mesh.tet_points(fb.tet as usize))
-            - centroid(&j.mesh.tet_points(fa.tet as usize));
+        let ab = centroid(&j.mesh.tet_points(fb.tet as usize)) - centroid(&j.mesh.tet_points(fa.tet as usize));
         assert!(normal.dot(&ab) > 0.0, "N1N2N3 must face tet b");
     }
 }
@@ -178,10 +153,7 @@ fn fracture_face_inside_an_unbreakable_region_is_refused() {
         thickness: 0.4,
         element_size: 0.3,
         layers: Some(1),
-        region: Region {
-            name: "steel".into(),
-            breakable: false,
-        },
+        region: Region { name: "steel".into(), breakable: false },
     };
     let mesh = generate_extrusion(&spec).unwrap();
     let e = insert_joints(&mesh).unwrap_err().to_string();

@@ -15,12 +15,7 @@ use proptest::prelude::*;
 /// The six tets of the Kuhn subdivision of every cell of an `n[0] × n[1] ×
 /// n[2]` grid of cubes of edge `h` from `origin`, each grid point moved by
 /// `jitter(i)` cube edges (keep it under 0.05 so no tet inverts). One region.
-fn kuhn_grid(
-    n: [usize; 3],
-    h: Real,
-    origin: [Real; 3],
-    jitter: impl Fn(usize) -> [Real; 3],
-) -> TetMesh {
+fn kuhn_grid(n: [usize; 3], h: Real, origin: [Real; 3], jitter: impl Fn(usize) -> [Real; 3]) -> TetMesh {
     let id = |i: usize, j: usize, k: usize| ((k * (n[1] + 1) + j) * (n[0] + 1) + i) as u32;
     let mut coords = Vec::new();
     for k in 0..=n[2] {
@@ -28,24 +23,12 @@ fn kuhn_grid(
             for i in 0..=n[0] {
                 let d = jitter(coords.len());
                 let ijk = [i, j, k];
-                coords.push(std::array::from_fn(|a| {
-                    origin[a] + h * (ijk[a] as Real + d[a])
-                }));
+                coords.push(std::array::from_fn(|a| origin[a] + h * (ijk[a] as Real + d[a])));
             }
         }
     }
-    let mut mesh = TetMesh {
-        coords,
-        ..Default::default()
-    };
-    let axes = [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ];
+    let mut mesh = TetMesh { coords, ..Default::default() };
+    let axes = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
     for k in 0..n[2] {
         for j in 0..n[1] {
             for i in 0..n[0] {
@@ -67,10 +50,7 @@ fn kuhn_grid(
         }
     }
     mesh.tet_region = vec![0; mesh.tets.len()];
-    mesh.regions = vec![Region {
-        name: "r".into(),
-        breakable: true,
-    }];
+    mesh.regions = vec![Region { name: "r".into(), breakable: true }];
     mesh
 }
 
@@ -93,10 +73,7 @@ fn sub_mesh(mesh: &TetMesh, keep: &[usize]) -> TetMesh {
     }
     TetMesh {
         coords,
-        tets: keep
-            .iter()
-            .map(|&t| mesh.tets[t].map(|v| index[v as usize]))
-            .collect(),
+        tets: keep.iter().map(|&t| mesh.tets[t].map(|v| index[v as usize])).collect(),
         ..Default::default()
     }
 }
@@ -149,45 +126,15 @@ fn total_volume(mesh: &TetMesh, region: Option<u16>) -> Real {
 /// faces in groups "xmin" and "xmax".
 fn two_cubes() -> TetMesh {
     let mut mesh = kuhn_grid([2, 1, 1], 1.0, [0.0; 3], |_| [0.0; 3]);
-    mesh.regions = vec![
-        Region {
-            name: "left".into(),
-            breakable: true,
-        },
-        Region {
-            name: "right".into(),
-            breakable: true,
-        },
-    ];
+    mesh.regions =
+        vec![Region { name: "left".into(), breakable: true }, Region { name: "right".into(), breakable: true }];
     mesh.tet_region = (0..12).map(|t| u16::from(t >= 6)).collect();
     let adj = face_adjacency(&mesh).unwrap();
-    let on_plane = |f: &FaceRef, x: Real| {
-        f.nodes(&mesh.tets)
-            .iter()
-            .all(|&v| mesh.coords[v as usize][0] == x)
-    };
-    let xmin = adj
-        .boundary
-        .iter()
-        .copied()
-        .filter(|f| on_plane(f, 0.0))
-        .collect();
-    let xmax = adj
-        .boundary
-        .iter()
-        .copied()
-        .filter(|f| on_plane(f, 2.0))
-        .collect();
-    mesh.boundary = vec![
-        BoundaryGroup {
-            name: "xmin".into(),
-            faces: xmin,
-        },
-        BoundaryGroup {
-            name: "xmax".into(),
-            faces: xmax,
-        },
-    ];
+    let on_plane = |f: &FaceRef, x: Real| f.nodes(&mesh.tets).iter().all(|&v| mesh.coords[v as usize][0] == x);
+    let xmin = adj.boundary.iter().copied().filter(|f| on_plane(f, 0.0)).collect();
+    let xmax = adj.boundary.iter().copied().filter(|f| on_plane(f, 2.0)).collect();
+    mesh.boundary =
+        vec![BoundaryGroup { name: "xmin".into(), faces: xmin }, BoundaryGroup { name: "xmax".into(), faces: xmax }];
     mesh
 }
 
@@ -225,14 +172,8 @@ fn interior_faces_in_a_group_keep_their_side() {
     let mut mesh = two_cubes();
     let adj = face_adjacency(&mesh).unwrap();
     mesh.boundary = vec![
-        BoundaryGroup {
-            name: "a".into(),
-            faces: adj.interior.iter().map(|p| p.0).collect(),
-        },
-        BoundaryGroup {
-            name: "b".into(),
-            faces: adj.interior.iter().map(|p| p.1).collect(),
-        },
+        BoundaryGroup { name: "a".into(), faces: adj.interior.iter().map(|p| p.0).collect() },
+        BoundaryGroup { name: "b".into(), faces: adj.interior.iter().map(|p| p.1).collect() },
     ];
     assert_same_mesh(&mesh, &round_trip(&mesh));
 }
@@ -241,10 +182,7 @@ fn interior_faces_in_a_group_keep_their_side() {
 fn empty_regions_and_groups_survive_a_round_trip() {
     let mut mesh = two_cubes();
     mesh.tet_region = vec![0; 12];
-    mesh.boundary.push(BoundaryGroup {
-        name: "nothing".into(),
-        faces: vec![],
-    });
+    mesh.boundary.push(BoundaryGroup { name: "nothing".into(), faces: vec![] });
     let back = round_trip(&mesh);
     assert_same_mesh(&mesh, &back);
     assert_eq!(region_names(&back), ["left", "right"]);
@@ -256,10 +194,7 @@ fn extreme_coordinates_are_written_exactly() {
     mesh.coords[0] = [1e-300, -0.0, 1.234_567_891_234_568e18];
     mesh.coords[1][1] = 1e-7;
     let text = write_msh(&mesh);
-    assert!(
-        !text.contains("0000000000000000000"),
-        "positional notation for tiny numbers"
-    );
+    assert!(!text.contains("0000000000000000000"), "positional notation for tiny numbers");
     assert_eq!(read_msh(text.as_bytes()).unwrap().coords, mesh.coords);
 }
 
@@ -282,25 +217,14 @@ fn arb_mesh() -> impl Strategy<Value = TetMesh> {
             }
             let mut mesh = sub_mesh(&grid, &keep);
             let nt = mesh.num_tets();
-            mesh.regions = (0..num_regions)
-                .map(|r| Region {
-                    name: format!("region {r}"),
-                    breakable: true,
-                })
-                .collect();
+            mesh.regions = (0..num_regions).map(|r| Region { name: format!("region {r}"), breakable: true }).collect();
             mesh.tet_region = (0..nt).map(|t| region[t] % num_regions as u16).collect();
             mesh.boundary = faces
                 .iter()
                 .enumerate()
                 .map(|(g, fs)| BoundaryGroup {
                     name: format!("group_{g}"),
-                    faces: fs
-                        .iter()
-                        .map(|&(t, l)| FaceRef {
-                            tet: (t % nt) as u32,
-                            local: l,
-                        })
-                        .collect(),
+                    faces: fs.iter().map(|&(t, l)| FaceRef { tet: (t % nt) as u32, local: l }).collect(),
                 })
                 .collect();
             mesh
@@ -338,20 +262,10 @@ fn gmsh_fixture_counts_match_what_gmsh_reported() {
     assert_eq!(mesh.num_tets(), 335 + 68);
     assert_eq!(mesh.tet_region.iter().filter(|&&r| r == 0).count(), 335);
     assert_eq!(mesh.tet_region.iter().filter(|&&r| r == 1).count(), 68);
-    let sizes: Vec<(&str, usize)> = mesh
-        .boundary
-        .iter()
-        .map(|g| (g.name.as_str(), g.faces.len()))
-        .collect();
-    assert_eq!(
-        sizes,
-        [("bottom", 26), ("top", 26), ("inclusion_boundary", 66)]
-    );
+    let sizes: Vec<(&str, usize)> = mesh.boundary.iter().map(|g| (g.name.as_str(), g.faces.len())).collect();
+    assert_eq!(sizes, [("bottom", 26), ("top", 26), ("inclusion_boundary", 66)]);
     // Physical curve "z_axis_edge": 3 lines; physical point "origin": 1.
-    let expected = MshReport {
-        skipped_elements: BTreeMap::from([(1, 3), (15, 1)]),
-        ..Default::default()
-    };
+    let expected = MshReport { skipped_elements: BTreeMap::from([(1, 3), (15, 1)]), ..Default::default() };
     assert_eq!(report, expected);
     check(&mesh).unwrap();
 }
@@ -363,10 +277,7 @@ fn gmsh_fixture_tets_are_positive_and_fill_the_cube() {
     // The cube's faces are planar, so faceting loses nothing: only the
     // round-off of ~400 determinants (and of 16-digit coordinates) remains.
     let total = total_volume(&mesh, None);
-    assert!(
-        (total - CUBE.powi(3)).abs() <= 1e-12 * CUBE.powi(3),
-        "total volume {total:e}"
-    );
+    assert!((total - CUBE.powi(3)).abs() <= 1e-12 * CUBE.powi(3), "total volume {total:e}");
 }
 
 #[test]
@@ -384,22 +295,12 @@ fn gmsh_fixture_inclusion_volume_is_bounded_by_its_faceting() {
         .iter()
         .flat_map(|f| {
             let p = f.nodes(&mesh.tets).map(|v| mesh.point(v));
-            [
-                (p[1] - p[0]).norm(),
-                (p[2] - p[1]).norm(),
-                (p[0] - p[2]).norm(),
-            ]
+            [(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()]
         })
         .fold(0.0, Real::max);
     let pi = std::f64::consts::PI;
-    let (lo, hi) = (
-        pi * (RADIUS.powi(2) - l * l / 4.0) * HEIGHT,
-        pi * RADIUS.powi(2) * HEIGHT,
-    );
-    assert!(
-        lo <= inclusion && inclusion <= hi * (1.0 + 1e-12),
-        "{lo:e} <= {inclusion:e} <= {hi:e}"
-    );
+    let (lo, hi) = (pi * (RADIUS.powi(2) - l * l / 4.0) * HEIGHT, pi * RADIUS.powi(2) * HEIGHT);
+    assert!(lo <= inclusion && inclusion <= hi * (1.0 + 1e-12), "{lo:e} <= {inclusion:e} <= {hi:e}");
 }
 
 #[test]
@@ -407,30 +308,19 @@ fn gmsh_fixture_groups_lie_where_the_geometry_puts_them() {
     let mesh = read_msh(GMSH_TWO_VOLUMES).unwrap();
     let z_of = |g: &str| -> Vec<Real> {
         let group = mesh.boundary_group(g).unwrap();
-        group
-            .faces
-            .iter()
-            .flat_map(|f| f.nodes(&mesh.tets))
-            .map(|v| mesh.coords[v as usize][2])
-            .collect()
+        group.faces.iter().flat_map(|f| f.nodes(&mesh.tets)).map(|v| mesh.coords[v as usize][2]).collect()
     };
     assert!(z_of("bottom").iter().all(|&z| z == 0.0));
     assert!(z_of("top").iter().all(|&z| (z - CUBE).abs() < 1e-15));
     // Outer faces are named from their only tet, so they point outwards.
     for (g, dir) in [("bottom", -1.0), ("top", 1.0)] {
         let group = mesh.boundary_group(g).unwrap();
-        assert!(
-            group
-                .faces
-                .iter()
-                .all(|&f| face_normal(&mesh, f).z * dir > 0.0)
-        );
+        assert!(group.faces.iter().all(|&f| face_normal(&mesh, f).z * dir > 0.0));
     }
     // The inclusion boundary is interior: each triangle is shared by a
     // matrix tet and an inclusion tet, and lies on the cylinder or a cap.
     let adj = face_adjacency(&mesh).unwrap();
-    let interior: std::collections::HashSet<FaceRef> =
-        adj.interior.iter().flat_map(|&(a, b)| [a, b]).collect();
+    let interior: std::collections::HashSet<FaceRef> = adj.interior.iter().flat_map(|&(a, b)| [a, b]).collect();
     let group = mesh.boundary_group("inclusion_boundary").unwrap();
     for f in &group.faces {
         assert!(interior.contains(f));
@@ -438,10 +328,7 @@ fn gmsh_fixture_groups_lie_where_the_geometry_puts_them() {
             let [x, y, z] = mesh.coords[v as usize];
             let r = ((x - CUBE / 2.0).powi(2) + (y - CUBE / 2.0).powi(2)).sqrt();
             let on_cap = (z - Z0).abs() < 1e-12 || (z - Z0 - HEIGHT).abs() < 1e-12;
-            assert!(
-                on_cap || (r - RADIUS).abs() < 1e-12,
-                "node {v} at r = {r}, z = {z}"
-            );
+            assert!(on_cap || (r - RADIUS).abs() < 1e-12, "node {v} at r = {r}, z = {z}");
         }
     }
 }
@@ -512,29 +399,14 @@ $EndElements
 
 fn expected_small() -> TetMesh {
     TetMesh {
-        coords: vec![
-            [0., 0., 0.],
-            [1., 0., 0.],
-            [0., 1., 0.],
-            [0., 0., 1.],
-            [1., 1., 1.],
-        ],
+        coords: vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.], [1., 1., 1.]],
         tets: vec![[0, 1, 2, 3], [2, 1, 4, 3]],
         tet_region: vec![0, 1],
         regions: vec![
-            Region {
-                name: "rock  mass".into(),
-                breakable: true,
-            },
-            Region {
-                name: "unnamed".into(),
-                breakable: true,
-            },
+            Region { name: "rock  mass".into(), breakable: true },
+            Region { name: "unnamed".into(), breakable: true },
         ],
-        boundary: vec![BoundaryGroup {
-            name: "surface_4".into(),
-            faces: vec![FaceRef { tet: 0, local: 3 }],
-        }],
+        boundary: vec![BoundaryGroup { name: "surface_4".into(), faces: vec![FaceRef { tet: 0, local: 3 }] }],
         fracture_faces: vec![],
     }
 }
@@ -578,20 +450,14 @@ fn crlf_line_ends_are_accepted() {
 
 /// 1-based number of the first line of `text` equal to `line`.
 fn line_of(text: &str, line: &str) -> usize {
-    1 + text
-        .lines()
-        .position(|l| l == line)
-        .unwrap_or_else(|| panic!("no line `{line}`"))
+    1 + text.lines().position(|l| l == line).unwrap_or_else(|| panic!("no line `{line}`"))
 }
 
 /// `SMALL` with its first line equal to `from` replaced by `to` (removed if
 /// `to` is `None`), and that line's number.
 fn small_with(from: &str, to: Option<&str>) -> (String, usize) {
     let n = line_of(SMALL, from);
-    let lines = SMALL
-        .lines()
-        .enumerate()
-        .filter_map(|(i, l)| if i + 1 == n { to } else { Some(l) });
+    let lines = SMALL.lines().enumerate().filter_map(|(i, l)| if i + 1 == n { to } else { Some(l) });
     (lines.map(|l| format!("{l}\n")).collect(), n)
 }
 
@@ -618,10 +484,7 @@ fn nodes_section_ending_early_names_the_end_line() {
     let (text, n) = small_with("1 1 1 0.1 0.2 0.3", None);
     let (line, message) = msh_error(&text);
     assert_eq!(line, n);
-    assert!(
-        message.contains("$Nodes ends early") && message.contains("$EndNodes"),
-        "{message}"
-    );
+    assert!(message.contains("$Nodes ends early") && message.contains("$EndNodes"), "{message}");
 }
 
 #[test]
@@ -645,10 +508,7 @@ fn binary_file_type_is_refused_with_the_option_to_change() {
     let (text, n) = small_with("4.1 0 8", Some("4.1 1 8"));
     let (line, message) = msh_error(&text);
     assert_eq!((line, n), (2, 2));
-    assert!(
-        message.contains("binary") && message.contains("Mesh.Binary = 0"),
-        "{message}"
-    );
+    assert!(message.contains("binary") && message.contains("Mesh.Binary = 0"), "{message}");
 }
 
 #[test]
@@ -656,10 +516,7 @@ fn binary_payload_is_never_read() {
     // A real binary file has raw bytes after the header line.
     let mut bytes = b"$MeshFormat\n4.1 1 8\n".to_vec();
     bytes.extend_from_slice(&[1, 0, 0, 0, b'\n', 0xff, 0xfe]);
-    assert!(matches!(
-        read_msh(&bytes),
-        Err(MeshError::Msh { line: 2, .. })
-    ));
+    assert!(matches!(read_msh(&bytes), Err(MeshError::Msh { line: 2, .. })));
 }
 
 #[test]
@@ -667,10 +524,7 @@ fn version_2_2_is_refused_by_name() {
     let (text, _) = small_with("4.1 0 8", Some("2.2 0 8"));
     let (line, message) = msh_error(&text);
     assert_eq!(line, 2);
-    assert!(
-        message.contains("version 2.2") && message.contains("Mesh.MshFileVersion = 4.1"),
-        "{message}"
-    );
+    assert!(message.contains("version 2.2") && message.contains("Mesh.MshFileVersion = 4.1"), "{message}");
 }
 
 #[test]
@@ -715,10 +569,7 @@ fn file_without_tets_says_what_it_found() {
                 $Elements\n1 1 1 1\n0 1 15 1\n1 1\n$EndElements\n";
     let (line, message) = msh_error(text);
     assert_eq!(line, 10);
-    assert!(
-        message.contains("no 4-node tetrahedra") && message.contains("1 point (type 15)"),
-        "{message}"
-    );
+    assert!(message.contains("no 4-node tetrahedra") && message.contains("1 point (type 15)"), "{message}");
 }
 
 #[test]

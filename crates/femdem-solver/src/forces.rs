@@ -38,7 +38,8 @@ pub struct ForceSums {
     pub joint_energy: Real,
     /// Rate of viscous dissipation in the tets, W.
     pub dissipation_rate: Real,
-    /// Energy dissipated by the joints since the start (fracture), J.
+    /// Energy the joints have dissipated (fracture): the work done on them
+    /// less the energy the intact ones store, J.
     pub fracture: Real,
     /// Joints that failed in this evaluation.
     pub newly_failed: usize,
@@ -105,10 +106,7 @@ pub fn internal_forces(
     tet_pass(model, x, v, ws, want);
     joint_pass(model, x, history, ws, want);
     gather(model, ws);
-    let tets = ws
-        .tet_partials
-        .iter()
-        .fold(ForceSums::default(), |a, &b| a.add(b));
+    let tets = ws.tet_partials.iter().fold(ForceSums::default(), |a, &b| a.add(b));
     ws.joint_partials.iter().fold(tets, |a, &b| a.add(b))
 }
 
@@ -156,13 +154,7 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
         });
 }
 
-fn joint_pass(
-    model: &Model,
-    x: &[Vec3],
-    history: &mut [JointHistory],
-    ws: &mut Workspace,
-    want: Want,
-) {
+fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut Workspace, want: Want) {
     ws.joint_slots
         .par_chunks_mut(CHUNK)
         .zip(history.par_chunks_mut(CHUNK))
@@ -171,18 +163,13 @@ fn joint_pass(
         .enumerate()
         .for_each(|(c, (((slots, hist), failed), partial))| {
             let mut sums = ForceSums::default();
-            for (k, ((slot, h), f)) in slots
-                .iter_mut()
-                .zip(hist.iter_mut())
-                .zip(failed.iter_mut())
-                .enumerate()
-            {
+            for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
                 let j = c * CHUNK + k;
                 *f = 0;
                 if h.failed {
-                    // Left the force loop when it failed.
+                    // Left the force loop when it failed: all its work is lost.
                     if want.energy {
-                        sums.fracture += h.dissipated + h.released;
+                        sums.fracture += h.work;
                     }
                     continue;
                 }
@@ -195,7 +182,7 @@ fn joint_pass(
                 }
                 if want.energy {
                     sums.joint_energy += out.energy;
-                    sums.fracture += h.dissipated + h.released;
+                    sums.fracture += if h.failed { h.work } else { h.work - out.energy };
                 }
             }
             *partial = sums;
@@ -205,20 +192,17 @@ fn joint_pass(
 fn gather(model: &Model, ws: &mut Workspace) {
     let tet_slots = &ws.tet_slots;
     let joint_slots = &ws.joint_slots;
-    ws.internal
-        .par_chunks_mut(CHUNK)
-        .enumerate()
-        .for_each(|(c, out)| {
-            for (k, f) in out.iter_mut().enumerate() {
-                let i = c * CHUNK + k;
-                let mut sum = Vec3::zeros();
-                for &s in model.tet_gather.of(i) {
-                    sum += tet_slots[(s / 4) as usize][(s % 4) as usize];
-                }
-                for &s in model.joint_gather.of(i) {
-                    sum += joint_slots[(s / 6) as usize][(s % 6) as usize];
-                }
-                *f = sum;
+    ws.internal.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+        for (k, f) in out.iter_mut().enumerate() {
+            let i = c * CHUNK + k;
+            let mut sum = Vec3::zeros();
+            for &s in model.tet_gather.of(i) {
+                sum += tet_slots[(s / 4) as usize][(s % 4) as usize];
             }
-        });
+            for &s in model.joint_gather.of(i) {
+                sum += joint_slots[(s / 6) as usize][(s % 6) as usize];
+            }
+            *f = sum;
+        }
+    });
 }

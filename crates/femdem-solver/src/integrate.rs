@@ -72,8 +72,7 @@ impl Energies {
     /// `kinetic + elastic + dissipated − external work`: constant in an
     /// exact solution (equal to the initial kinetic + elastic energy).
     pub fn balance(&self) -> Real {
-        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping + self.fracture
-            - self.external_work
+        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping + self.fracture - self.external_work
     }
 }
 
@@ -138,9 +137,7 @@ impl Solver {
     /// all three components, or `dt` is not positive.
     pub fn new(model: Model, loads: Loads, dt: Real) -> Result<Solver, SolverError> {
         if !(dt.is_finite() && dt > 0.0) {
-            return Err(SolverError::Setup(format!(
-                "time step must be > 0, got {dt}"
-            )));
+            return Err(SolverError::Setup(format!("time step must be > 0, got {dt}")));
         }
         let n = model.num_nodes();
         let mut prescribed = vec![[FREE; 3]; n];
@@ -175,15 +172,10 @@ impl Solver {
             )));
         }
         if let Some(i) = (0..n).find(|&i| model.mass[i] <= 0.0 && prescribed[i].contains(&FREE)) {
-            return Err(SolverError::Setup(format!(
-                "node {i} has no mass and is not prescribed"
-            )));
+            return Err(SolverError::Setup(format!("node {i} has no mass and is not prescribed")));
         }
-        let mut surface_nodes: Vec<u32> = loads
-            .surfaces
-            .iter()
-            .flat_map(|s| s.faces.iter().flatten().copied())
-            .collect();
+        let mut surface_nodes: Vec<u32> =
+            loads.surfaces.iter().flat_map(|s| s.faces.iter().flatten().copied()).collect();
         surface_nodes.sort_unstable();
         surface_nodes.dedup();
         let viscous = model.materials.iter().any(|(_, m)| m.viscosity() > 0.0);
@@ -218,10 +210,7 @@ impl Solver {
     /// Which nodes have any prescribed component or belong to a rigid body
     /// (for [`crate::stable_time_step`]).
     pub fn held_nodes(&self) -> Vec<bool> {
-        self.prescribed
-            .iter()
-            .map(|p| p.iter().all(|&c| c != FREE))
-            .collect()
+        self.prescribed.iter().map(|p| p.iter().all(|&c| c != FREE)).collect()
     }
 
     /// Sets an initial velocity field (as `v_{−½}`).
@@ -273,9 +262,7 @@ impl Solver {
             let mut total = Vec3::zeros();
             for &node in &drive.nodes {
                 let i = node as usize;
-                let f = self.workspace.internal[i]
-                    + self.f_surface[i]
-                    + self.loads.gravity * self.model.mass[i];
+                let f = self.workspace.internal[i] + self.f_surface[i] + self.loads.gravity * self.model.mass[i];
                 for c in 0..3 {
                     if self.prescribed[i][c] == d as u16 {
                         let r = self.model.mass[i] * (target[c] - self.state.v[i][c]) / dt - f[c];
@@ -293,11 +280,7 @@ impl Solver {
         let prescribed = &self.prescribed;
         let internal = &self.workspace.internal;
         let f_surface = &self.f_surface;
-        let targets: Vec<Vec3> = loads
-            .drives
-            .iter()
-            .map(|d| d.velocity * d.ramp.factor(t_half))
-            .collect();
+        let targets: Vec<Vec3> = loads.drives.iter().map(|d| d.velocity * d.ramp.factor(t_half)).collect();
         let want_kinetic = want.energy;
         self.state
             .x
@@ -313,11 +296,7 @@ impl Solver {
                     let m = model.mass[i];
                     let f_ext = f_surface[i] + loads.gravity * m;
                     let old = *v;
-                    let mut new = if m > 0.0 {
-                        old + (internal[i] + f_ext) * (dt / m)
-                    } else {
-                        old
-                    };
+                    let mut new = if m > 0.0 { old + (internal[i] + f_ext) * (dt / m) } else { old };
                     for comp in 0..3 {
                         match prescribed[i][comp] {
                             FREE => {}
@@ -335,10 +314,7 @@ impl Solver {
                 }
                 *partial = [power, kinetic];
             });
-        let (power, kinetic) = self
-            .partials
-            .iter()
-            .fold((0.0, 0.0), |(p, k), q| (p + q[0], k + q[1]));
+        let (power, kinetic) = self.partials.iter().fold((0.0, 0.0), |(p, k), q| (p + q[0], k + q[1]));
         self.energies.external_work += dt * power + reaction_work;
         self.energies.damping += dt * sums.dissipation_rate;
         if want.energy {
@@ -367,13 +343,7 @@ impl Solver {
             let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
             let centroid = xp.iter().sum::<Vec3>() / 6.0;
             let area = joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
-            self.failures.push(Failure {
-                joint: j as u32,
-                time,
-                centroid,
-                area,
-                mode,
-            });
+            self.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
         }
     }
 }

@@ -15,10 +15,7 @@ pub struct Ramp {
 
 impl Ramp {
     /// Applied at once and never removed.
-    pub const STEP: Ramp = Ramp {
-        ramp_time: 0.0,
-        stop_time: None,
-    };
+    pub const STEP: Ramp = Ramp { ramp_time: 0.0, stop_time: None };
 
     /// The factor at time `t`.
     #[inline]
@@ -26,11 +23,7 @@ impl Ramp {
         if self.stop_time.is_some_and(|s| t > s) {
             return 0.0;
         }
-        if self.ramp_time <= 0.0 {
-            1.0
-        } else {
-            (t / self.ramp_time).min(1.0)
-        }
+        if self.ramp_time <= 0.0 { 1.0 } else { (t / self.ramp_time).min(1.0) }
     }
 }
 
@@ -123,10 +116,7 @@ mod tests {
 
     #[test]
     fn ramp_rises_then_holds_then_stops() {
-        let r = Ramp {
-            ramp_time: 2.0,
-            stop_time: Some(5.0),
-        };
+        let r = Ramp { ramp_time: 2.0, stop_time: Some(5.0) };
         assert_eq!(r.factor(0.0), 0.0);
         assert_eq!(r.factor(1.0), 0.5);
         assert_eq!(r.factor(3.0), 1.0);

@@ -113,11 +113,7 @@ impl Model {
     /// [`SolverError::Setup`] for a missing region behaviour, a breakable
     /// region without joint parameters, an inverted tet, or a bad
     /// mass-scaling factor.
-    pub fn new(
-        mesh: &JointedMesh,
-        behaviour: &[RegionBehaviour],
-        mass_scaling: Real,
-    ) -> Result<Model, SolverError> {
+    pub fn new(mesh: &JointedMesh, behaviour: &[RegionBehaviour], mass_scaling: Real) -> Result<Model, SolverError> {
         let m = &mesh.mesh;
         if behaviour.len() != m.regions.len() {
             return Err(SolverError::Setup(format!(
@@ -127,37 +123,24 @@ impl Model {
             )));
         }
         if !(mass_scaling.is_finite() && mass_scaling >= 1.0) {
-            return Err(SolverError::Setup(format!(
-                "mass_scaling must be ≥ 1, got {mass_scaling}"
-            )));
+            return Err(SolverError::Setup(format!("mass_scaling must be ≥ 1, got {mass_scaling}")));
         }
-        let x0: Vec<Vec3> = m
-            .coords
-            .iter()
-            .map(|c| Vec3::new(c[0], c[1], c[2]))
-            .collect();
+        let x0: Vec<Vec3> = m.coords.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect();
         let mut materials: Vec<(Law, Material)> = Vec::new();
         let mut region_material = Vec::with_capacity(behaviour.len());
         for (r, b) in behaviour.iter().enumerate() {
             match b {
-                RegionBehaviour::Deformable {
-                    law,
-                    material,
-                    joints,
-                } => {
+                RegionBehaviour::Deformable { law, material, joints } => {
                     if m.regions[r].breakable && joints.is_none() {
                         return Err(SolverError::Setup(format!(
                             "region `{}` is breakable but has no joint parameters",
                             m.regions[r].name
                         )));
                     }
-                    let idx = materials
-                        .iter()
-                        .position(|q| q == &(*law, *material))
-                        .unwrap_or_else(|| {
-                            materials.push((*law, *material));
-                            materials.len() - 1
-                        });
+                    let idx = materials.iter().position(|q| q == &(*law, *material)).unwrap_or_else(|| {
+                        materials.push((*law, *material));
+                        materials.len() - 1
+                    });
                     region_material.push(idx as u16);
                 }
                 RegionBehaviour::Rigid => region_material.push(RIGID),
@@ -169,16 +152,15 @@ impl Model {
         let mut tet_material = Vec::with_capacity(m.tets.len());
         for (t, tet) in m.tets.iter().enumerate() {
             let p = tet.map(|n| x0[n as usize]);
-            let reference = TetReference::new(&p)
-                .ok_or_else(|| SolverError::Setup(format!("tet {t} has non-positive volume")))?;
+            let reference =
+                TetReference::new(&p).ok_or_else(|| SolverError::Setup(format!("tet {t} has non-positive volume")))?;
             let mat = region_material[m.tet_region[t] as usize];
             if mat == RIGID {
                 for &n in tet {
                     rigid_node[n as usize] = true;
                 }
             } else {
-                let share =
-                    materials[mat as usize].1.density() * reference.volume * mass_scaling / 4.0;
+                let share = materials[mat as usize].1.density() * reference.volume * mass_scaling / 4.0;
                 for &n in tet {
                     mass[n as usize] += share;
                 }
@@ -187,9 +169,7 @@ impl Model {
             tet_material.push(mat);
         }
         let joint_params = |t: u32| match behaviour[m.tet_region[t as usize] as usize] {
-            RegionBehaviour::Deformable { joints, .. }
-                if m.regions[m.tet_region[t as usize] as usize].breakable =>
-            {
+            RegionBehaviour::Deformable { joints, .. } if m.regions[m.tet_region[t as usize] as usize].breakable => {
                 joints
             }
             _ => None,
@@ -206,9 +186,7 @@ impl Model {
                 }
                 (Some(a), None) | (None, Some(a)) => a,
                 (None, None) => {
-                    return Err(SolverError::Setup(format!(
-                        "joint {j} touches no breakable region"
-                    )));
+                    return Err(SolverError::Setup(format!("joint {j} touches no breakable region")));
                 }
             };
             let p = [jn[0], jn[1], jn[2]].map(|n| x0[n as usize]);
@@ -218,17 +196,11 @@ impl Model {
         let n = x0.len();
         let tet_gather = Gather::build(
             n,
-            m.tets
-                .iter()
-                .enumerate()
-                .flat_map(|(t, tet)| (0..4).map(move |k| (tet[k], (t * 4 + k) as u32))),
+            m.tets.iter().enumerate().flat_map(|(t, tet)| (0..4).map(move |k| (tet[k], (t * 4 + k) as u32))),
         );
         let joint_gather = Gather::build(
             n,
-            mesh.joints
-                .iter()
-                .enumerate()
-                .flat_map(|(j, jn)| (0..6).map(move |k| (jn[k], (j * 6 + k) as u32))),
+            mesh.joints.iter().enumerate().flat_map(|(j, jn)| (0..6).map(move |k| (jn[k], (j * 6 + k) as u32))),
         );
         Ok(Model {
             x0,
@@ -240,11 +212,7 @@ impl Model {
             materials,
             joints: mesh.joints.clone(),
             joint_law,
-            joint_tets: mesh
-                .joint_faces
-                .iter()
-                .map(|(a, b)| [a.tet, b.tet])
-                .collect(),
+            joint_tets: mesh.joint_faces.iter().map(|(a, b)| [a.tet, b.tet]).collect(),
             tet_gather,
             joint_gather,
             rigid_node,
@@ -259,11 +227,7 @@ impl Model {
     ///
     /// # Errors
     /// [`SolverError::Setup`] for a bad distribution parameter.
-    pub fn randomise_strengths(
-        &mut self,
-        dist: Distribution,
-        seed: u64,
-    ) -> Result<(), SolverError> {
+    pub fn randomise_strengths(&mut self, dist: Distribution, seed: u64) -> Result<(), SolverError> {
         let n = self.joint_law.len();
         let ft = strength_factors(n, dist, seed).map_err(SolverError::Setup)?;
         let c = strength_factors(n, dist, seed.wrapping_add(1)).map_err(SolverError::Setup)?;

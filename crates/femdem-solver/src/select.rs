@@ -68,9 +68,7 @@ pub fn select_nodes(mesh: &JointedMesh, s: &NodeSelection) -> Result<Vec<u32>, U
             *k &= (0..3).all(|a| c[a] >= lo[a] && c[a] <= hi[a]);
         }
     }
-    Ok((0..m.num_nodes() as u32)
-        .filter(|&i| keep[i as usize])
-        .collect())
+    Ok((0..m.num_nodes() as u32).filter(|&i| keep[i as usize]).collect())
 }
 
 /// The faces of a boundary group as outward node triples of the jointed

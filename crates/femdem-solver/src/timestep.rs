@@ -65,18 +65,13 @@ fn lanczos_max(
     let mut q: Vec<Vec3> = (0..n)
         .map(|i| {
             let h = |k: u64| {
-                let mut s = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-                    ^ k.wrapping_mul(0xD1B5_4A32_D192_ED03);
+                let mut s = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ k.wrapping_mul(0xD1B5_4A32_D192_ED03);
                 s ^= s >> 31;
                 s = s.wrapping_mul(0xBF58_476D_1CE4_E5B9);
                 s ^= s >> 29;
                 (s >> 11) as Real / (1u64 << 53) as Real - 0.5
             };
-            if free[i] {
-                Vec3::new(h(1), h(2), h(3))
-            } else {
-                Vec3::zeros()
-            }
+            if free[i] { Vec3::new(h(1), h(2), h(3)) } else { Vec3::zeros() }
         })
         .collect();
     let norm = |v: &[Vec3]| v.iter().map(|x| x.norm_squared()).sum::<Real>().sqrt();
@@ -115,11 +110,7 @@ fn lanczos_max(
                     0.0
                 }
             });
-            let top = t
-                .symmetric_eigenvalues()
-                .iter()
-                .copied()
-                .fold(Real::NEG_INFINITY, Real::max);
+            let top = t.symmetric_eigenvalues().iter().copied().fold(Real::NEG_INFINITY, Real::max);
             let converged = (top - estimate).abs() <= 1e-7 * top.abs();
             estimate = top;
             if converged || done {
@@ -146,15 +137,7 @@ fn lanczos_max(
 pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> StableStep {
     let n = model.num_nodes();
     let free: Vec<bool> = (0..n).map(|i| !held[i] && model.mass[i] > 0.0).collect();
-    let inv_sqrt_m: Vec<Real> = (0..n)
-        .map(|i| {
-            if free[i] {
-                1.0 / model.mass[i].sqrt()
-            } else {
-                0.0
-            }
-        })
-        .collect();
+    let inv_sqrt_m: Vec<Real> = (0..n).map(|i| if free[i] { 1.0 / model.mass[i].sqrt() } else { 0.0 }).collect();
     let min_size = model
         .joint_law
         .iter()
@@ -165,32 +148,17 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
     let zero_v = vec![Vec3::zeros(); n];
     // A scratch history: the probing moves are far below any peak opening.
     let mut history = vec![JointHistory::default(); model.joints.len()];
-    internal_forces(
-        model,
-        &model.x0,
-        &zero_v,
-        &mut history,
-        &mut ws,
-        Want::default(),
-    );
+    internal_forces(model, &model.x0, &zero_v, &mut history, &mut ws, Want::default());
     let f0 = ws.internal.clone();
     let mut xp = model.x0.clone();
 
     // Stiffness: K w ≈ −(f(x0 + εw) − f0)/ε, ε making the largest move 1e-6 of the smallest size.
     let (lambda, it_k) = lanczos_max(n, &free, max_iterations, |z| {
-        let wmax = z
-            .iter()
-            .zip(&inv_sqrt_m)
-            .map(|(v, s)| v.norm() * s)
-            .fold(0.0, Real::max);
+        let wmax = z.iter().zip(&inv_sqrt_m).map(|(v, s)| v.norm() * s).fold(0.0, Real::max);
         let eps = 1e-6 * min_size / wmax;
-        xp.par_iter_mut()
-            .enumerate()
-            .for_each(|(i, p)| *p = model.x0[i] + z[i] * (inv_sqrt_m[i] * eps));
+        xp.par_iter_mut().enumerate().for_each(|(i, p)| *p = model.x0[i] + z[i] * (inv_sqrt_m[i] * eps));
         internal_forces(model, &xp, &zero_v, &mut history, &mut ws, Want::default());
-        (0..n)
-            .map(|i| -(ws.internal[i] - f0[i]) * (inv_sqrt_m[i] / eps))
-            .collect()
+        (0..n).map(|i| -(ws.internal[i] - f0[i]) * (inv_sqrt_m[i] / eps)).collect()
     });
     // Damping: C w = −(f(x0, v = w) − f0), exactly linear in w.
     let viscous = model.materials.iter().any(|(_, m)| m.viscosity() > 0.0);
@@ -198,9 +166,7 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
         lanczos_max(n, &free, max_iterations, |z| {
             let w: Vec<Vec3> = z.iter().zip(&inv_sqrt_m).map(|(v, s)| v * *s).collect();
             internal_forces(model, &model.x0, &w, &mut history, &mut ws, Want::default());
-            (0..n)
-                .map(|i| -(ws.internal[i] - f0[i]) * inv_sqrt_m[i])
-                .collect()
+            (0..n).map(|i| -(ws.internal[i] - f0[i]) * inv_sqrt_m[i]).collect()
         })
     } else {
         (0.0, 0)
@@ -211,16 +177,8 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
     StableStep {
         omega_max: omega,
         beta_max: beta,
-        damping_ratio: if omega > 0.0 {
-            beta / (2.0 * omega)
-        } else {
-            0.0
-        },
-        critical: if rate > 0.0 {
-            2.0 / rate
-        } else {
-            Real::INFINITY
-        },
+        damping_ratio: if omega > 0.0 { beta / (2.0 * omega) } else { 0.0 },
+        critical: if rate > 0.0 { 2.0 / rate } else { Real::INFINITY },
         element_transit: element_transit(model),
         iterations: it_k + it_c,
     }
@@ -238,11 +196,7 @@ pub fn element_transit(model: &Model) -> Real {
                 .map(|f| femdem_core::tet::triangle_area(&p[f[0]], &p[f[1]], &p[f[2]]))
                 .fold(0.0, Real::max);
             let altitude = 3.0 * v / amax;
-            altitude
-                / model.materials[model.tet_material[t] as usize]
-                    .1
-                    .p_wave_speed()
-                * model.mass_scaling.sqrt()
+            altitude / model.materials[model.tet_material[t] as usize].1.p_wave_speed() * model.mass_scaling.sqrt()
         })
         .fold(Real::INFINITY, Real::min)
 }

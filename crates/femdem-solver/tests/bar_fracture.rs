@@ -21,11 +21,15 @@
 //!   bound): the crack faces are tilted by the jitter (more area, mixed-mode
 //!   damage).
 //!
-//! Not asserted, printed (`--nocapture`): the stored energy released when
-//! the joints fail (dominated by the shear part `2/3 f_s δsp`, ~3 J/m² for
-//! c = 15 MPa and p0 = 10 E, since the tilted crack faces slip past the tiny
-//! `δsp`), and the shear damage of joints next to the crack that do not
-//! fail; together they make the total fracture energy about 1.7 × G_f A.
+//! * the work done on the crack's joints (the energy the run's account
+//!   books as fracture) equals that plus the hardening energies, `2/3 f_t
+//!   δnp` and at most `2/3 f_s δsp` ≈ 3.3 J/m² for c = 15 MPa and p0 = 10 E
+//!   (the tilted crack faces slip past the tiny `δsp`), within 15%
+//!   (measured: 10% below that upper estimate, the shear hardening being
+//!   partial).
+//!
+//! Printed (`--nocapture`), not asserted: the joints damaged next to the
+//! crack without failing add ~0.2 J/m².
 
 mod common;
 
@@ -35,9 +39,7 @@ use femdem_fracture::{GfCalibration, JointParams, softening::softening_area};
 use femdem_material::Law;
 use femdem_mesh::insert_joints;
 use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{
-    Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want, stable_time_step,
-};
+use femdem_solver::{Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want, stable_time_step};
 
 const FT: f64 = 3e6;
 /// Pull velocity, m/s: the peak (strain f_t/E over the bar) is reached after
@@ -45,7 +47,7 @@ const FT: f64 = 3e6;
 const V: f64 = 0.05;
 const GF: f64 = 10.0;
 
-fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64) {
+fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
     let (w, len, h) = (0.01, 0.02, 0.0025);
     let mesh = box_mesh([0.0; 3], [w, w, len], h, 0.1, true);
     let jointed = insert_joints(&mesh).unwrap();
@@ -60,49 +62,26 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64) {
         calibration,
     };
     let viscosity = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 0.1;
-    let behaviour = [RegionBehaviour::Deformable {
-        law: Law::NeoHookean,
-        material: rock(viscosity),
-        joints: Some(params),
-    }];
+    let behaviour =
+        [RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(viscosity), joints: Some(params) }];
     let model = Model::new(&jointed, &behaviour, 1.0).unwrap();
     let sel = |group: &str, within: Option<([f64; 3], [f64; 3])>| {
-        select_nodes(
-            &jointed,
-            &NodeSelection {
-                group: Some(group.into()),
-                within,
-                ..Default::default()
-            },
-        )
-        .unwrap()
+        select_nodes(&jointed, &NodeSelection { group: Some(group.into()), within, ..Default::default() }).unwrap()
     };
     let eps = 1e-9;
     let loads = Loads {
         fixed: vec![
-            Fixed {
-                nodes: sel("zmin", None),
-                components: [false, false, true],
-            },
+            Fixed { nodes: sel("zmin", None), components: [false, false, true] },
             // Roller supports: x held on the edge x = 0, y on the edge y = 0.
-            Fixed {
-                nodes: sel("zmin", Some(([-eps; 3], [eps, w + eps, eps]))),
-                components: [true, false, false],
-            },
-            Fixed {
-                nodes: sel("zmin", Some(([-eps; 3], [w + eps, eps, eps]))),
-                components: [false, true, false],
-            },
+            Fixed { nodes: sel("zmin", Some(([-eps; 3], [eps, w + eps, eps]))), components: [true, false, false] },
+            Fixed { nodes: sel("zmin", Some(([-eps; 3], [w + eps, eps, eps]))), components: [false, true, false] },
         ],
         drives: vec![VelocityDrive {
             name: "pull".into(),
             nodes: sel("zmax", None),
             velocity: Vec3::new(0.0, 0.0, V),
             components: [false, false, true],
-            ramp: Ramp {
-                ramp_time: 5e-5,
-                stop_time: None,
-            },
+            ramp: Ramp { ramp_time: 5e-5, stop_time: None },
         }],
         ..Loads::default()
     };
@@ -114,31 +93,16 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64) {
     let target = 1.5 * joint.delta_nc + 2.0 * FT / 26e9 * len;
     let end = 5e-5 / 2.0 + target / V;
     while s.state.time < end {
-        s.step(Want {
-            energy: false,
-            ..Want::default()
-        });
+        s.step(Want { energy: false, ..Want::default() });
         peak = peak.max(s.report.drive_forces[0].z);
     }
-    s.step(Want {
-        energy: true,
-        ..Want::default()
-    });
+    s.step(Want { energy: true, ..Want::default() });
     let zs: Vec<f64> = s.failures.iter().map(|f| f.centroid.z).collect();
-    let crack: f64 = s
-        .state
-        .joints
-        .iter()
-        .filter(|h| h.failed)
-        .map(|h| h.dissipated)
-        .sum();
+    let work: f64 = s.state.joints.iter().filter(|h| h.failed).map(|h| h.work).sum();
+    let crack: f64 = s.state.joints.iter().filter(|h| h.failed).map(|h| h.dissipated).sum();
+    eprintln!("work done on the crack's joints {:.3} J/m²", work / (w * w));
     let released: f64 = s.state.joints.iter().map(|h| h.released).sum();
-    let damaged = s
-        .state
-        .joints
-        .iter()
-        .filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0))
-        .count();
+    let damaged = s.state.joints.iter().filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0)).count();
     let residual = s.report.drive_forces[0].z;
     let a = w * w;
     eprintln!(
@@ -151,33 +115,25 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64) {
         released / a,
         s.energies.fracture / a
     );
-    (peak / a, zs, crack / a, residual)
+    (peak / a, zs, crack / a, work / a, residual)
 }
 
+/// `per_area`: the softening energy per unit area of the calibration.
 fn check(calibration: GfCalibration, per_area: f64) {
-    let (strength, zs, dissipated, residual) = pull(calibration);
-    assert!(
-        (strength / FT - 1.0).abs() < 0.05,
-        "peak stress {strength} vs f_t {FT}"
-    );
+    let (strength, zs, dissipated, work, residual) = pull(calibration);
+    assert!((strength / FT - 1.0).abs() < 0.05, "peak stress {strength} vs f_t {FT}");
     assert!(!zs.is_empty(), "the bar did not break");
-    let (lo, hi) = zs
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| {
-            (a.min(z), b.max(z))
-        });
-    assert!(
-        hi - lo <= 2.0 * 0.0025 + 1e-9,
-        "failed joints spread over z in [{lo}, {hi}]: more than one crack"
-    );
-    assert!(
-        residual.abs() < 0.01 * strength * 1e-4,
-        "the halves still pull: {residual} N"
-    );
-    assert!(
-        (dissipated / per_area - 1.0).abs() < 0.15,
-        "dissipated {dissipated} J/m² vs {per_area} J/m²"
-    );
+    let (lo, hi) = zs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| (a.min(z), b.max(z)));
+    assert!(hi - lo <= 2.0 * 0.0025 + 1e-9, "failed joints spread over z in [{lo}, {hi}]: more than one crack");
+    assert!(residual.abs() < 0.01 * strength * 1e-4, "the halves still pull: {residual} N");
+    assert!((dissipated / per_area - 1.0).abs() < 0.15, "dissipated {dissipated} J/m² vs {per_area} J/m²");
+    // All the work done on the crack: softening plus the hardening branches
+    // (2/3 f_t δnp, and at most 2/3 f_s δsp ≈ 3.3 J/m² in shear with
+    // f_s ≈ c once the crack is open; the tilted faces slip part of the way).
+    let h = 0.00285;
+    let hardening = 2.0 / 3.0 * FT * (2.0 * FT * h / 2.6e11) + 2.0 / 3.0 * 15e6 * (2.0 * 15e6 * h / 2.6e11);
+    let expected = per_area + hardening;
+    assert!((work / expected - 1.0).abs() < 0.15, "work on the crack {work} J/m² vs {expected} J/m²");
 }
 
 #[test]

@@ -16,69 +16,39 @@ use femdem_solver::{Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, Veloci
 fn run() -> Solver {
     let mesh = box_mesh([0.0; 3], [0.1, 0.05, 0.05], 0.008, 0.12, true);
     let (jointed, m) = model(&mesh, Law::NeoHookean, rock(200.0), 10.0 * 26e9);
-    let sel = |g: &str| {
-        select_nodes(
-            &jointed,
-            &NodeSelection {
-                group: Some(g.into()),
-                ..Default::default()
-            },
-        )
-        .unwrap()
-    };
+    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
     let loads = Loads {
         gravity: Vec3::new(0.0, 0.0, -9.81),
-        fixed: vec![Fixed {
-            nodes: sel("xmin"),
-            components: [true; 3],
-        }],
+        fixed: vec![Fixed { nodes: sel("xmin"), components: [true; 3] }],
         drives: vec![VelocityDrive {
             name: "pull".into(),
             nodes: sel("xmax"),
             velocity: Vec3::new(0.05, 0.0, 0.0),
             components: [true, false, false],
-            ramp: Ramp {
-                ramp_time: 1e-5,
-                stop_time: None,
-            },
+            ramp: Ramp { ramp_time: 1e-5, stop_time: None },
         }],
         surfaces: vec![SurfaceLoad {
             name: "top".into(),
             faces: group_faces(&jointed, "zmax").unwrap(),
             kind: SurfaceKind::Pressure(1e6),
-            ramp: Ramp {
-                ramp_time: 1e-5,
-                stop_time: None,
-            },
+            ramp: Ramp { ramp_time: 1e-5, stop_time: None },
         }],
     };
     let mut s = solver(m, loads, 0.9);
     for n in 0..300 {
-        s.step(Want {
-            energy: n % 10 == 0,
-            stress: n == 299,
-            ..Want::default()
-        });
+        s.step(Want { energy: n % 10 == 0, stress: n == 299, ..Want::default() });
     }
     s
 }
 
 #[test]
 fn one_and_two_threads_give_identical_bits() {
-    let pool = |n| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .unwrap()
-    };
+    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
     let a = pool(1).install(run);
     let b = pool(2).install(run);
     assert_eq!(a.state, b.state, "positions/velocities differ");
     assert_eq!(a.energies, b.energies);
     assert_eq!(a.report, b.report);
     assert_eq!(a.workspace.stress, b.workspace.stress);
-    assert!(
-        a.state.x.iter().zip(&a.model.x0).any(|(x, x0)| x != x0),
-        "the block must move"
-    );
+    assert!(a.state.x.iter().zip(&a.model.x0).any(|(x, x0)| x != x0), "the block must move");
 }

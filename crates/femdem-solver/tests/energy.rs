@@ -26,24 +26,14 @@ fn undamped_energy_drifts_less_than_half_a_percent_over_10000_steps() {
     let (_, m) = model(&mesh, Law::NeoHookean, rock(0.0), 10.0 * 26e9);
     let mut s = solver(m, Loads::default(), 0.9);
     // A smooth initial velocity field of about 0.05 m/s (small strain).
-    s.set_velocity(|x| {
-        Vec3::new((x.y * 60.0).sin(), (x.z * 70.0).cos(), (x.x * 50.0).sin()) * 0.05
-    });
-    let energy = |s: &femdem_solver::Solver| {
-        s.energies.kinetic + s.energies.tet_elastic + s.energies.joint_elastic
-    };
-    s.step(Want {
-        energy: true,
-        ..Want::default()
-    });
+    s.set_velocity(|x| Vec3::new((x.y * 60.0).sin(), (x.z * 70.0).cos(), (x.x * 50.0).sin()) * 0.05);
+    let energy = |s: &femdem_solver::Solver| s.energies.kinetic + s.energies.tet_elastic + s.energies.joint_elastic;
+    s.step(Want { energy: true, ..Want::default() });
     let e0 = energy(&s);
     let mut worst: Real = 0.0;
     for n in 1..10_000 {
         let want = n % 100 == 0;
-        s.step(Want {
-            energy: want,
-            ..Want::default()
-        });
+        s.step(Want { energy: want, ..Want::default() });
         if want {
             worst = worst.max((energy(&s) - e0).abs() / e0);
         }
@@ -56,22 +46,8 @@ fn undamped_energy_drifts_less_than_half_a_percent_over_10000_steps() {
 fn damped_driven_block_balances_its_energy_account() {
     let mesh = box_mesh([0.0; 3], [0.05, 0.04, 0.03], 0.01, 0.1, true);
     let (jointed, m) = model(&mesh, Law::NeoHookean, rock(300.0), 10.0 * 26e9);
-    let bottom = select_nodes(
-        &jointed,
-        &NodeSelection {
-            group: Some("zmin".into()),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let top = select_nodes(
-        &jointed,
-        &NodeSelection {
-            group: Some("zmax".into()),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let bottom = select_nodes(&jointed, &NodeSelection { group: Some("zmin".into()), ..Default::default() }).unwrap();
+    let top = select_nodes(&jointed, &NodeSelection { group: Some("zmax".into()), ..Default::default() }).unwrap();
     let loads = Loads {
         drives: vec![
             VelocityDrive {
@@ -86,27 +62,16 @@ fn damped_driven_block_balances_its_energy_account() {
                 nodes: top,
                 velocity: Vec3::new(0.0, 0.0, 0.02),
                 components: [false, false, true],
-                ramp: Ramp {
-                    ramp_time: 2e-5,
-                    stop_time: None,
-                },
+                ramp: Ramp { ramp_time: 2e-5, stop_time: None },
             },
         ],
         ..Loads::default()
     };
     let mut s = solver(m, loads, 0.9);
     for n in 0..3000 {
-        s.step(Want {
-            energy: n % 100 == 99,
-            ..Want::default()
-        });
+        s.step(Want { energy: n % 100 == 99, ..Want::default() });
     }
     let e = s.energies;
     assert!(e.external_work > 0.0 && e.damping > 0.0);
-    assert!(
-        e.balance().abs() < 0.01 * e.external_work,
-        "balance {} vs work {}",
-        e.balance(),
-        e.external_work
-    );
+    assert!(e.balance().abs() < 0.01 * e.external_work, "balance {} vs work {}", e.balance(), e.external_work);
 }

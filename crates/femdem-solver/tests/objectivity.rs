@@ -43,24 +43,13 @@ fn rigid_rotation_by_90_degrees_makes_no_stress() {
         &vec![Vec3::zeros(); x.len()],
         &mut history(&m),
         &mut ws,
-        Want {
-            stress: true,
-            ..Want::default()
-        },
+        Want { stress: true, ..Want::default() },
     );
     let worst = ws.stress.iter().map(|s| s.norm()).fold(0.0, Real::max);
     assert!(worst / 26e9 < 1e-9, "max |σ|/E = {}", worst / 26e9);
-    let joint_force = ws
-        .joint_slots
-        .iter()
-        .flatten()
-        .map(|f| f.norm())
-        .fold(0.0, Real::max);
+    let joint_force = ws.joint_slots.iter().flatten().map(|f| f.norm()).fold(0.0, Real::max);
     // A joint force of 1e-9·E·h² would be the same relative level.
-    assert!(
-        joint_force < 1e-9 * 26e9 * 1e-4,
-        "max joint force {joint_force} N"
-    );
+    assert!(joint_force < 1e-9 * 26e9 * 1e-4, "max joint force {joint_force} N");
 }
 
 #[test]
@@ -72,30 +61,10 @@ fn rotated_stretch_gives_rotated_stress() {
     let mut ws = Workspace::new(&m);
     let zero = vec![Vec3::zeros(); m.num_nodes()];
     let stretched: Vec<Vec3> = m.x0.iter().map(|p| u * p).collect();
-    internal_forces(
-        &m,
-        &stretched,
-        &zero,
-        &mut history(&m),
-        &mut ws,
-        Want {
-            stress: true,
-            ..Want::default()
-        },
-    );
+    internal_forces(&m, &stretched, &zero, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() });
     let s0 = ws.stress[0];
     let rotated: Vec<Vec3> = m.x0.iter().map(|p| r * u * p).collect();
-    internal_forces(
-        &m,
-        &rotated,
-        &zero,
-        &mut history(&m),
-        &mut ws,
-        Want {
-            stress: true,
-            ..Want::default()
-        },
-    );
+    internal_forces(&m, &rotated, &zero, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() });
     let expected = r * s0 * r.transpose();
     assert!((ws.stress[0] - expected).norm() < 1e-10 * s0.norm());
 }
@@ -108,39 +77,22 @@ fn free_spin_keeps_angular_momentum_and_energy() {
     let omega = Vec3::new(0.0, 0.0, 200.0); // rad/s: rim speed 8 m/s
     s.set_velocity(|x| omega.cross(x));
     let momentum = |s: &femdem_solver::Solver| -> Vec3 {
-        (0..s.model.num_nodes())
-            .map(|i| s.state.x[i].cross(&s.state.v[i]) * s.model.mass[i])
-            .sum()
+        (0..s.model.num_nodes()).map(|i| s.state.x[i].cross(&s.state.v[i]) * s.model.mass[i]).sum()
     };
-    let energy = |s: &femdem_solver::Solver| {
-        s.energies.kinetic + s.energies.tet_elastic + s.energies.joint_elastic
-    };
-    s.step(Want {
-        energy: true,
-        ..Want::default()
-    });
+    let energy = |s: &femdem_solver::Solver| s.energies.kinetic + s.energies.tet_elastic + s.energies.joint_elastic;
+    s.step(Want { energy: true, ..Want::default() });
     let (l0, e0) = (momentum(&s), energy(&s));
     let mut worst_e: Real = 0.0;
     for n in 0..2000 {
-        s.step(Want {
-            energy: n % 50 == 0,
-            ..Want::default()
-        });
+        s.step(Want { energy: n % 50 == 0, ..Want::default() });
         if n % 50 == 0 {
             worst_e = worst_e.max((energy(&s) - e0).abs() / e0);
         }
     }
     let l1 = momentum(&s);
-    assert!(
-        (l1 - l0).norm() / l0.norm() < 1e-10,
-        "angular momentum drift {}",
-        (l1 - l0).norm() / l0.norm()
-    );
+    assert!((l1 - l0).norm() / l0.norm() < 1e-10, "angular momentum drift {}", (l1 - l0).norm() / l0.norm());
     assert!(worst_e < 1e-3, "energy drift {worst_e}");
     // The body turned by ω t, and the stresses stay small (centrifugal only).
     let turned = 200.0 * s.state.time;
-    assert!(
-        turned > 0.01,
-        "the test must turn the body noticeably, turned {turned} rad"
-    );
+    assert!(turned > 0.01, "the test must turn the body noticeably, turned {turned} rad");
 }

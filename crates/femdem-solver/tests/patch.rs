@@ -28,31 +28,16 @@ fn run_patch(breakable: bool, law: Law) {
     let mesh = box_mesh([0.0; 3], [0.1, 0.08, 0.06], 0.02, 0.12, breakable);
     let material = rock(0.0);
     let (jointed, m) = model(&mesh, law, material, 10.0 * 26e9);
-    let g = Mat3::new(
-        1.0e-3, 2.0e-4, -3.0e-4, 5.0e-4, -8.0e-4, 1.0e-4, -2.0e-4, 3.0e-4, 6.0e-4,
-    );
+    let g = Mat3::new(1.0e-3, 2.0e-4, -3.0e-4, 5.0e-4, -8.0e-4, 1.0e-4, -2.0e-4, 3.0e-4, 6.0e-4);
     let x: Vec<Vec3> = m.x0.iter().map(|p| p + g * p).collect();
     let v = vec![Vec3::zeros(); x.len()];
     let mut ws = Workspace::new(&m);
-    internal_forces(
-        &m,
-        &x,
-        &v,
-        &mut history(&m),
-        &mut ws,
-        Want {
-            stress: true,
-            ..Want::default()
-        },
-    );
+    internal_forces(&m, &x, &v, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() });
 
     let expected = cauchy_stress(law, &material, &(Mat3::identity() + g), &Mat3::zeros());
     let scale = expected.norm();
     for (t, s) in ws.stress.iter().enumerate() {
-        assert!(
-            (s - expected).norm() <= 1e-12 * scale,
-            "tet {t}: {s} vs {expected}"
-        );
+        assert!((s - expected).norm() <= 1e-12 * scale, "tet {t}: {s} vs {expected}");
     }
 
     // Sum the forces on the copies of each original vertex.
@@ -68,19 +53,12 @@ fn run_patch(breakable: bool, law: Law) {
         let c = mesh.coords[vtx];
         if (0..3).all(|a| c[a] > lo[a] + 1e-9 && c[a] < hi[a] - 1e-9) {
             interior += 1;
-            assert!(
-                f.norm() <= 1e-10 * typical,
-                "vertex {vtx}: net force {}",
-                f.norm()
-            );
+            assert!(f.norm() <= 1e-10 * typical, "vertex {vtx}: net force {}", f.norm());
         }
     }
     assert!(interior > 10, "the patch must have interior vertices");
     if breakable {
-        assert!(
-            ws.joint_slots.iter().flatten().all(|f| f.norm() == 0.0),
-            "affine motion opens no joint"
-        );
+        assert!(ws.joint_slots.iter().flatten().all(|f| f.norm() == 0.0), "affine motion opens no joint");
     }
 }
 

@@ -49,27 +49,17 @@ fn run(s: &mut Solver, steps: usize) -> (Real, Real) {
     for _ in 0..100 {
         s.step(Want::default());
     }
-    s.step(Want {
-        energy: true,
-        ..Want::default()
-    });
+    s.step(Want { energy: true, ..Want::default() });
     let e0 = energy(s);
     let mut worst: Real = 1.0;
     for n in 0..steps {
-        s.step(Want {
-            energy: n % 20 == 0,
-            ..Want::default()
-        });
+        s.step(Want { energy: n % 20 == 0, ..Want::default() });
         if n % 20 == 0 {
             let r = energy(s) / e0;
             if !r.is_finite() {
                 return (e0, Real::INFINITY);
             }
-            worst = if (r - 1.0).abs() > (worst - 1.0).abs() {
-                r
-            } else {
-                worst
-            };
+            worst = if (r - 1.0).abs() > (worst - 1.0).abs() { r } else { worst };
         }
     }
     (e0, worst)
@@ -79,31 +69,19 @@ fn run(s: &mut Solver, steps: usize) -> (Real, Real) {
 fn step_above_the_limit_blows_up_and_safety_step_stays_bounded() {
     let (mut above, stable) = excited(10.0, 0.1, 0.0);
     above.dt = 1.05 * stable.critical;
-    above.step(Want {
-        energy: true,
-        ..Want::default()
-    });
+    above.step(Want { energy: true, ..Want::default() });
     let e0 = energy(&above);
     for _ in 0..100 {
         above.step(Want::default());
     }
-    above.step(Want {
-        energy: true,
-        ..Want::default()
-    });
+    above.step(Want { energy: true, ..Want::default() });
     let growth = energy(&above) / e0;
-    assert!(
-        growth > 1e3 || !growth.is_finite(),
-        "energy grew only ×{growth} at 1.05 Δt_crit"
-    );
+    assert!(growth > 1e3 || !growth.is_finite(), "energy grew only ×{growth} at 1.05 Δt_crit");
 
     let (mut safe, stable) = excited(10.0, 0.1, 0.0);
     safe.dt = 0.9 * stable.critical;
     let (_, growth) = run(&mut safe, 2000);
-    assert!(
-        (growth - 1.0).abs() < 0.01,
-        "energy changed ×{growth} at 0.9 Δt_crit"
-    );
+    assert!((growth - 1.0).abs() < 0.01, "energy changed ×{growth} at 0.9 Δt_crit");
 }
 
 #[test]
@@ -112,10 +90,7 @@ fn stiff_penalty_and_distorted_mesh_are_stable_at_the_estimate() {
         let (mut s, stable) = excited(p0, jitter, 0.0);
         s.dt = 0.9 * stable.critical;
         let (_, growth) = run(&mut s, 1000);
-        assert!(
-            (growth - 1.0).abs() < 0.01,
-            "p0 = {p0} E: energy changed ×{growth}"
-        );
+        assert!((growth - 1.0).abs() < 0.01, "p0 = {p0} E: energy changed ×{growth}");
     }
 }
 

@@ -100,9 +100,7 @@ pub enum VtkError {
         reason: &'static str,
     },
     /// A series time that is NaN or infinite, or not after the previous one.
-    #[error(
-        "series time {time:e} must be finite and later than the previous step's ({previous:?})"
-    )]
+    #[error("series time {time:e} must be finite and later than the previous step's ({previous:?})")]
     BadTime {
         /// The time given.
         time: f64,
@@ -131,9 +129,6 @@ pub enum VtkError {
 impl VtkError {
     /// Wraps an I/O error with the path it concerns.
     pub(crate) fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
-        VtkError::Io {
-            path: path.into(),
-            source,
-        }
+        VtkError::Io { path: path.into(), source }
     }
 }

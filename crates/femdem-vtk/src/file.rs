@@ -71,16 +71,10 @@ pub(crate) fn temp_path(path: &Path) -> PathBuf {
 /// met is reported (with the temporary file's path) in preference to
 /// whatever `body` returned, so `body` may ignore write errors. On failure
 /// the temporary file is removed and `path` is left untouched.
-pub(crate) fn replace_file(
-    path: &Path,
-    body: impl FnOnce(&mut Sink) -> Result<(), VtkError>,
-) -> Result<(), VtkError> {
+pub(crate) fn replace_file(path: &Path, body: impl FnOnce(&mut Sink) -> Result<(), VtkError>) -> Result<(), VtkError> {
     let tmp = temp_path(path);
     let file = File::create(&tmp).map_err(|e| VtkError::io(&tmp, e))?;
-    let mut sink = Sink {
-        inner: BufWriter::with_capacity(BUFFER, file),
-        error: None,
-    };
+    let mut sink = Sink { inner: BufWriter::with_capacity(BUFFER, file), error: None };
     let result = body(&mut sink);
     // An I/O error met while writing explains any other failure of `body`.
     sink.flush().ok();
@@ -178,10 +172,7 @@ mod tests {
         let path = dir.join("x.txt");
         let err = replace_file(&path, |sink| {
             sink.write_all(b"partial").unwrap();
-            Err(VtkError::RowLength {
-                expected: 1,
-                actual: 2,
-            })
+            Err(VtkError::RowLength { expected: 1, actual: 2 })
         })
         .unwrap_err();
         assert!(matches!(err, VtkError::RowLength { .. }));

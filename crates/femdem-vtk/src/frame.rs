@@ -57,11 +57,7 @@ pub struct Field<'a> {
 impl<'a> Field<'a> {
     /// A field of `components` values per point or cell.
     pub fn new(name: &'a str, components: usize, values: &'a [f64]) -> Self {
-        Field {
-            name,
-            components,
-            values,
-        }
+        Field { name, components, values }
     }
 
     /// A scalar field: one value per point or cell.
@@ -86,10 +82,7 @@ impl<'a> Field<'a> {
             return Err(VtkError::EmptyFieldName { location });
         }
         if self.components == 0 || u32::try_from(self.components).is_err() {
-            return Err(VtkError::BadComponents {
-                location,
-                name: self.name.to_owned(),
-            });
+            return Err(VtkError::BadComponents { location, name: self.name.to_owned() });
         }
         let expected = self.components.checked_mul(count);
         if expected != Some(self.values.len()) {
@@ -131,13 +124,7 @@ pub struct Frame<'a> {
 impl<'a> Frame<'a> {
     /// A frame with no fields.
     pub fn new(points: &'a [[f64; 3]], tets: &'a [[u32; 4]]) -> Self {
-        Frame {
-            points,
-            tets,
-            triangles: &[],
-            point_fields: &[],
-            cell_fields: &[],
-        }
+        Frame { points, tets, triangles: &[], point_fields: &[], cell_fields: &[] }
     }
 
     /// The same frame with these triangles (after the tets).
@@ -152,18 +139,12 @@ impl<'a> Frame<'a> {
 
     /// The same frame with these point fields.
     pub fn with_point_fields(self, point_fields: &'a [Field<'a>]) -> Self {
-        Frame {
-            point_fields,
-            ..self
-        }
+        Frame { point_fields, ..self }
     }
 
     /// The same frame with these cell fields.
     pub fn with_cell_fields(self, cell_fields: &'a [Field<'a>]) -> Self {
-        Frame {
-            cell_fields,
-            ..self
-        }
+        Frame { cell_fields, ..self }
     }
 
     /// Checks that every field has `components × count` values, that field
@@ -174,36 +155,20 @@ impl<'a> Frame<'a> {
     pub fn validate(&self) -> Result<(), VtkError> {
         let max = u32::MAX as usize;
         if self.points.len() > max {
-            return Err(VtkError::TooLarge {
-                what: "points",
-                count: self.points.len(),
-                max,
-            });
+            return Err(VtkError::TooLarge { what: "points", count: self.points.len(), max });
         }
         if self.num_cells() > max {
-            return Err(VtkError::TooLarge {
-                what: "cells",
-                count: self.num_cells(),
-                max,
-            });
+            return Err(VtkError::TooLarge { what: "cells", count: self.num_cells(), max });
         }
         let num_points = self.points.len();
         for (tet, nodes) in self.tets.iter().enumerate() {
             if let Some(&node) = nodes.iter().find(|&&n| n as usize >= num_points) {
-                return Err(VtkError::NodeOutOfRange {
-                    tet,
-                    node,
-                    num_points,
-                });
+                return Err(VtkError::NodeOutOfRange { tet, node, num_points });
             }
         }
         for (k, nodes) in self.triangles.iter().enumerate() {
             if let Some(&node) = nodes.iter().find(|&&n| n as usize >= num_points) {
-                return Err(VtkError::NodeOutOfRange {
-                    tet: self.tets.len() + k,
-                    node,
-                    num_points,
-                });
+                return Err(VtkError::NodeOutOfRange { tet: self.tets.len() + k, node, num_points });
             }
         }
         check_fields(self.point_fields, Location::Point, num_points)?;
@@ -218,10 +183,7 @@ fn check_fields(fields: &[Field<'_>], location: Location, count: usize) -> Resul
     for field in fields {
         field.validate(location, count)?;
         if !seen.insert(field.name) {
-            return Err(VtkError::DuplicateField {
-                location,
-                name: field.name.to_owned(),
-            });
+            return Err(VtkError::DuplicateField { location, name: field.name.to_owned() });
         }
     }
     Ok(())
@@ -231,13 +193,7 @@ fn check_fields(fields: &[Field<'_>], location: Location, count: usize) -> Resul
 mod tests {
     use super::*;
 
-    const POINTS: [[f64; 3]; 5] = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [1.0, 1.0, 1.0],
-    ];
+    const POINTS: [[f64; 3]; 5] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
     const TETS: [[u32; 4]; 2] = [[0, 1, 2, 3], [1, 2, 3, 4]];
 
     #[test]
@@ -246,13 +202,8 @@ mod tests {
         let stress = [[1.0; 9]; 2];
         let region = [0.0, 1.0];
         let pf = [Field::vector("displacement", &disp)];
-        let cf = [
-            Field::tensor("stress", &stress),
-            Field::scalar("region", &region),
-        ];
-        let frame = Frame::new(&POINTS, &TETS)
-            .with_point_fields(&pf)
-            .with_cell_fields(&cf);
+        let cf = [Field::tensor("stress", &stress), Field::scalar("region", &region)];
+        let frame = Frame::new(&POINTS, &TETS).with_point_fields(&pf).with_cell_fields(&cf);
         frame.validate().unwrap();
     }
 
@@ -265,18 +216,9 @@ mod tests {
     fn point_field_of_wrong_length_is_rejected() {
         let values = [0.0; 14];
         let pf = [Field::new("displacement", 3, &values)];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_point_fields(&pf)
-            .validate()
-            .unwrap_err();
+        let err = Frame::new(&POINTS, &TETS).with_point_fields(&pf).validate().unwrap_err();
         match err {
-            VtkError::FieldLength {
-                location,
-                expected,
-                actual,
-                count,
-                ..
-            } => {
+            VtkError::FieldLength { location, expected, actual, count, .. } => {
                 assert_eq!(location, Location::Point);
                 assert_eq!((expected, actual, count), (15, 14, 5));
             }
@@ -288,32 +230,15 @@ mod tests {
     fn cell_field_sized_for_points_is_rejected() {
         let values = [0.0; 5];
         let cf = [Field::scalar("region", &values)];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_cell_fields(&cf)
-            .validate()
-            .unwrap_err();
-        assert!(
-            matches!(
-                err,
-                VtkError::FieldLength {
-                    location: Location::Cell,
-                    expected: 2,
-                    actual: 5,
-                    ..
-                }
-            ),
-            "{err}"
-        );
+        let err = Frame::new(&POINTS, &TETS).with_cell_fields(&cf).validate().unwrap_err();
+        assert!(matches!(err, VtkError::FieldLength { location: Location::Cell, expected: 2, actual: 5, .. }), "{err}");
         assert!(err.to_string().contains("cell field `region`"), "{err}");
     }
 
     #[test]
     fn zero_components_are_rejected_even_with_no_values() {
         let pf = [Field::new("nothing", 0, &[])];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_point_fields(&pf)
-            .validate()
-            .unwrap_err();
+        let err = Frame::new(&POINTS, &TETS).with_point_fields(&pf).validate().unwrap_err();
         assert!(matches!(err, VtkError::BadComponents { .. }), "{err}");
     }
 
@@ -321,17 +246,11 @@ mod tests {
     fn empty_and_duplicate_names_are_rejected() {
         let v = [0.0; 2];
         let cf = [Field::scalar("", &v)];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_cell_fields(&cf)
-            .validate()
-            .unwrap_err();
+        let err = Frame::new(&POINTS, &TETS).with_cell_fields(&cf).validate().unwrap_err();
         assert!(matches!(err, VtkError::EmptyFieldName { .. }), "{err}");
 
         let cf = [Field::scalar("a", &v), Field::scalar("a", &v)];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_cell_fields(&cf)
-            .validate()
-            .unwrap_err();
+        let err = Frame::new(&POINTS, &TETS).with_cell_fields(&cf).validate().unwrap_err();
         assert!(matches!(err, VtkError::DuplicateField { .. }), "{err}");
     }
 
@@ -341,11 +260,7 @@ mod tests {
         let cv = [0.0; 2];
         let pf = [Field::scalar("damage", &pv)];
         let cf = [Field::scalar("damage", &cv)];
-        Frame::new(&POINTS, &TETS)
-            .with_point_fields(&pf)
-            .with_cell_fields(&cf)
-            .validate()
-            .unwrap();
+        Frame::new(&POINTS, &TETS).with_point_fields(&pf).with_cell_fields(&cf).validate().unwrap();
     }
 
     #[test]
@@ -353,11 +268,7 @@ mod tests {
         let tets = [[0, 1, 2, 3], [1, 2, 5, 4]];
         let err = Frame::new(&POINTS, &tets).validate().unwrap_err();
         match err {
-            VtkError::NodeOutOfRange {
-                tet,
-                node,
-                num_points,
-            } => assert_eq!((tet, node, num_points), (1, 5, 5)),
+            VtkError::NodeOutOfRange { tet, node, num_points } => assert_eq!((tet, node, num_points), (1, 5, 5)),
             other => panic!("unexpected error {other}"),
         }
     }
@@ -365,17 +276,11 @@ mod tests {
     #[test]
     fn oversized_component_counts_are_rejected() {
         let pf = [Field::new("x", usize::MAX, &[])];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_point_fields(&pf)
-            .validate()
-            .unwrap_err();
+        let err = Frame::new(&POINTS, &TETS).with_point_fields(&pf).validate().unwrap_err();
         assert!(matches!(err, VtkError::BadComponents { .. }), "{err}");
 
         let pf = [Field::new("x", u32::MAX as usize, &[])];
-        let err = Frame::new(&POINTS, &TETS)
-            .with_point_fields(&pf)
-            .validate()
-            .unwrap_err();
+        let err = Frame::new(&POINTS, &TETS).with_point_fields(&pf).validate().unwrap_err();
         assert!(matches!(err, VtkError::FieldLength { .. }), "{err}");
     }
 }

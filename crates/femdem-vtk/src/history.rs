@@ -33,10 +33,7 @@ impl HistoryWriter {
     /// RFC 4180.
     pub fn create(path: &Path, columns: &[&str]) -> Result<Self, VtkError> {
         if columns.is_empty() {
-            return Err(VtkError::InvalidColumn {
-                name: String::new(),
-                reason: "a history needs at least one column",
-            });
+            return Err(VtkError::InvalidColumn { name: String::new(), reason: "a history needs at least one column" });
         }
         let mut header = String::new();
         for (i, &name) in columns.iter().enumerate() {
@@ -48,10 +45,7 @@ impl HistoryWriter {
                 None
             };
             if let Some(reason) = reason {
-                return Err(VtkError::InvalidColumn {
-                    name: name.to_owned(),
-                    reason,
-                });
+                return Err(VtkError::InvalidColumn { name: name.to_owned(), reason });
             }
             if i > 0 {
                 header.push(',');
@@ -83,10 +77,7 @@ impl HistoryWriter {
     /// Appends one row; `values` must have one value per column.
     pub fn row(&mut self, values: &[f64]) -> Result<(), VtkError> {
         if values.len() != self.columns {
-            return Err(VtkError::RowLength {
-                expected: self.columns,
-                actual: values.len(),
-            });
+            return Err(VtkError::RowLength { expected: self.columns, actual: values.len() });
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
@@ -113,9 +104,7 @@ impl HistoryWriter {
     }
 
     fn write_line(&mut self, line: &str) -> Result<(), VtkError> {
-        self.out
-            .write_all(line.as_bytes())
-            .map_err(|e| VtkError::io(&self.path, e))
+        self.out.write_all(line.as_bytes()).map_err(|e| VtkError::io(&self.path, e))
     }
 }
 
@@ -144,15 +133,8 @@ mod tests {
     /// Parses a CSV written by `HistoryWriter` (unquoted fields only).
     fn parse(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
         let mut lines = text.lines();
-        let header = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::to_owned)
-            .collect();
-        let rows = lines
-            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-            .collect();
+        let header = lines.next().unwrap().split(',').map(str::to_owned).collect();
+        let rows = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
         (header, rows)
     }
 
@@ -213,16 +195,7 @@ mod tests {
         let path = temp_path("wrong_len.csv");
         let mut h = HistoryWriter::create(&path, &["a", "b"]).unwrap();
         let err = h.row(&[1.0]).unwrap_err();
-        assert!(
-            matches!(
-                err,
-                VtkError::RowLength {
-                    expected: 2,
-                    actual: 1
-                }
-            ),
-            "{err}"
-        );
+        assert!(matches!(err, VtkError::RowLength { expected: 2, actual: 1 }), "{err}");
         h.flush().unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "a,b\n");
         drop(h);
@@ -234,10 +207,7 @@ mod tests {
         let path = temp_path("names.csv");
         let h = HistoryWriter::create(&path, &["plain", "a,b", "say \"hi\""]).unwrap();
         drop(h);
-        assert_eq!(
-            fs::read_to_string(&path).unwrap(),
-            "plain,\"a,b\",\"say \"\"hi\"\"\"\n"
-        );
+        assert_eq!(fs::read_to_string(&path).unwrap(), "plain,\"a,b\",\"say \"\"hi\"\"\"\n");
         for bad in [&[][..], &[""][..], &["a\nb"][..]] {
             let err = HistoryWriter::create(&path, bad).unwrap_err();
             assert!(matches!(err, VtkError::InvalidColumn { .. }), "{err}");

@@ -137,10 +137,7 @@ fn check_stem(stem: &str) -> Result<(), VtkError> {
         None
     };
     match reason {
-        Some(reason) => Err(VtkError::InvalidStem {
-            stem: stem.to_owned(),
-            reason,
-        }),
+        Some(reason) => Err(VtkError::InvalidStem { stem: stem.to_owned(), reason }),
         None => Ok(()),
     }
 }
@@ -150,12 +147,7 @@ mod tests {
     use super::*;
     use crate::Field;
 
-    const POINTS: [[f64; 3]; 4] = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    ];
+    const POINTS: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     const TETS: [[u32; 4]; 1] = [[0, 1, 2, 3]];
 
     fn temp_dir(name: &str) -> PathBuf {
@@ -226,9 +218,7 @@ mod tests {
         let dir = temp_dir("series-fail");
         let mut series = SeriesWriter::new(&dir, "s").unwrap();
         series.write(0.0, &Frame::new(&POINTS, &TETS)).unwrap();
-        let err = series
-            .write(1.0, &Frame::new(&POINTS, &[[0, 1, 2, 9]]))
-            .unwrap_err();
+        let err = series.write(1.0, &Frame::new(&POINTS, &[[0, 1, 2, 9]])).unwrap_err();
         assert!(matches!(err, VtkError::NodeOutOfRange { .. }), "{err}");
         assert_eq!(series.len(), 1);
         let pvd = fs::read_to_string(series.pvd_path()).unwrap();
@@ -244,10 +234,7 @@ mod tests {
         let dir = temp_dir("series-stem");
         for bad in ["", "a/b", r"a\b", ".", "..", "a\0b"] {
             let err = SeriesWriter::new(&dir, bad).unwrap_err();
-            assert!(
-                matches!(err, VtkError::InvalidStem { .. }),
-                "{bad:?}: {err}"
-            );
+            assert!(matches!(err, VtkError::InvalidStem { .. }), "{bad:?}: {err}");
         }
         assert!(!dir.exists(), "nothing is created for a bad stem");
     }

@@ -80,19 +80,14 @@ pub fn write_vtu(path: &Path, frame: &Frame<'_>) -> Result<(), VtkError> {
 /// about 4.5 × the raw data on top of the caller's arrays.
 pub fn write_vtu_with(path: &Path, frame: &Frame<'_>, options: VtuOptions) -> Result<(), VtkError> {
     frame.validate()?;
-    let encode_error = |message: String| VtkError::Encode {
-        path: path.to_owned(),
-        message,
-    };
+    let encode_error = |message: String| VtkError::Encode { path: path.to_owned(), message };
     let vtk_file = encode(frame, options).map_err(|e| encode_error(e.to_string()))?;
     if frame.points.is_empty() || frame.num_cells() == 0 {
         // vtkio leaves out `NumberOfPoints="0"` / `NumberOfCells="0"`, and
         // VTK and meshio refuse a piece without them. Such files are small
         // unless one count is huge, so patch the text in memory.
         let mut text = Vec::new();
-        vtk_file
-            .write(&mut text)
-            .map_err(|e| encode_error(e.to_string()))?;
+        vtk_file.write(&mut text).map_err(|e| encode_error(e.to_string()))?;
         let text = add_zero_counts(text, frame).map_err(encode_error)?;
         return replace_file(path, |sink| {
             let _ = sink.write_all(&text);
@@ -101,22 +96,14 @@ pub fn write_vtu_with(path: &Path, frame: &Frame<'_>, options: VtuOptions) -> Re
     }
     // An I/O error surfaces from vtkio as an opaque serialiser error;
     // `replace_file` reports the real one that the sink kept.
-    replace_file(path, |sink| {
-        vtk_file
-            .write(sink)
-            .map_err(|e| encode_error(e.to_string()))
-    })
+    replace_file(path, |sink| vtk_file.write(sink).map_err(|e| encode_error(e.to_string())))
 }
 
 /// Inserts the zero counts that vtkio leaves out into the `<Piece` tag.
 fn add_zero_counts(mut text: Vec<u8>, frame: &Frame<'_>) -> Result<Vec<u8>, String> {
     const TAG: &[u8] = b"<Piece";
     // No earlier `<Piece` can occur: attribute values escape `<`.
-    let at = text
-        .windows(TAG.len())
-        .position(|w| w == TAG)
-        .ok_or("vtkio wrote no <Piece> element")?
-        + TAG.len();
+    let at = text.windows(TAG.len()).position(|w| w == TAG).ok_or("vtkio wrote no <Piece> element")? + TAG.len();
     let mut counts = String::new();
     if frame.points.is_empty() {
         counts.push_str(r#" NumberOfPoints="0""#);
@@ -131,31 +118,15 @@ fn add_zero_counts(mut text: Vec<u8>, frame: &Frame<'_>) -> Result<Vec<u8>, Stri
 /// Converts a validated frame into vtkio's XML model, encoding every array.
 fn encode(frame: &Frame<'_>, options: VtuOptions) -> Result<VTKFile, vtkio::xml::Error> {
     let num_tets = frame.tets.len() as u64;
-    let connectivity: Vec<u64> = frame
-        .tets
-        .as_flattened()
-        .iter()
-        .chain(frame.triangles.as_flattened())
-        .map(|&n| n.into())
-        .collect();
-    let offsets: Vec<u64> = (1..=num_tets)
-        .map(|i| 4 * i)
-        .chain((1..=frame.triangles.len() as u64).map(|i| 4 * num_tets + 3 * i))
-        .collect();
+    let connectivity: Vec<u64> =
+        frame.tets.as_flattened().iter().chain(frame.triangles.as_flattened()).map(|&n| n.into()).collect();
+    let offsets: Vec<u64> =
+        (1..=num_tets).map(|i| 4 * i).chain((1..=frame.triangles.len() as u64).map(|i| 4 * num_tets + 3 * i)).collect();
     let mut types = vec![CellType::Tetra; frame.tets.len()];
-    types.extend(std::iter::repeat_n(
-        CellType::Triangle,
-        frame.triangles.len(),
-    ));
+    types.extend(std::iter::repeat_n(CellType::Triangle, frame.triangles.len()));
     let piece = UnstructuredGridPiece {
         points: IOBuffer::F64(frame.points.as_flattened().to_vec()),
-        cells: Cells {
-            cell_verts: VertexNumbers::XML {
-                connectivity,
-                offsets,
-            },
-            types,
-        },
+        cells: Cells { cell_verts: VertexNumbers::XML { connectivity, offsets }, types },
         data: Attributes {
             point: frame.point_fields.iter().map(attribute).collect(),
             cell: frame.cell_fields.iter().map(attribute).collect(),
@@ -200,12 +171,7 @@ mod tests {
         dir
     }
 
-    const POINTS: [[f64; 3]; 4] = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    ];
+    const POINTS: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
     #[test]
     fn vtu_declares_tetra_grid_and_arrays() {
@@ -215,31 +181,16 @@ mod tests {
         let stress = [[2.0; 9]];
         let pf = [Field::vector("displacement", &disp)];
         let cf = [Field::tensor("stress", &stress)];
-        let frame = Frame::new(&POINTS, &[[0, 1, 2, 3]])
-            .with_point_fields(&pf)
-            .with_cell_fields(&cf);
-        for compression in [
-            Compression::None,
-            Compression::Lz4,
-            Compression::Zlib { level: 6 },
-        ] {
+        let frame = Frame::new(&POINTS, &[[0, 1, 2, 3]]).with_point_fields(&pf).with_cell_fields(&cf);
+        for compression in [Compression::None, Compression::Lz4, Compression::Zlib { level: 6 }] {
             write_vtu_with(&path, &frame, VtuOptions { compression }).unwrap();
             let text = fs::read_to_string(&path).unwrap();
             assert!(text.contains(r#"type="UnstructuredGrid""#), "{text}");
             assert!(text.contains(r#"byte_order="LittleEndian""#), "{text}");
             assert!(text.contains(r#"header_type="UInt64""#), "{text}");
-            assert!(
-                text.contains(r#"NumberOfPoints="4" NumberOfCells="1""#),
-                "{text}"
-            );
-            assert!(
-                text.contains(r#"Name="displacement" NumberOfComponents="3" format="binary""#),
-                "{text}"
-            );
-            assert!(
-                text.contains(r#"Name="stress" NumberOfComponents="9" format="binary""#),
-                "{text}"
-            );
+            assert!(text.contains(r#"NumberOfPoints="4" NumberOfCells="1""#), "{text}");
+            assert!(text.contains(r#"Name="displacement" NumberOfComponents="3" format="binary""#), "{text}");
+            assert!(text.contains(r#"Name="stress" NumberOfComponents="9" format="binary""#), "{text}");
             let compressor = match compression {
                 Compression::None => None,
                 Compression::Lz4 => Some("vtkLZ4DataCompressor"),
@@ -265,16 +216,10 @@ mod tests {
         let path = dir.join("empty.vtu");
         write_vtu(&path, &Frame::new(&[], &[])).unwrap();
         let text = fs::read_to_string(&path).unwrap();
-        assert!(
-            text.contains(r#"<Piece NumberOfPoints="0" NumberOfCells="0">"#),
-            "{text}"
-        );
+        assert!(text.contains(r#"<Piece NumberOfPoints="0" NumberOfCells="0">"#), "{text}");
         write_vtu(&path, &Frame::new(&POINTS, &[])).unwrap();
         let text = fs::read_to_string(&path).unwrap();
-        assert!(
-            text.contains(r#"<Piece NumberOfCells="0" NumberOfPoints="4">"#),
-            "{text}"
-        );
+        assert!(text.contains(r#"<Piece NumberOfCells="0" NumberOfPoints="4">"#), "{text}");
         fs::remove_dir_all(&dir).unwrap();
     }
 

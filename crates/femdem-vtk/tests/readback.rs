@@ -33,8 +33,7 @@ fn venv_python() -> &'static Path {
         let root = Path::new(env!("CARGO_TARGET_TMPDIR"));
         let venv = root.join("femdem-vtk-python");
         let stamp = REQUIREMENTS.join("\n");
-        let ready =
-            |dir: &Path| fs::read_to_string(dir.join("femdem-ready")).is_ok_and(|s| s == stamp);
+        let ready = |dir: &Path| fs::read_to_string(dir.join("femdem-ready")).is_ok_and(|s| s == stamp);
         if !ready(&venv) {
             // Build beside the final place and rename, so that concurrent
             // test runs never use a half-installed environment.
@@ -55,19 +54,13 @@ fn venv_python() -> &'static Path {
 }
 
 fn python_in(venv: &Path) -> PathBuf {
-    if cfg!(windows) {
-        venv.join("Scripts").join("python.exe")
-    } else {
-        venv.join("bin").join("python")
-    }
+    if cfg!(windows) { venv.join("Scripts").join("python.exe") } else { venv.join("bin").join("python") }
 }
 
 /// Runs `cmd`, failing the test with `what`, the hint and the output if it
 /// cannot start or exits non-zero.
 fn run(cmd: &mut Command, what: &str, hint: &str) -> String {
-    let out = cmd
-        .output()
-        .unwrap_or_else(|e| panic!("{what}: could not run {cmd:?}: {e}\n{hint}"));
+    let out = cmd.output().unwrap_or_else(|e| panic!("{what}: could not run {cmd:?}: {e}\n{hint}"));
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -91,14 +84,7 @@ fn create_venv(dir: &Path) {
         "Python's venv module is missing (Debian: apt-get install python3-venv).",
     );
     let mut pip = Command::new(python_in(dir));
-    pip.args([
-        "-m",
-        "pip",
-        "install",
-        "--quiet",
-        "--disable-pip-version-check",
-    ])
-    .args(REQUIREMENTS);
+    pip.args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"]).args(REQUIREMENTS);
     run(
         &mut pip,
         "installing the readback test's Python packages",
@@ -117,11 +103,8 @@ fn read_back(dir: &Path, vtu: &[(PathBuf, bool)], pvd: &[PathBuf]) -> Value {
     });
     let manifest_path = dir.join("manifest.json");
     fs::write(&manifest_path, manifest.to_string()).unwrap();
-    let stdout = run(
-        Command::new(venv_python()).arg(&script).arg(&manifest_path),
-        "reading the files back in Python",
-        "",
-    );
+    let stdout =
+        run(Command::new(venv_python()).arg(&script).arg(&manifest_path), "reading the files back in Python", "");
     let line = stdout
         .lines()
         .find_map(|l| l.strip_prefix("FEMDEM-JSON "))
@@ -174,9 +157,8 @@ impl Data {
             [5e-324, -0.0, 6.022_140_76e23],
         ];
         let tets = vec![[0, 1, 2, 3], [1, 2, 3, 4], [4, 5, 6, 7], [0, 7, 6, 5]];
-        let mut displacement: Vec<[f64; 3]> = (0..points.len())
-            .map(|_| [bits.next(), bits.next(), bits.next()])
-            .collect();
+        let mut displacement: Vec<[f64; 3]> =
+            (0..points.len()).map(|_| [bits.next(), bits.next(), bits.next()]).collect();
         displacement[0] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
         displacement[1] = [-0.0, f64::MIN_POSITIVE, f64::MAX];
         displacement[2] = [0.1 + 0.2, 1e-310, step as f64];
@@ -187,13 +169,7 @@ impl Data {
             })
             .collect();
         let region = (0..tets.len()).map(|i| (i % 2) as f64).collect();
-        Data {
-            points,
-            tets,
-            displacement,
-            stress,
-            region,
-        }
+        Data { points, tets, displacement, stress, region }
     }
 
     /// 4096 points and tets: every array except `types` is a whole number
@@ -202,26 +178,12 @@ impl Data {
     fn block_edges() -> Data {
         let mut bits = Bits(99);
         let n = 4096;
-        let points = (0..n)
-            .map(|_| [bits.next(), bits.next(), bits.next()])
-            .collect();
-        let tets = (0..n as u32)
-            .map(|i| [i, (i + 1) % 4096, (i + 7) % 4096, (i + 4000) % 4096])
-            .collect();
-        let displacement = (0..n)
-            .map(|_| [bits.next(), bits.next(), bits.next()])
-            .collect();
-        let stress = (0..n)
-            .map(|_| std::array::from_fn(|_| bits.next()))
-            .collect();
+        let points = (0..n).map(|_| [bits.next(), bits.next(), bits.next()]).collect();
+        let tets = (0..n as u32).map(|i| [i, (i + 1) % 4096, (i + 7) % 4096, (i + 4000) % 4096]).collect();
+        let displacement = (0..n).map(|_| [bits.next(), bits.next(), bits.next()]).collect();
+        let stress = (0..n).map(|_| std::array::from_fn(|_| bits.next())).collect();
         let region = (0..n).map(|i| i as f64).collect();
-        Data {
-            points,
-            tets,
-            displacement,
-            stress,
-            region,
-        }
+        Data { points, tets, displacement, stress, region }
     }
 
     fn empty(num_points: usize) -> Data {
@@ -236,13 +198,8 @@ impl Data {
 
     fn write(&self, f: impl FnOnce(&Frame<'_>)) {
         let pf = [Field::vector("displacement", &self.displacement)];
-        let cf = [
-            Field::tensor("stress", &self.stress),
-            Field::scalar("region", &self.region),
-        ];
-        let frame = Frame::new(&self.points, &self.tets)
-            .with_point_fields(&pf)
-            .with_cell_fields(&cf);
+        let cf = [Field::tensor("stress", &self.stress), Field::scalar("region", &self.region)];
+        let frame = Frame::new(&self.points, &self.tets).with_point_fields(&pf).with_cell_fields(&cf);
         f(&frame);
     }
 }
@@ -254,25 +211,17 @@ fn decode<const N: usize>(hex: &str) -> Vec<[u8; N]> {
     hex.as_bytes()
         .chunks(2 * N)
         .map(|c| {
-            std::array::from_fn(|i| {
-                u8::from_str_radix(std::str::from_utf8(&c[2 * i..2 * i + 2]).unwrap(), 16).unwrap()
-            })
+            std::array::from_fn(|i| u8::from_str_radix(std::str::from_utf8(&c[2 * i..2 * i + 2]).unwrap(), 16).unwrap())
         })
         .collect()
 }
 
 fn f64_bits(hex: &Value) -> Vec<u64> {
-    decode::<8>(hex.as_str().unwrap())
-        .into_iter()
-        .map(u64::from_le_bytes)
-        .collect()
+    decode::<8>(hex.as_str().unwrap()).into_iter().map(u64::from_le_bytes).collect()
 }
 
 fn i64s(hex: &Value) -> Vec<u64> {
-    decode::<8>(hex.as_str().unwrap())
-        .into_iter()
-        .map(|b| u64::try_from(i64::from_le_bytes(b)).unwrap())
-        .collect()
+    decode::<8>(hex.as_str().unwrap()).into_iter().map(|b| u64::try_from(i64::from_le_bytes(b)).unwrap()).collect()
 }
 
 fn bits_of(values: &[f64]) -> Vec<u64> {
@@ -295,14 +244,9 @@ fn assert_same(what: &str, got: &[u64], want: &[u64]) {
 
 /// The fields of `data` as `name -> (components, values)`.
 fn expected_fields(data: &Data) -> [BTreeMap<&'static str, (u64, Vec<u64>)>; 2] {
-    let point = BTreeMap::from([(
-        "displacement",
-        (3, bits_of(data.displacement.as_flattened())),
-    )]);
-    let cell = BTreeMap::from([
-        ("stress", (9, bits_of(data.stress.as_flattened()))),
-        ("region", (1, bits_of(&data.region))),
-    ]);
+    let point = BTreeMap::from([("displacement", (3, bits_of(data.displacement.as_flattened())))]);
+    let cell =
+        BTreeMap::from([("stress", (9, bits_of(data.stress.as_flattened()))), ("region", (1, bits_of(&data.region)))]);
     [point, cell]
 }
 
@@ -310,56 +254,24 @@ fn check_fields(what: &str, got: &Value, want: &BTreeMap<&str, (u64, Vec<u64>)>)
     let got = got.as_object().unwrap();
     let mut names: Vec<&str> = got.keys().map(String::as_str).collect();
     names.sort_unstable();
-    assert_eq!(
-        names,
-        want.keys().copied().collect::<Vec<_>>(),
-        "{what}: names"
-    );
+    assert_eq!(names, want.keys().copied().collect::<Vec<_>>(), "{what}: names");
     for (name, (components, values)) in want {
         let array = &got[*name];
-        assert_eq!(
-            array["components"], *components,
-            "{what} {name}: components"
-        );
-        assert!(
-            matches!(array["type"].as_str(), Some("double" | "float64")),
-            "{what} {name}: type {}",
-            array["type"]
-        );
-        assert_same(
-            &format!("{what} {name}"),
-            &f64_bits(&array["values"]),
-            values,
-        );
+        assert_eq!(array["components"], *components, "{what} {name}: components");
+        assert!(matches!(array["type"].as_str(), Some("double" | "float64")), "{what} {name}: type {}", array["type"]);
+        assert_same(&format!("{what} {name}"), &f64_bits(&array["values"]), values);
     }
 }
 
 /// Everything VTK read from one file against what was written.
 fn check_vtk(file: &str, got: &Value, data: &Data) {
     let what = format!("VTK reading {file}");
-    assert_eq!(
-        got["messages"],
-        serde_json::json!([]),
-        "{what}: reader messages"
-    );
+    assert_eq!(got["messages"], serde_json::json!([]), "{what}: reader messages");
     assert_eq!(got["num_points"], data.points.len(), "{what}: points");
     assert_eq!(got["num_cells"], data.tets.len(), "{what}: cells");
-    assert_same(
-        &format!("{what}: coordinates"),
-        &f64_bits(&got["points"]),
-        &bits_of(data.points.as_flattened()),
-    );
-    let types: Vec<u64> = got["types"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|t| t.as_u64().unwrap())
-        .collect();
-    assert_eq!(
-        types,
-        vec![VTK_TETRA; data.tets.len()],
-        "{what}: cell types"
-    );
+    assert_same(&format!("{what}: coordinates"), &f64_bits(&got["points"]), &bits_of(data.points.as_flattened()));
+    let types: Vec<u64> = got["types"].as_array().unwrap().iter().map(|t| t.as_u64().unwrap()).collect();
+    assert_eq!(types, vec![VTK_TETRA; data.tets.len()], "{what}: cell types");
     if !data.tets.is_empty() {
         let offsets: Vec<u64> = (0..=data.tets.len() as u64).map(|i| 4 * i).collect();
         assert_eq!(i64s(&got["offsets"]), offsets, "{what}: offsets");
@@ -375,39 +287,26 @@ fn check_vtk(file: &str, got: &Value, data: &Data) {
 fn check_meshio(file: &str, got: &Value, data: &Data) {
     let what = format!("meshio reading {file}");
     assert!(got.get("error").is_none(), "{what}: {}", got["error"]);
-    assert_same(
-        &format!("{what}: coordinates"),
-        &f64_bits(&got["points"]),
-        &bits_of(data.points.as_flattened()),
-    );
+    assert_same(&format!("{what}: coordinates"), &f64_bits(&got["points"]), &bits_of(data.points.as_flattened()));
     let blocks = got["cells"].as_array().unwrap();
     assert_eq!(blocks.len(), 1, "{what}: cell blocks");
     assert_eq!(blocks[0]["type"], "tetra", "{what}: cell type");
     let conn: Vec<u64> = data.tets.as_flattened().iter().map(|&n| n.into()).collect();
-    assert_eq!(
-        i64s(&blocks[0]["connectivity"]),
-        conn,
-        "{what}: connectivity"
-    );
+    assert_eq!(i64s(&blocks[0]["connectivity"]), conn, "{what}: connectivity");
     let [point, cell] = expected_fields(data);
     check_fields(&format!("{what}: point data"), &got["point_data"], &point);
     check_fields(&format!("{what}: cell data"), &got["cell_data"], &cell);
 }
 
 fn case_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("femdem-vtk-readback")
-        .join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("femdem-vtk-readback").join(name);
     let _ = fs::remove_dir_all(&dir);
     fs::create_dir_all(&dir).unwrap();
     dir
 }
 
-const COMPRESSIONS: [(&str, Compression); 3] = [
-    ("none", Compression::None),
-    ("zlib", Compression::Zlib { level: 6 }),
-    ("lz4", Compression::Lz4),
-];
+const COMPRESSIONS: [(&str, Compression); 3] =
+    [("none", Compression::None), ("zlib", Compression::Zlib { level: 6 }), ("lz4", Compression::Lz4)];
 
 /// meshio 5.3 reads uncompressed and zlib data but not LZ4.
 fn meshio_reads(compression: Compression) -> bool {
@@ -424,9 +323,7 @@ fn series_reads_back_bit_for_bit_in_vtk_and_meshio() {
     let mut pvd = Vec::new();
     let mut written = Vec::new();
     for (name, compression) in COMPRESSIONS {
-        let mut series = SeriesWriter::new(&dir.join(name), "block")
-            .unwrap()
-            .with_options(VtuOptions { compression });
+        let mut series = SeriesWriter::new(&dir.join(name), "block").unwrap().with_options(VtuOptions { compression });
         for (step, &t) in times.iter().enumerate() {
             let data = Data::small(step as u64);
             let mut path = PathBuf::new();
@@ -459,10 +356,7 @@ fn series_reads_back_bit_for_bit_in_vtk_and_meshio() {
             assert_eq!(ts.to_bits(), t.to_bits(), "{path:?}: timestep {i}");
             let file = set["file"].as_str().unwrap();
             assert_eq!(file, format!("block_{i:06}.vtu"), "{path:?}");
-            assert!(
-                path.parent().unwrap().join(file).is_file(),
-                "{file} missing"
-            );
+            assert!(path.parent().unwrap().join(file).is_file(), "{file} missing");
         }
     }
 }
@@ -470,11 +364,7 @@ fn series_reads_back_bit_for_bit_in_vtk_and_meshio() {
 #[test]
 fn edge_frames_read_back_in_vtk_and_meshio() {
     let dir = case_dir("edges");
-    let cases = [
-        ("block_edges", Data::block_edges()),
-        ("empty", Data::empty(0)),
-        ("points_only", Data::empty(3)),
-    ];
+    let cases = [("block_edges", Data::block_edges()), ("empty", Data::empty(0)), ("points_only", Data::empty(3))];
     let mut vtu = Vec::new();
     let mut written = Vec::new();
     for (case, data) in &cases {

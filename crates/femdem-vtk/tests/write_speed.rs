@@ -23,28 +23,16 @@ fn write_100k_tet_frame() {
             [x.sin(), (0.5 * x).cos(), 1e-3 * x]
         })
         .collect();
-    let tets: Vec<[u32; 4]> = (0..tets_n)
-        .map(|t| [4 * t, 4 * t + 1, 4 * t + 2, 4 * t + 3])
-        .collect();
+    let tets: Vec<[u32; 4]> = (0..tets_n).map(|t| [4 * t, 4 * t + 1, 4 * t + 2, 4 * t + 3]).collect();
     let displacement: Vec<[f64; 3]> = points.iter().map(|p| p.map(|c| 1e-4 * c)).collect();
     let velocity: Vec<[f64; 3]> = points.iter().map(|p| p.map(|c| -0.3 * c)).collect();
-    let stress: Vec<[f64; 9]> = (0..tets_n)
-        .map(|t| std::array::from_fn(|k| 1e6 * (f64::from(t) * 0.01 + k as f64).sin()))
-        .collect();
+    let stress: Vec<[f64; 9]> =
+        (0..tets_n).map(|t| std::array::from_fn(|k| 1e6 * (f64::from(t) * 0.01 + k as f64).sin())).collect();
     let damage: Vec<f64> = (0..tets_n).map(|t| f64::from(t % 97) / 96.0).collect();
     let region: Vec<f64> = (0..tets_n).map(|t| f64::from(t % 3)).collect();
-    let pf = [
-        Field::vector("displacement", &displacement),
-        Field::vector("velocity", &velocity),
-    ];
-    let cf = [
-        Field::tensor("stress", &stress),
-        Field::scalar("damage", &damage),
-        Field::scalar("region", &region),
-    ];
-    let frame = Frame::new(&points, &tets)
-        .with_point_fields(&pf)
-        .with_cell_fields(&cf);
+    let pf = [Field::vector("displacement", &displacement), Field::vector("velocity", &velocity)];
+    let cf = [Field::tensor("stress", &stress), Field::scalar("damage", &damage), Field::scalar("region", &region)];
+    let frame = Frame::new(&points, &tets).with_point_fields(&pf).with_cell_fields(&cf);
 
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("femdem-vtk-speed");
     std::fs::create_dir_all(&dir).unwrap();

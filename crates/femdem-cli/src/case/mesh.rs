@@ -1,8 +1,7 @@
 //! Building the mesh a case describes, part by part.
 
 use femdem_mesh::generate::{
-    BoxSpec, ExtrusionSpec, Outline, PlatenSpec, Side, generate_box, generate_extrusion,
-    generate_platen,
+    BoxSpec, ExtrusionSpec, Outline, PlatenSpec, Side, generate_box, generate_extrusion, generate_platen,
 };
 use femdem_mesh::{Region, TetMesh};
 
@@ -22,18 +21,11 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
     let mut regions: Vec<Region> = Vec::new();
     for (i, r) in section.regions.iter().enumerate() {
         if regions.iter().any(|q| q.name == r.get_ref().name) {
-            return Err(case.error_at(
-                r.span(),
-                format!(
-                    "mesh.regions[{i}]: region `{}` is declared twice",
-                    r.get_ref().name
-                ),
-            ));
+            return Err(
+                case.error_at(r.span(), format!("mesh.regions[{i}]: region `{}` is declared twice", r.get_ref().name))
+            );
         }
-        regions.push(Region {
-            name: r.get_ref().name.clone(),
-            breakable: r.get_ref().breakable,
-        });
+        regions.push(Region { name: r.get_ref().name.clone(), breakable: r.get_ref().breakable });
     }
     if section.parts.is_empty() {
         return Err(CaseError {
@@ -48,27 +40,13 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
         let span = part.span();
         let key = format!("mesh.parts[{i}]");
         let region = |name: &str| -> Result<Region, CaseError> {
-            regions
-                .iter()
-                .find(|r| r.name == name)
-                .cloned()
-                .ok_or_else(|| {
-                    case.error_at(
-                        span.clone(),
-                        format!("{key}.region: `{name}` is not declared in [[mesh.regions]]"),
-                    )
-                })
+            regions.iter().find(|r| r.name == name).cloned().ok_or_else(|| {
+                case.error_at(span.clone(), format!("{key}.region: `{name}` is not declared in [[mesh.regions]]"))
+            })
         };
         let fail = |e: femdem_mesh::MeshError| case.error_at(span.clone(), format!("{key}: {e}"));
         let (name, mut body) = match part.get_ref() {
-            PartSpec::Box {
-                name,
-                region: r,
-                min,
-                max,
-                element_size,
-                jitter,
-            } => {
+            PartSpec::Box { name, region: r, min, max, element_size, jitter } => {
                 let spec = BoxSpec {
                     min: *min,
                     max: *max,
@@ -77,33 +55,14 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                     seed: section.seed.wrapping_add(i as u64),
                     region: region(r)?,
                 };
-                (
-                    name.clone().unwrap_or_else(|| r.clone()),
-                    generate_box(&spec).map_err(fail)?,
-                )
+                (name.clone().unwrap_or_else(|| r.clone()), generate_box(&spec).map_err(fail)?)
             }
-            PartSpec::Extrusion {
-                name,
-                region: r,
-                circle,
-                polygon,
-                traces,
-                z0,
-                thickness,
-                element_size,
-                layers,
-            } => {
+            PartSpec::Extrusion { name, region: r, circle, polygon, traces, z0, thickness, element_size, layers } => {
                 let outline = match (circle, polygon) {
-                    (Some(c), None) => Outline::Circle {
-                        center: c.center,
-                        radius: c.radius,
-                    },
+                    (Some(c), None) => Outline::Circle { center: c.center, radius: c.radius },
                     (None, Some(p)) => Outline::Polygon(p.clone()),
                     _ => {
-                        return Err(case.error_at(
-                            span,
-                            format!("{key}: give exactly one of `circle` and `polygon`"),
-                        ));
+                        return Err(case.error_at(span, format!("{key}: give exactly one of `circle` and `polygon`")));
                     }
                 };
                 let spec = ExtrusionSpec {
@@ -115,30 +74,14 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                     layers: *layers,
                     region: region(r)?,
                 };
-                (
-                    name.clone().unwrap_or_else(|| r.clone()),
-                    generate_extrusion(&spec).map_err(fail)?,
-                )
+                (name.clone().unwrap_or_else(|| r.clone()), generate_extrusion(&spec).map_err(fail)?)
             }
-            PartSpec::Platen {
-                name,
-                region: r,
-                side,
-                thickness,
-                extent,
-                element_size,
-            } => {
+            PartSpec::Platen { name, region: r, side, thickness, extent, element_size } => {
                 let Some((lo, hi)) = mesh.bounding_box() else {
-                    return Err(case.error_at(
-                        span,
-                        format!("{key}: a platen needs a specimen part before it"),
-                    ));
+                    return Err(case.error_at(span, format!("{key}: a platen needs a specimen part before it")));
                 };
                 let side = parse_side(side).ok_or_else(|| {
-                    case.error_at(
-                        span.clone(),
-                        format!("{key}.side: `{side}` is not one of +x, -x, +y, -y, +z, -z"),
-                    )
+                    case.error_at(span.clone(), format!("{key}.side: `{side}` is not one of +x, -x, +y, -y, +z, -z"))
                 })?;
                 let spec = PlatenSpec {
                     side,
@@ -147,22 +90,15 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                     element_size: *element_size,
                     region: region(r)?,
                 };
-                (
-                    name.clone().unwrap_or_else(|| r.clone()),
-                    generate_platen(&spec, lo, hi).map_err(fail)?,
-                )
+                (name.clone().unwrap_or_else(|| r.clone()), generate_platen(&spec, lo, hi).map_err(fail)?)
             }
             PartSpec::Msh { name, path } => {
                 let file = case.dir().join(path);
                 let bytes = std::fs::read(&file).map_err(|e| {
-                    case.error_at(
-                        span.clone(),
-                        format!("{key}.path: cannot read {}: {e}", file.display()),
-                    )
+                    case.error_at(span.clone(), format!("{key}.path: cannot read {}: {e}", file.display()))
                 })?;
-                let mut m = femdem_mesh::msh::read_msh(&bytes).map_err(|e| {
-                    case.error_at(span.clone(), format!("{key}.path: {}: {e}", file.display()))
-                })?;
+                let mut m = femdem_mesh::msh::read_msh(&bytes)
+                    .map_err(|e| case.error_at(span.clone(), format!("{key}.path: {}: {e}", file.display())))?;
                 for r in &mut m.regions {
                     r.breakable = region(&r.name)
                         .map_err(|_| {
@@ -177,17 +113,15 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                         })?
                         .breakable;
                 }
-                let stem = std::path::Path::new(path)
-                    .file_stem()
-                    .map_or("msh".into(), |s| s.to_string_lossy().into_owned());
+                let stem =
+                    std::path::Path::new(path).file_stem().map_or("msh".into(), |s| s.to_string_lossy().into_owned());
                 (name.clone().unwrap_or(stem), m)
             }
         };
         if names.contains(&name) {
-            return Err(case.error_at(
-                span,
-                format!("{key}: part name `{name}` is used twice; set `name` to tell them apart"),
-            ));
+            return Err(
+                case.error_at(span, format!("{key}: part name `{name}` is used twice; set `name` to tell them apart"))
+            );
         }
         for g in &mut body.boundary {
             g.name = format!("{name}.{}", g.name);
@@ -218,11 +152,8 @@ fn parse_side(s: &str) -> Option<Side> {
 }
 
 fn reorder_regions(mesh: &mut TetMesh, declared: &[Region]) {
-    let map: Vec<u16> = mesh
-        .regions
-        .iter()
-        .map(|r| declared.iter().position(|d| d.name == r.name).unwrap_or(0) as u16)
-        .collect();
+    let map: Vec<u16> =
+        mesh.regions.iter().map(|r| declared.iter().position(|d| d.name == r.name).unwrap_or(0) as u16).collect();
     for r in &mut mesh.tet_region {
         *r = map[*r as usize];
     }

@@ -46,11 +46,7 @@ pub struct LoadedCase {
 impl LoadedCase {
     /// An error at byte range `span` of the source.
     pub fn error_at(&self, span: Range<usize>, message: impl Into<String>) -> CaseError {
-        CaseError {
-            path: self.path.clone(),
-            at: Some(line_col(&self.source, span.start)),
-            message: message.into(),
-        }
+        CaseError { path: self.path.clone(), at: Some(line_col(&self.source, span.start)), message: message.into() }
     }
 
     /// The directory that relative paths in the case are taken from.
@@ -73,9 +69,7 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 /// found by looking for `` `key` = `` at a line start between that header
 /// and the next one.
 fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
-    let key = message
-        .strip_prefix("unknown field `")
-        .and_then(|m| m.split('`').next());
+    let key = message.strip_prefix("unknown field `").and_then(|m| m.split('`').next());
     let (Some(key), Some(text)) = (key, source.get(span.start..)) else {
         return span.start;
     };
@@ -85,10 +79,7 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
         if i > 0 && trimmed.starts_with('[') {
             break;
         }
-        if trimmed
-            .strip_prefix(key)
-            .is_some_and(|rest| rest.trim_start().starts_with('='))
-        {
+        if trimmed.strip_prefix(key).is_some_and(|rest| rest.trim_start().starts_with('=')) {
             return offset + (line.len() - trimmed.len());
         }
         offset += line.len();
@@ -109,23 +100,14 @@ pub fn load(path: &Path) -> Result<LoadedCase, CaseError> {
     })?;
     let case: Case = toml::from_str(&source).map_err(|e| CaseError {
         path: path.to_path_buf(),
-        at: e
-            .span()
-            .map(|s| line_col(&source, key_offset(&source, s, e.message()))),
+        at: e.span().map(|s| line_col(&source, key_offset(&source, s, e.message()))),
         message: e.message().trim_end().to_string(),
     })?;
-    let loaded = LoadedCase {
-        case,
-        path: path.to_path_buf(),
-        source,
-    };
+    let loaded = LoadedCase { case, path: path.to_path_buf(), source };
     if *loaded.case.version.get_ref() != CASE_VERSION {
         return Err(loaded.error_at(
             loaded.case.version.span(),
-            format!(
-                "`version` is {}, but this femdem reads case format {CASE_VERSION}",
-                loaded.case.version.get_ref()
-            ),
+            format!("`version` is {}, but this femdem reads case format {CASE_VERSION}", loaded.case.version.get_ref()),
         ));
     }
     Ok(loaded)

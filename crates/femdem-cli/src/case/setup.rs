@@ -7,9 +7,7 @@ use femdem_fracture::{GfCalibration, JointParams};
 use femdem_material::{ElasticParams, Law};
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
-use femdem_solver::{
-    Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
-};
+use femdem_solver::{Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive};
 
 use super::format::{LoadSpec, NodeSpec};
 use super::{CaseError, LoadedCase};
@@ -23,30 +21,18 @@ pub const DEFAULT_PENALTY_FACTOR: f64 = 10.0;
 /// A located [`CaseError`] for an unknown region, a region with two
 /// materials, a deformable region without one, bad parameters, or missing
 /// joint strengths in a breakable region.
-pub fn behaviours(
-    case: &LoadedCase,
-    mesh: &JointedMesh,
-) -> Result<Vec<RegionBehaviour>, CaseError> {
+pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBehaviour>, CaseError> {
     let m = &mesh.mesh;
     let stats = femdem_mesh::stats(m);
     let mut out: Vec<Option<RegionBehaviour>> = vec![None; m.regions.len()];
     for p in &case.case.platens {
         let r = m.region_index(&p.get_ref().region).ok_or_else(|| {
-            case.error_at(
-                p.span(),
-                format!(
-                    "platens.region: `{}` is not a region of the mesh",
-                    p.get_ref().region
-                ),
-            )
+            case.error_at(p.span(), format!("platens.region: `{}` is not a region of the mesh", p.get_ref().region))
         })?;
         if m.regions[r as usize].breakable {
             return Err(case.error_at(
                 p.span(),
-                format!(
-                    "platens.region: `{}` is breakable; a rigid platen cannot break",
-                    p.get_ref().region
-                ),
+                format!("platens.region: `{}` is breakable; a rigid platen cannot break", p.get_ref().region),
             ));
         }
         out[r as usize] = Some(RegionBehaviour::Rigid);
@@ -59,18 +45,13 @@ pub fn behaviours(
             .region_index(&s.region)
             .ok_or_else(|| at(format!("region `{}` is not a region of the mesh", s.region)))?;
         if out[r as usize].is_some() {
-            return Err(at(format!(
-                "region `{}` already has a material or is a platen",
-                s.region
-            )));
+            return Err(at(format!("region `{}` already has a material or is a platen", s.region)));
         }
         let law = match s.law.as_str() {
             "neo-hookean" => Law::NeoHookean,
             "linear-elastic" => Law::LinearElastic,
             other => {
-                return Err(at(format!(
-                    "law `{other}` is not `neo-hookean` or `linear-elastic`"
-                )));
+                return Err(at(format!("law `{other}` is not `neo-hookean` or `linear-elastic`")));
             }
         };
         let mean_edge = {
@@ -78,51 +59,31 @@ pub fn behaviours(
             let mut sum = 0.0;
             let mut count = 0usize;
             for t in (0..m.num_tets()).filter(|&t| m.tet_region[t] == r) {
-                sum += femdem_core::tet::edge_lengths(&m.tet_points(t))
-                    .iter()
-                    .sum::<f64>();
+                sum += femdem_core::tet::edge_lengths(&m.tet_points(t)).iter().sum::<f64>();
                 count += 6;
             }
-            if count > 0 {
-                sum / count as f64
-            } else {
-                stats.mean_edge
-            }
+            if count > 0 { sum / count as f64 } else { stats.mean_edge }
         };
         let viscosity = match (s.viscosity, s.damping_ratio) {
             (Some(_), Some(_)) => {
                 return Err(at("give `viscosity` or `damping_ratio`, not both".into()));
             }
             (Some(v), None) => v,
-            (None, Some(xi)) => {
-                xi * femdem_material::critical_viscosity(mean_edge, s.young, s.density)
-            }
+            (None, Some(xi)) => xi * femdem_material::critical_viscosity(mean_edge, s.young, s.density),
             (None, None) => 0.0,
         };
-        let material = ElasticParams {
-            young: s.young,
-            poisson: s.poisson,
-            density: s.density,
-            viscosity,
-        }
-        .validate()
-        .map_err(|e| at(e.to_string()))?;
+        let material = ElasticParams { young: s.young, poisson: s.poisson, density: s.density, viscosity }
+            .validate()
+            .map_err(|e| at(e.to_string()))?;
         let joints = if m.regions[r as usize].breakable {
             let need = |v: Option<f64>, name: &str| {
-                v.ok_or_else(|| {
-                    at(format!(
-                        "region `{}` is breakable: `{name}` is required",
-                        s.region
-                    ))
-                })
+                v.ok_or_else(|| at(format!("region `{}` is breakable: `{name}` is required", s.region)))
             };
             let calibration = match s.gf_calibration.as_deref() {
                 None | Some("paper") => GfCalibration::Paper,
                 Some("exact") => GfCalibration::Exact,
                 Some(other) => {
-                    return Err(at(format!(
-                        "gf_calibration `{other}` is not `paper` or `exact`"
-                    )));
+                    return Err(at(format!("gf_calibration `{other}` is not `paper` or `exact`")));
                 }
             };
             let gf = need(s.fracture_energy, "fracture_energy")?;
@@ -139,11 +100,7 @@ pub fn behaviours(
         } else {
             None
         };
-        out[r as usize] = Some(RegionBehaviour::Deformable {
-            law,
-            material,
-            joints,
-        });
+        out[r as usize] = Some(RegionBehaviour::Deformable { law, material, joints });
     }
     out.into_iter()
         .enumerate()
@@ -182,12 +139,7 @@ fn components(s: &str) -> Option<[bool; 3]> {
 }
 
 fn unknown(u: UnknownName) -> String {
-    format!(
-        "no {} `{}` in the mesh (have: {})",
-        u.kind,
-        u.name,
-        u.available.join(", ")
-    )
+    format!("no {} `{}` in the mesh (have: {})", u.kind, u.name, u.available.join(", "))
 }
 
 /// Builds the loads of the case: platens as velocity drives of their
@@ -197,21 +149,12 @@ fn unknown(u: UnknownName) -> String {
 /// A located [`CaseError`] for unknown groups or regions, empty node sets
 /// and bad component strings.
 pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result<Loads, CaseError> {
-    let mut loads = Loads {
-        gravity: Vec3::from(gravity),
-        ..Default::default()
-    };
+    let mut loads = Loads { gravity: Vec3::from(gravity), ..Default::default() };
     for (i, p) in case.case.platens.iter().enumerate() {
         let s = p.get_ref();
         let at = |msg: String| case.error_at(p.span(), format!("platens[{i}]: {msg}"));
-        let mut nodes = select_nodes(
-            mesh,
-            &NodeSelection {
-                region: Some(s.region.clone()),
-                ..Default::default()
-            },
-        )
-        .map_err(|u| at(unknown(u)))?;
+        let mut nodes = select_nodes(mesh, &NodeSelection { region: Some(s.region.clone()), ..Default::default() })
+            .map_err(|u| at(unknown(u)))?;
         if let Some(d) = &s.drives {
             let driven = select_nodes(mesh, &selection(d)).map_err(|u| at(unknown(u)))?;
             if driven.is_empty() {
@@ -226,83 +169,51 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             nodes,
             velocity: Vec3::from(s.velocity),
             components: [true; 3],
-            ramp: Ramp {
-                ramp_time: s.ramp_time,
-                stop_time: None,
-            },
+            ramp: Ramp { ramp_time: s.ramp_time, stop_time: None },
         });
     }
     for (i, l) in case.case.loads.iter().enumerate() {
         let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
         match l.get_ref() {
-            LoadSpec::Fixed {
-                nodes,
-                components: c,
-            } => {
+            LoadSpec::Fixed { nodes, components: c } => {
                 let nodes = select_nodes(mesh, &selection(nodes)).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
                 }
-                let components = components(c)
-                    .ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
                 loads.fixed.push(Fixed { nodes, components });
             }
-            LoadSpec::Velocity {
-                name,
-                nodes,
-                velocity,
-                components: c,
-                ramp_time,
-                stop_time,
-            } => {
+            LoadSpec::Velocity { name, nodes, velocity, components: c, ramp_time, stop_time } => {
                 let nodes = select_nodes(mesh, &selection(nodes)).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
                 }
                 let c = c.as_deref().unwrap_or("xyz");
-                let components = components(c)
-                    .ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
                 loads.drives.push(VelocityDrive {
                     name: name.clone().unwrap_or_else(|| format!("velocity{i}")),
                     nodes,
                     velocity: Vec3::from(*velocity),
                     components,
-                    ramp: Ramp {
-                        ramp_time: *ramp_time,
-                        stop_time: *stop_time,
-                    },
+                    ramp: Ramp { ramp_time: *ramp_time, stop_time: *stop_time },
                 });
             }
-            LoadSpec::Pressure {
-                group,
-                pressure,
-                ramp_time,
-            } => {
+            LoadSpec::Pressure { group, pressure, ramp_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
                     faces,
                     kind: SurfaceKind::Pressure(*pressure),
-                    ramp: Ramp {
-                        ramp_time: *ramp_time,
-                        stop_time: None,
-                    },
+                    ramp: Ramp { ramp_time: *ramp_time, stop_time: None },
                 });
             }
-            LoadSpec::Traction {
-                group,
-                traction,
-                ramp_time,
-            } => {
+            LoadSpec::Traction { group, traction, ramp_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
                     faces,
                     kind: SurfaceKind::Traction(Vec3::from(*traction)),
-                    ramp: Ramp {
-                        ramp_time: *ramp_time,
-                        stop_time: None,
-                    },
+                    ramp: Ramp { ramp_time: *ramp_time, stop_time: None },
                 });
             }
         }
@@ -326,24 +237,16 @@ pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result
         let at = |msg: String| case.error_at(h.span(), format!("heterogeneity: {msg}"));
         let dist = match spec.distribution.as_str() {
             "weibull" => Distribution::Weibull {
-                modulus: spec
-                    .modulus
-                    .ok_or_else(|| at("`modulus` is required for a Weibull distribution".into()))?,
+                modulus: spec.modulus.ok_or_else(|| at("`modulus` is required for a Weibull distribution".into()))?,
             },
             "normal" => Distribution::Normal {
-                cov: spec
-                    .cov
-                    .ok_or_else(|| at("`cov` is required for a normal distribution".into()))?,
+                cov: spec.cov.ok_or_else(|| at("`cov` is required for a normal distribution".into()))?,
             },
             other => {
-                return Err(at(format!(
-                    "distribution `{other}` is not `weibull` or `normal`"
-                )));
+                return Err(at(format!("distribution `{other}` is not `weibull` or `normal`")));
             }
         };
-        model
-            .randomise_strengths(dist, spec.seed.unwrap_or(case.case.mesh.seed))
-            .map_err(|e| at(e.to_string()))?;
+        model.randomise_strengths(dist, spec.seed.unwrap_or(case.case.mesh.seed)).map_err(|e| at(e.to_string()))?;
     }
     Ok(model)
 }

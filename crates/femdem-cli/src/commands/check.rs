@@ -71,20 +71,13 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
 
     // Counted from the face adjacency of the unsplit mesh, independently of
     // joint insertion, so `joints == interior_faces` is a real check.
-    let fracture: std::collections::HashSet<u128> = mesh
-        .fracture_faces
-        .iter()
-        .map(|f| face_key(f.nodes(&mesh.tets)))
-        .collect();
+    let fracture: std::collections::HashSet<u128> =
+        mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
     let breakable = |t: u32| mesh.regions[mesh.tet_region[t as usize] as usize].breakable;
     let interior_faces = face_adjacency(mesh)?
         .interior
         .iter()
-        .filter(|(a, b)| {
-            breakable(a.tet)
-                && breakable(b.tet)
-                && !fracture.contains(&face_key(a.nodes(&mesh.tets)))
-        })
+        .filter(|(a, b)| breakable(a.tet) && breakable(b.tet) && !fracture.contains(&face_key(a.nodes(&mesh.tets))))
         .count();
 
     let report = CheckReport {
@@ -107,20 +100,12 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
         regions: s
             .regions
             .iter()
-            .map(|r| RegionReport {
-                name: r.name.clone(),
-                tets: r.tets,
-                volume: r.volume,
-                breakable: r.breakable,
-            })
+            .map(|r| RegionReport { name: r.name.clone(), tets: r.tets, volume: r.volume, breakable: r.breakable })
             .collect(),
         boundary_groups: mesh
             .boundary
             .iter()
-            .map(|g| GroupReport {
-                name: g.name.clone(),
-                faces: g.faces.len(),
-            })
+            .map(|g| GroupReport { name: g.name.clone(), faces: g.faces.len() })
             .collect(),
         time_stepping: prepared.run.as_ref().map(|r| TimeStepReport {
             critical_time_step: r.stable.critical,
@@ -147,60 +132,28 @@ fn print_text(r: &CheckReport) {
         println!("title     {}", r.title);
     }
     println!("tets      {}", r.tets);
-    println!(
-        "nodes     {} (from {} vertices; tets of breakable regions own their nodes)",
-        r.nodes, r.vertices
-    );
-    println!(
-        "joints    {} ({} on breakable/unbreakable interfaces)",
-        r.joints, r.interface_joints
-    );
-    println!(
-        "interior faces (breakable|breakable, not pre-fractured)  {}",
-        r.interior_faces
-    );
-    println!(
-        "initial contact faces (pre-existing fractures)            {}",
-        r.initial_contact_faces
-    );
-    println!(
-        "volume    {:.6e} m³   min tet volume {:.3e} m³",
-        r.volume, r.min_volume
-    );
-    println!(
-        "edges     min {:.4e} m   mean {:.4e} m",
-        r.min_edge, r.mean_edge
-    );
+    println!("nodes     {} (from {} vertices; tets of breakable regions own their nodes)", r.nodes, r.vertices);
+    println!("joints    {} ({} on breakable/unbreakable interfaces)", r.joints, r.interface_joints);
+    println!("interior faces (breakable|breakable, not pre-fractured)  {}", r.interior_faces);
+    println!("initial contact faces (pre-existing fractures)            {}", r.initial_contact_faces);
+    println!("volume    {:.6e} m³   min tet volume {:.3e} m³", r.volume, r.min_volume);
+    println!("edges     min {:.4e} m   mean {:.4e} m", r.min_edge, r.mean_edge);
     println!(
         "quality   min inradius {:.4e} m   worst aspect ratio {:.3} (1 = regular)",
         r.min_inradius, r.max_aspect_ratio
     );
-    println!(
-        "memory    {:.1} MiB in mesh and joint arrays",
-        r.memory_bytes as f64 / (1024.0 * 1024.0)
-    );
+    println!("memory    {:.1} MiB in mesh and joint arrays", r.memory_bytes as f64 / (1024.0 * 1024.0));
     println!("regions");
     for g in &r.regions {
-        let kind = if g.breakable {
-            "breakable"
-        } else {
-            "unbreakable"
-        };
-        println!(
-            "  {:<20} {:>9} tets  {:.6e} m³  {kind}",
-            g.name, g.tets, g.volume
-        );
+        let kind = if g.breakable { "breakable" } else { "unbreakable" };
+        println!("  {:<20} {:>9} tets  {:.6e} m³  {kind}", g.name, g.tets, g.volume);
     }
     if let Some(t) = &r.time_stepping {
         println!(
             "time step {:.4e} s (critical {:.4e} s from ω_max = {:.4e} rad/s, damping ratio {:.3}; element transit {:.4e} s)",
             t.time_step, t.critical_time_step, t.omega_max, t.damping_ratio, t.element_transit_time
         );
-        println!(
-            "steps     {} ({:.3e} tet-steps)",
-            t.steps,
-            t.steps as f64 * t.deformable_tets as f64
-        );
+        println!("steps     {} ({:.3e} tet-steps)", t.steps, t.steps as f64 * t.deformable_tets as f64);
     }
     println!("boundary groups");
     for g in &r.boundary_groups {

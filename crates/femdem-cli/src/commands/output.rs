@@ -9,14 +9,7 @@ use femdem_solver::Solver;
 use femdem_vtk::{Field, Frame, HistoryWriter, SeriesWriter};
 
 /// Fields a case may ask for.
-pub const FIELDS: [&str; 6] = [
-    "displacement",
-    "velocity",
-    "stress",
-    "principal_stress",
-    "von_mises",
-    "region",
-];
+pub const FIELDS: [&str; 6] = ["displacement", "velocity", "stress", "principal_stress", "von_mises", "region"];
 
 /// The run's writers.
 pub struct Output {
@@ -52,8 +45,12 @@ impl Output {
             "tet_elastic",
             "joint_elastic",
             "damping",
+            "fracture",
             "external_work",
             "balance",
+            "broken_tensile",
+            "broken_shear",
+            "broken_mixed",
         ]
         .iter()
         .map(|s| s.to_string())
@@ -66,19 +63,17 @@ impl Output {
         }
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
-        Ok(Output {
-            series,
-            fractures,
-            history,
-            fields,
-            pre_existing,
-        })
+        Ok(Output { series, fractures, history, fields, pre_existing })
     }
 
     /// Appends a history row for time `t` (the state the last step's
     /// energies and forces belong to).
     pub fn history_row(&mut self, solver: &Solver, t: f64, step: u64) -> Result<()> {
         let e = &solver.energies;
+        let mut broken = [0.0; 3];
+        for f in &solver.failures {
+            broken[f.mode.code() as usize - 1] += 1.0;
+        }
         let mut row = vec![
             t,
             step as f64,
@@ -86,15 +81,14 @@ impl Output {
             e.tet_elastic,
             e.joint_elastic,
             e.damping,
+            e.fracture,
             e.external_work,
             e.balance(),
+            broken[0],
+            broken[1],
+            broken[2],
         ];
-        for f in solver
-            .report
-            .drive_forces
-            .iter()
-            .chain(&solver.report.surface_forces)
-        {
+        for f in solver.report.drive_forces.iter().chain(&solver.report.surface_forces) {
             row.extend([f.x, f.y, f.z]);
         }
         self.history.row(&row)?;
@@ -107,16 +101,9 @@ impl Output {
     pub fn frame(&mut self, solver: &Solver, t: f64) -> Result<()> {
         let s = &solver.state;
         let m = &solver.model;
-        let points: Vec<[f64; 3]> =
-            s.x.iter()
-                .zip(&s.v)
-                .map(|(x, v)| (x - v * solver.dt).into())
-                .collect();
-        let disp: Vec<[f64; 3]> = points
-            .iter()
-            .zip(&m.x0)
-            .map(|(p, x0)| [p[0] - x0.x, p[1] - x0.y, p[2] - x0.z])
-            .collect();
+        let points: Vec<[f64; 3]> = s.x.iter().zip(&s.v).map(|(x, v)| (x - v * solver.dt).into()).collect();
+        let disp: Vec<[f64; 3]> =
+            points.iter().zip(&m.x0).map(|(p, x0)| [p[0] - x0.x, p[1] - x0.y, p[2] - x0.z]).collect();
         let vel: Vec<[f64; 3]> = s.v.iter().map(|v| (*v).into()).collect();
         let stress: Vec<[f64; 9]> = solver
             .workspace
@@ -132,12 +119,7 @@ impl Output {
                 a
             })
             .collect();
-        let principal: Vec<[f64; 3]> = solver
-            .workspace
-            .stress
-            .iter()
-            .map(principal_stresses)
-            .collect();
+        let principal: Vec<[f64; 3]> = solver.workspace.stress.iter().map(principal_stresses).collect();
         let vm: Vec<f64> = solver.workspace.stress.iter().map(von_mises).collect();
         let region: Vec<f64> = m.tet_region.iter().map(|&r| f64::from(r)).collect();
         let want = |n: &str| self.fields.iter().any(|f| f == n);
@@ -161,9 +143,7 @@ impl Output {
         if want("region") {
             cell_fields.push(Field::scalar("region", &region));
         }
-        let frame = Frame::new(&points, &m.tets)
-            .with_point_fields(&point_fields)
-            .with_cell_fields(&cell_fields);
+        let frame = Frame::new(&points, &m.tets).with_point_fields(&point_fields).with_cell_fields(&cell_fields);
         self.series.write(t, &frame)?;
         Ok(())
     }
@@ -194,14 +174,9 @@ impl Output {
             let j = solver.model.joints[f.joint as usize];
             push([j[0], j[1], j[2]], f64::from(f.mode.code()), f.time, 0.0);
         }
-        let cell_fields = [
-            Field::scalar("mode", &mode),
-            Field::scalar("failure_time", &time),
-            Field::scalar("pre_existing", &pre),
-        ];
-        let frame = Frame::new(&points, &[])
-            .with_triangles(&triangles)
-            .with_cell_fields(&cell_fields);
+        let cell_fields =
+            [Field::scalar("mode", &mode), Field::scalar("failure_time", &time), Field::scalar("pre_existing", &pre)];
+        let frame = Frame::new(&points, &[]).with_triangles(&triangles).with_cell_fields(&cell_fields);
         self.fractures.write(t, &frame)?;
         Ok(())
     }

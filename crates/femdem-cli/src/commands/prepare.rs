@@ -40,12 +40,7 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     let mesh = case::mesh::build_mesh(&loaded)?;
     let jointed = femdem_mesh::insert_joints(&mesh)?;
     let Some(spec) = &loaded.case.solver else {
-        return Ok(Prepared {
-            case: loaded,
-            mesh,
-            jointed,
-            run: None,
-        });
+        return Ok(Prepared { case: loaded, mesh, jointed, run: None });
     };
     let s = spec.get_ref();
     let at = |msg: String| loaded.error_at(spec.span(), format!("solver: {msg}"));
@@ -60,9 +55,7 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
             bail!(at("threads must be ≥ 1".into()));
         }
         // Ignored if a pool already exists (e.g. in tests); results do not depend on it.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global();
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(n).build_global();
     }
     let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
     let loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
@@ -87,15 +80,5 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     solver.dt = dt;
     let steps = (s.end_time / dt).ceil() as u64;
     let end_time = s.end_time;
-    Ok(Prepared {
-        case: loaded,
-        mesh,
-        jointed,
-        run: Some(Runnable {
-            solver,
-            stable,
-            steps,
-            end_time,
-        }),
-    })
+    Ok(Prepared { case: loaded, mesh, jointed, run: Some(Runnable { solver, stable, steps, end_time }) })
 }

@@ -30,13 +30,7 @@ impl Progress {
             b
         });
         let now = Instant::now();
-        Progress {
-            bar,
-            start: now,
-            last_line: now,
-            total,
-            elements,
-        }
+        Progress { bar, start: now, last_line: now, total, elements }
     }
 
     /// Element-steps per second so far.
@@ -49,10 +43,7 @@ impl Progress {
         if let Some(b) = &self.bar {
             if steps % 64 == 0 || steps == self.total {
                 b.set_position(steps);
-                b.set_message(format!(
-                    "{time:.4e} s  {:.2e} el-steps/s",
-                    self.throughput(steps)
-                ));
+                b.set_message(format!("{time:.4e} s  {:.2e} el-steps/s", self.throughput(steps)));
             }
         } else if self.last_line.elapsed() >= PLAIN_INTERVAL {
             self.last_line = Instant::now();

@@ -16,38 +16,22 @@ use super::progress::Progress;
 pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
     let prepared = prepare(path)?;
     let Some(mut run) = prepared.run else {
-        bail!(
-            "{}: a [solver] section is needed to run the case",
-            path.display()
-        );
+        bail!("{}: a [solver] section is needed to run the case", path.display());
     };
     let spec = &prepared.case.case.output;
-    let stem = path
-        .file_stem()
-        .map_or("case".into(), |s| s.to_string_lossy().into_owned());
+    let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let dir = out
         .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
         .unwrap_or_else(|| Path::new("out").join(&stem));
     let interval = spec.interval.unwrap_or(run.end_time / 20.0);
     let history_interval = spec.history_interval.unwrap_or(interval / 10.0);
     if !(interval > 0.0 && history_interval > 0.0) {
-        bail!(
-            "{}: output.interval and output.history_interval must be > 0 s",
-            path.display()
-        );
+        bail!("{}: output.interval and output.history_interval must be > 0 s", path.display());
     }
-    let fields = spec
-        .fields
-        .clone()
-        .unwrap_or_else(|| FIELDS.iter().map(|s| s.to_string()).collect());
+    let fields = spec.fields.clone().unwrap_or_else(|| FIELDS.iter().map(|s| s.to_string()).collect());
     let solver = &mut run.solver;
     let m = &prepared.jointed.mesh;
-    let pre_existing: Vec<[u32; 3]> = prepared
-        .jointed
-        .initial_contacts
-        .iter()
-        .map(|(a, _)| a.nodes(&m.tets))
-        .collect();
+    let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
     let mut output = Output::create(&dir, &stem, fields, solver, pre_existing)
         .with_context(|| format!("output directory {}", dir.display()))?;
 
@@ -81,15 +65,10 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
         let stopping = stop.load(Ordering::SeqCst);
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
-        solver.step(Want {
-            stress: frame_due,
-            energy: row_due,
-            dissipation: false,
-        });
+        solver.step(Want { stress: frame_due, energy: row_due, dissipation: false });
         if row_due {
             output.history_row(solver, t, n)?;
-            next_row +=
-                history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
+            next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
         }
         if frame_due {
             output.frame(solver, t)?;
@@ -109,31 +88,16 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
     let steps = solver.state.step;
     println!(
         "{} after {steps} steps, t = {:.6e} s",
-        if interrupted {
-            "interrupted"
-        } else {
-            "finished"
-        },
+        if interrupted { "interrupted" } else { "finished" },
         solver.state.time
     );
     println!("wall time   {wall:.2} s");
-    println!(
-        "throughput  {:.3e} tet-steps/s ({} threads)",
-        progress.throughput(steps),
-        rayon::current_num_threads()
-    );
+    println!("throughput  {:.3e} tet-steps/s ({} threads)", progress.throughput(steps), rayon::current_num_threads());
     println!("results     {}", output.pvd().display());
-    println!(
-        "fractures   {} ({} joints failed)",
-        output.fracture_pvd().display(),
-        solver.failures.len()
-    );
+    println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures.len());
     println!("history     {}", output.history_path().display());
     if interrupted {
-        bail!(
-            "interrupted by Ctrl-C; the state at t = {:.6e} s was written",
-            solver.state.time
-        );
+        bail!("interrupted by Ctrl-C; the state at t = {:.6e} s was written", solver.state.time);
     }
     Ok(())
 }

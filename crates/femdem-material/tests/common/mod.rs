@@ -11,24 +11,12 @@ use proptest::prelude::*;
 /// Table 1 of the reference paper (Brazilian test rock), with viscosity
 /// `eta` (Pa·s).
 pub fn rock(eta: Real) -> Material {
-    ElasticParams {
-        young: 26e9,
-        poisson: 0.2,
-        density: 2340.0,
-        viscosity: eta,
-    }
-    .validate()
-    .unwrap()
+    ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity: eta }.validate().unwrap()
 }
 
 /// A fixed, well-shaped, positive tet that is not axis-aligned.
 pub fn skew_tet() -> [Vec3; 4] {
-    [
-        Vec3::new(0.1, 0.0, 0.2),
-        Vec3::new(1.3, 0.1, 0.0),
-        Vec3::new(0.2, 0.9, 0.1),
-        Vec3::new(0.4, 0.3, 1.1),
-    ]
+    [Vec3::new(0.1, 0.0, 0.2), Vec3::new(1.3, 0.1, 0.0), Vec3::new(0.2, 0.9, 0.1), Vec3::new(0.4, 0.3, 1.1)]
 }
 
 /// Rotation by `angle` (rad) about `axis` (any non-zero vector).

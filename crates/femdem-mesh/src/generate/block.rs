@@ -46,24 +46,16 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
     if !(0.0..=MAX_JITTER).contains(&spec.jitter) {
         return Err(MeshError::InvalidParameter {
             name: "jitter",
-            reason: format!(
-                "must lie in [0, {MAX_JITTER}] (fraction of the element size), got {}",
-                spec.jitter
-            ),
+            reason: format!("must lie in [0, {MAX_JITTER}] (fraction of the element size), got {}", spec.jitter),
         });
     }
     let mut n = [0usize; 3];
     let mut step = [0.0; 3];
     for k in 0..3 {
         let len = spec.max[k] - spec.min[k];
-        positive(["size x", "size y", "size z"][k], len).map_err(|_| {
-            MeshError::InvalidParameter {
-                name: "max",
-                reason: format!(
-                    "max must exceed min on every axis (axis {k}: {} ≤ {})",
-                    spec.max[k], spec.min[k]
-                ),
-            }
+        positive(["size x", "size y", "size z"][k], len).map_err(|_| MeshError::InvalidParameter {
+            name: "max",
+            reason: format!("max must exceed min on every axis (axis {k}: {} ≤ {})", spec.max[k], spec.min[k]),
         })?;
         n[k] = ((len / h).round() as usize).max(1);
         step[k] = len / n[k] as f64;
@@ -71,10 +63,7 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
     if (n[0] * n[1] * n[2]) as f64 * 6.0 > MAX_CELLS {
         return Err(MeshError::InvalidParameter {
             name: "element_size",
-            reason: format!(
-                "{h} m would make {}×{}×{}×6 tets; refuse above {MAX_CELLS:e}",
-                n[0], n[1], n[2]
-            ),
+            reason: format!("{h} m would make {}×{}×{}×6 tets; refuse above {MAX_CELLS:e}", n[0], n[1], n[2]),
         });
     }
     let [nx, ny, nz] = n;
@@ -104,14 +93,7 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
     }
 
     // The six Freudenthal paths: axis orders.
-    const PATHS: [[usize; 3]; 6] = [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ];
+    const PATHS: [[usize; 3]; 6] = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
     let mut tets = Vec::with_capacity(nx * ny * nz * 6);
     for k in 0..nz {
         for j in 0..ny {
@@ -143,20 +125,11 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
 /// Boundary faces grouped by the box side they lie on.
 fn box_sides(mesh: &TetMesh, min: [f64; 3], max: [f64; 3], step: [f64; 3]) -> Vec<BoundaryGroup> {
     const NAMES: [[&str; 2]; 3] = [["xmin", "xmax"], ["ymin", "ymax"], ["zmin", "zmax"]];
-    let mut groups: Vec<BoundaryGroup> = NAMES
-        .iter()
-        .flatten()
-        .map(|n| BoundaryGroup {
-            name: (*n).to_string(),
-            faces: Vec::new(),
-        })
-        .collect();
+    let mut groups: Vec<BoundaryGroup> =
+        NAMES.iter().flatten().map(|n| BoundaryGroup { name: (*n).to_string(), faces: Vec::new() }).collect();
     for t in 0..mesh.tets.len() {
         for local in 0..4u8 {
-            let f = FaceRef {
-                tet: t as u32,
-                local,
-            };
+            let f = FaceRef { tet: t as u32, local };
             let nodes = f.nodes(&mesh.tets).map(|v| mesh.coords[v as usize]);
             for axis in 0..3 {
                 let tol = 1e-9 * step[axis];

@@ -13,9 +13,7 @@
 
 use std::collections::HashSet;
 
-use spade::{
-    AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
-};
+use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
 
 use super::{MAX_CELLS, positive, prism::split_prism};
 use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
@@ -97,10 +95,7 @@ fn point(p: [f64; 2]) -> Result<Point2<f64>, MeshError> {
     if p[0].is_finite() && p[1].is_finite() {
         Ok(Point2::new(p[0], p[1]))
     } else {
-        Err(MeshError::InvalidParameter {
-            name: "outline",
-            reason: format!("non-finite point {p:?}"),
-        })
+        Err(MeshError::InvalidParameter { name: "outline", reason: format!("non-finite point {p:?}") })
     }
 }
 
@@ -117,13 +112,9 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
     let outline = outline_points(&spec.outline, h)?;
     let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
     let ins = |cdt: &mut ConstrainedDelaunayTriangulation<Point2<f64>>, p| {
-        cdt.insert(point(p)?)
-            .map_err(|e| MeshError::Triangulation(format!("{e:?}")))
+        cdt.insert(point(p)?).map_err(|e| MeshError::Triangulation(format!("{e:?}")))
     };
-    let handles = outline
-        .iter()
-        .map(|&p| ins(&mut cdt, p))
-        .collect::<Result<Vec<_>, _>>()?;
+    let handles = outline.iter().map(|&p| ins(&mut cdt, p)).collect::<Result<Vec<_>, _>>()?;
     for i in 0..handles.len() {
         let (a, b) = (handles[i], handles[(i + 1) % handles.len()]);
         if a == b || !cdt.can_add_constraint(a, b) {
@@ -144,10 +135,7 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
                 reason: format!("trace {t} needs at least 2 points, got {}", trace.len()),
             });
         }
-        let hs = trace
-            .iter()
-            .map(|&p| ins(&mut cdt, p))
-            .collect::<Result<Vec<_>, _>>()?;
+        let hs = trace.iter().map(|&p| ins(&mut cdt, p)).collect::<Result<Vec<_>, _>>()?;
         for w in 0..hs.len() - 1 {
             if hs[w] == hs[w + 1] || !cdt.can_add_constraint(hs[w], hs[w + 1]) {
                 return Err(MeshError::Triangulation(format!(
@@ -170,22 +158,16 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
         .with_max_additional_vertices(MAX_CELLS as usize / 3);
     let result = cdt.refine(params);
     if !result.refinement_complete {
-        return Err(MeshError::Triangulation(
-            "refinement ran out of vertices".into(),
-        ));
+        return Err(MeshError::Triangulation("refinement ran out of vertices".into()));
     }
 
-    let all_points: Vec<[f64; 2]> = cdt
-        .vertices()
-        .map(|v| [v.position().x, v.position().y])
-        .collect();
+    let all_points: Vec<[f64; 2]> = cdt.vertices().map(|v| [v.position().x, v.position().y]).collect();
     let mut new_id = vec![u32::MAX; all_points.len()];
     let mut points = Vec::with_capacity(all_points.len());
     let mut triangles = Vec::new();
     for f in cdt.inner_faces() {
         let v = f.vertices().map(|v| v.fix().index());
-        let c =
-            [0, 1].map(|k| (all_points[v[0]][k] + all_points[v[1]][k] + all_points[v[2]][k]) / 3.0);
+        let c = [0, 1].map(|k| (all_points[v[0]][k] + all_points[v[1]][k] + all_points[v[2]][k]) / 3.0);
         if !inside(c, &outline) {
             continue;
         }
@@ -212,21 +194,14 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
             (points[a as usize][0] + points[b as usize][0]) / 2.0,
             (points[a as usize][1] + points[b as usize][1]) / 2.0,
         ];
-        let on_trace = segments
-            .iter()
-            .any(|&(p, q)| distance_to_segment(mid, p, q) <= 1e-9 * h);
+        let on_trace = segments.iter().any(|&(p, q)| distance_to_segment(mid, p, q) <= 1e-9 * h);
         if on_trace {
             trace_edges.insert(key);
         } else {
             outline_edges.insert(key);
         }
     }
-    Ok(Planar {
-        points,
-        triangles,
-        outline_edges,
-        trace_edges,
-    })
+    Ok(Planar { points, triangles, outline_edges, trace_edges })
 }
 
 /// Even–odd point-in-polygon test.
@@ -235,9 +210,7 @@ fn inside(x: [f64; 2], polygon: &[[f64; 2]]) -> bool {
     let mut j = polygon.len() - 1;
     for i in 0..polygon.len() {
         let (a, b) = (polygon[i], polygon[j]);
-        if (a[1] > x[1]) != (b[1] > x[1])
-            && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0]
-        {
+        if (a[1] > x[1]) != (b[1] > x[1]) && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0] {
             inside = !inside;
         }
         j = i;
@@ -248,11 +221,7 @@ fn inside(x: [f64; 2], polygon: &[[f64; 2]]) -> bool {
 fn distance_to_segment(x: [f64; 2], p: [f64; 2], q: [f64; 2]) -> f64 {
     let d = [q[0] - p[0], q[1] - p[1]];
     let len2 = d[0] * d[0] + d[1] * d[1];
-    let s = if len2 > 0.0 {
-        (((x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let s = if len2 > 0.0 { (((x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
     let c = [p[0] + s * d[0] - x[0], p[1] + s * d[1] - x[1]];
     (c[0] * c[0] + c[1] * c[1]).sqrt()
 }
@@ -268,10 +237,7 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
     let thickness = positive("thickness", spec.thickness)?;
     let layers = match spec.layers {
         Some(0) => {
-            return Err(MeshError::InvalidParameter {
-                name: "layers",
-                reason: "must be at least 1".into(),
-            });
+            return Err(MeshError::InvalidParameter { name: "layers", reason: "must be at least 1".into() });
         }
         Some(n) => n,
         None => ((thickness / h).round() as usize).max(1),
@@ -280,10 +246,7 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
     if (planar.triangles.len() * layers * 3) as f64 > MAX_CELLS {
         return Err(MeshError::InvalidParameter {
             name: "element_size",
-            reason: format!(
-                "would make {} tets; refuse above {MAX_CELLS:e}",
-                planar.triangles.len() * layers * 3
-            ),
+            reason: format!("would make {} tets; refuse above {MAX_CELLS:e}", planar.triangles.len() * layers * 3),
         });
     }
     let np = planar.points.len() as u32;
@@ -313,20 +276,12 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
 
 /// Fills the boundary groups and the fracture faces from the planar edges.
 fn classify_faces(mesh: &mut TetMesh, planar: &Planar, np: u32, layers: u32) {
-    let mut groups: Vec<BoundaryGroup> = ["bottom", "top", "side"]
-        .iter()
-        .map(|n| BoundaryGroup {
-            name: (*n).to_string(),
-            faces: Vec::new(),
-        })
-        .collect();
+    let mut groups: Vec<BoundaryGroup> =
+        ["bottom", "top", "side"].iter().map(|n| BoundaryGroup { name: (*n).to_string(), faces: Vec::new() }).collect();
     let mut seen_trace_faces = HashSet::new();
     for t in 0..mesh.tets.len() {
         for local in 0..4u8 {
-            let f = FaceRef {
-                tet: t as u32,
-                local,
-            };
+            let f = FaceRef { tet: t as u32, local };
             let nodes = f.nodes(&mesh.tets);
             let layer = nodes.map(|n| n / np);
             if layer.iter().all(|&l| l == 0) {

@@ -18,10 +18,7 @@ pub(crate) fn positive(name: &'static str, v: f64) -> Result<f64, MeshError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(MeshError::InvalidParameter {
-            name,
-            reason: format!("must be a finite length > 0 m, got {v}"),
-        })
+        Err(MeshError::InvalidParameter { name, reason: format!("must be a finite length > 0 m, got {v}") })
     }
 }
 

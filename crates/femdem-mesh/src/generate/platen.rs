@@ -61,19 +61,11 @@ pub struct PlatenSpec {
 ///
 /// # Errors
 /// [`MeshError::InvalidParameter`] for a bad thickness, extent or size.
-pub fn generate_platen(
-    spec: &PlatenSpec,
-    lo: [f64; 3],
-    hi: [f64; 3],
-) -> Result<TetMesh, MeshError> {
+pub fn generate_platen(spec: &PlatenSpec, lo: [f64; 3], hi: [f64; 3]) -> Result<TetMesh, MeshError> {
     let t = positive("thickness", spec.thickness)?;
     let axis = spec.side.axis();
     let others = [(axis + 1) % 3, (axis + 2) % 3];
-    let others = if others[0] < others[1] {
-        others
-    } else {
-        [others[1], others[0]]
-    };
+    let others = if others[0] < others[1] { others } else { [others[1], others[0]] };
     let mut min = [0.0; 3];
     let mut max = [0.0; 3];
     for (k, &a) in others.iter().enumerate() {

@@ -53,25 +53,15 @@ impl fmt::Display for MshReport {
             parts.push(format!("skipped elements: {}", skipped.join(", ")));
         }
         if self.ungrouped_triangles > 0 {
-            parts.push(format!(
-                "{} triangle(s) in no physical surface ignored",
-                self.ungrouped_triangles
-            ));
+            parts.push(format!("{} triangle(s) in no physical surface ignored", self.ungrouped_triangles));
         }
         if self.dropped_nodes > 0 {
-            parts.push(format!(
-                "{} node(s) used by no tet dropped",
-                self.dropped_nodes
-            ));
+            parts.push(format!("{} node(s) used by no tet dropped", self.dropped_nodes));
         }
         if self.reoriented_tets > 0 {
             parts.push(format!("{} tet(s) reoriented", self.reoriented_tets));
         }
-        if parts.is_empty() {
-            f.write_str("nothing skipped")
-        } else {
-            f.write_str(&parts.join("; "))
-        }
+        if parts.is_empty() { f.write_str("nothing skipped") } else { f.write_str(&parts.join("; ")) }
     }
 }
 
@@ -152,31 +142,19 @@ impl<'a> Lines<'a> {
         self.rest = rest;
         self.line += 1;
         let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
-        std::str::from_utf8(raw)
-            .map(Some)
-            .map_err(|_| self.err("not valid UTF-8 (binary data in an ASCII MSH file?)"))
+        std::str::from_utf8(raw).map(Some).map_err(|_| self.err("not valid UTF-8 (binary data in an ASCII MSH file?)"))
     }
 
     /// The next record of section `section`, trimmed. A section end (any
     /// line starting with `$`) or the end of file is an error that says
     /// `what` was expected.
-    fn record(
-        &mut self,
-        section: &str,
-        what: impl FnOnce() -> String,
-    ) -> Result<Fields<'a>, MeshError> {
+    fn record(&mut self, section: &str, what: impl FnOnce() -> String) -> Result<Fields<'a>, MeshError> {
         match self.next_line()? {
             None => Err(self.err(format!("file ends inside ${section}: expected {}", what()))),
-            Some(l) if l.trim_start().starts_with('$') => Err(self.err(format!(
-                "${section} ends early: expected {}, found `{}`",
-                what(),
-                l.trim()
-            ))),
-            Some(l) => Ok(Fields {
-                raw: l,
-                it: l.split_ascii_whitespace(),
-                line: self.line,
-            }),
+            Some(l) if l.trim_start().starts_with('$') => {
+                Err(self.err(format!("${section} ends early: expected {}, found `{}`", what(), l.trim())))
+            }
+            Some(l) => Ok(Fields { raw: l, it: l.split_ascii_whitespace(), line: self.line }),
         }
     }
 
@@ -185,18 +163,13 @@ impl<'a> Lines<'a> {
         match self.next_line()? {
             Some(l) if l.trim() == format!("$End{section}") => Ok(()),
             Some(l) => Err(self.err(format!("expected $End{section}, found `{}`", l.trim()))),
-            None => Err(self.err(format!(
-                "file ends inside ${section}: expected $End{section}"
-            ))),
+            None => Err(self.err(format!("file ends inside ${section}: expected $End{section}"))),
         }
     }
 }
 
 fn err_at(line: usize, message: impl Into<String>) -> MeshError {
-    MeshError::Msh {
-        line,
-        message: message.into(),
-    }
+    MeshError::Msh { line, message: message.into() }
 }
 
 /// The whitespace-separated fields of one record.
@@ -214,16 +187,13 @@ impl<'a> Fields<'a> {
 
     fn token(&mut self, name: &str) -> Result<&'a str, MeshError> {
         let line = self.line;
-        self.it
-            .next()
-            .ok_or_else(|| err_at(line, format!("missing {name}")))
+        self.it.next().ok_or_else(|| err_at(line, format!("missing {name}")))
     }
 
     fn parse<T: FromStr>(&mut self, name: &str, kind: &str) -> Result<T, MeshError> {
         let line = self.line;
         let tok = self.token(name)?;
-        tok.parse()
-            .map_err(|_| err_at(line, format!("bad {name} `{tok}`: expected {kind}")))
+        tok.parse().map_err(|_| err_at(line, format!("bad {name} `{tok}`: expected {kind}")))
     }
 
     fn count(&mut self, name: &str) -> Result<usize, MeshError> {
@@ -247,10 +217,7 @@ impl<'a> Fields<'a> {
         let tok = self.token(name)?;
         match tok.parse::<f64>() {
             Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(err_at(
-                line,
-                format!("bad {name} `{tok}`: expected a finite number"),
-            )),
+            _ => Err(err_at(line, format!("bad {name} `{tok}`: expected a finite number"))),
         }
     }
 
@@ -288,10 +255,7 @@ impl TagMap {
     fn insert(&mut self, tag: u64, index: u32) -> bool {
         match self {
             TagMap::Dense { min, idx } => {
-                let slot = tag
-                    .checked_sub(*min)
-                    .and_then(|i| usize::try_from(i).ok())
-                    .and_then(|i| idx.get_mut(i));
+                let slot = tag.checked_sub(*min).and_then(|i| usize::try_from(i).ok()).and_then(|i| idx.get_mut(i));
                 match slot {
                     Some(s) if *s == u32::MAX => {
                         *s = index;
@@ -343,10 +307,7 @@ struct Reader<'a> {
 impl<'a> Reader<'a> {
     fn new(bytes: &'a [u8]) -> Self {
         Reader {
-            lines: Lines {
-                rest: bytes,
-                line: 0,
-            },
+            lines: Lines { rest: bytes, line: 0 },
             file_len: bytes.len(),
             report: MshReport::default(),
             names: HashMap::new(),
@@ -376,22 +337,17 @@ impl<'a> Reader<'a> {
                 continue;
             }
             let Some(name) = header.strip_prefix('$') else {
-                return Err(self.lines.err(format!(
-                    "expected a section header such as $Nodes, found `{header}`"
-                )));
+                return Err(self.lines.err(format!("expected a section header such as $Nodes, found `{header}`")));
             };
             if name.starts_with("End") {
                 return Err(self.lines.err(format!("`{header}` closes no open section")));
             }
             if !seen_format && name != "MeshFormat" {
-                return Err(self.lines.err(format!(
-                    "expected $MeshFormat first, found `{header}` (not a Gmsh MSH file?)"
-                )));
+                return Err(self
+                    .lines
+                    .err(format!("expected $MeshFormat first, found `{header}` (not a Gmsh MSH file?)")));
             }
-            let known = matches!(
-                name,
-                "MeshFormat" | "PhysicalNames" | "Entities" | "Nodes" | "Elements"
-            );
+            let known = matches!(name, "MeshFormat" | "PhysicalNames" | "Entities" | "Nodes" | "Elements");
             if known && !seen.insert(name.to_owned()) {
                 return Err(self.lines.err(format!("second ${name} section")));
             }
@@ -410,9 +366,7 @@ impl<'a> Reader<'a> {
                 "Nodes" => self.nodes()?,
                 "Elements" => self.elements()?,
                 "PartitionedEntities" => {
-                    return Err(self
-                        .lines
-                        .err("partitioned meshes are not supported: save without partitions"));
+                    return Err(self.lines.err("partitioned meshes are not supported: save without partitions"));
                 }
                 _ => self.skip_section(name)?,
             }
@@ -434,16 +388,11 @@ impl<'a> Reader<'a> {
                 return Ok(());
             }
         }
-        Err(err_at(
-            start,
-            format!("section ${name} is never closed by {end}"),
-        ))
+        Err(err_at(start, format!("section ${name} is never closed by {end}")))
     }
 
     fn mesh_format(&mut self) -> Result<(), MeshError> {
-        let mut f = self
-            .lines
-            .record("MeshFormat", || "`version file-type data-size`".into())?;
+        let mut f = self.lines.record("MeshFormat", || "`version file-type data-size`".into())?;
         let version = f.token("version")?;
         if version != "4.1" {
             return Err(f.err(format!(
@@ -469,23 +418,15 @@ impl<'a> Reader<'a> {
 
     fn physical_names(&mut self) -> Result<(), MeshError> {
         const S: &str = "PhysicalNames";
-        let mut f = self
-            .lines
-            .record(S, || "the number of physical names".into())?;
+        let mut f = self.lines.record(S, || "the number of physical names".into())?;
         let n = f.count("number of physical names")?;
         f.end("the number of physical names")?;
         for i in 0..n {
-            let f = self
-                .lines
-                .record(S, || format!("physical name {} of {n}", i + 1))?;
+            let f = self.lines.record(S, || format!("physical name {} of {n}", i + 1))?;
             // `dim tag "name"`; the name may hold any run of spaces.
             let raw = f.raw;
             let (head, quoted) = raw.split_at(raw.find('"').unwrap_or(raw.len()));
-            let mut h = Fields {
-                raw: head,
-                it: head.split_ascii_whitespace(),
-                line: f.line,
-            };
+            let mut h = Fields { raw: head, it: head.split_ascii_whitespace(), line: f.line };
             let dim = h.int("dimension")?;
             let tag = h.int("physical tag")?;
             h.end("the physical tag")?;
@@ -504,14 +445,9 @@ impl<'a> Reader<'a> {
 
     fn entities(&mut self) -> Result<(), MeshError> {
         const S: &str = "Entities";
-        let mut f = self
-            .lines
-            .record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
+        let mut f = self.lines.record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
         let mut counts = [0usize; 4];
-        for (c, name) in counts
-            .iter_mut()
-            .zip(["points", "curves", "surfaces", "volumes"])
-        {
+        for (c, name) in counts.iter_mut().zip(["points", "curves", "surfaces", "volumes"]) {
             *c = f.count(&format!("number of {name}"))?;
         }
         f.end("the number of volumes")?;
@@ -520,9 +456,7 @@ impl<'a> Reader<'a> {
             let kind = ["point", "curve", "surface", "volume"][dim];
             let mut tags_seen = BTreeSet::new();
             for i in 0..n {
-                let mut f = self
-                    .lines
-                    .record(S, || format!("{kind} entity {} of {n}", i + 1))?;
+                let mut f = self.lines.record(S, || format!("{kind} entity {} of {n}", i + 1))?;
                 let tag = f.int(&format!("{kind} tag"))?;
                 if !tags_seen.insert(tag) {
                     return Err(f.err(format!("{kind} entity {tag} listed twice")));
@@ -560,21 +494,13 @@ impl<'a> Reader<'a> {
 
     fn nodes(&mut self) -> Result<(), MeshError> {
         const S: &str = "Nodes";
-        let mut f = self.lines.record(S, || {
-            "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into()
-        })?;
+        let mut f = self.lines.record(S, || "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into())?;
         let n_blocks = f.count("number of entity blocks")?;
         let n_nodes = f.count("number of nodes")?;
         let (min, max) = if n_nodes == 0 {
-            (
-                f.count("minimum node tag")? as u64,
-                f.count("maximum node tag")? as u64,
-            )
+            (f.count("minimum node tag")? as u64, f.count("maximum node tag")? as u64)
         } else {
-            (
-                f.node_tag("minimum node tag")?,
-                f.node_tag("maximum node tag")?,
-            )
+            (f.node_tag("minimum node tag")?, f.node_tag("maximum node tag")?)
         };
         f.end("the maximum node tag")?;
         if n_nodes > 0 && max < min {
@@ -586,18 +512,13 @@ impl<'a> Reader<'a> {
         let range = max.saturating_sub(min).saturating_add(1);
         let dense_limit = 2 * self.capacity(n_nodes) as u64 + 1024;
         let mut tags = if range <= dense_limit {
-            TagMap::Dense {
-                min,
-                idx: vec![u32::MAX; range as usize],
-            }
+            TagMap::Dense { min, idx: vec![u32::MAX; range as usize] }
         } else {
             TagMap::Sparse(HashMap::with_capacity(self.capacity(n_nodes)))
         };
         self.coords = Vec::with_capacity(self.capacity(n_nodes));
         for b in 0..n_blocks {
-            let mut f = self
-                .lines
-                .record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
             let dim = f.int("entity dimension")?;
             f.int("entity tag")?;
             let parametric = f.count("parametric flag")?;
@@ -611,20 +532,14 @@ impl<'a> Reader<'a> {
             }
             let base = self.coords.len();
             if n > n_nodes - base {
-                return Err(f.err(format!(
-                    "blocks hold more nodes than the {n_nodes} announced by the $Nodes header"
-                )));
+                return Err(f.err(format!("blocks hold more nodes than the {n_nodes} announced by the $Nodes header")));
             }
             for i in 0..n {
-                let mut f = self
-                    .lines
-                    .record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
+                let mut f = self.lines.record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
                 let tag = f.node_tag("node tag")?;
                 f.end("the node tag")?;
                 if !(min..=max).contains(&tag) {
-                    return Err(f.err(format!(
-                        "node tag {tag} is outside the header's range {min}..={max}"
-                    )));
+                    return Err(f.err(format!("node tag {tag} is outside the header's range {min}..={max}")));
                 }
                 // `base + i < n_nodes`, which fits in u32 (checked above).
                 if !tags.insert(tag, (base + i) as u32) {
@@ -633,9 +548,7 @@ impl<'a> Reader<'a> {
             }
             let extra = if parametric == 1 { dim as usize } else { 0 };
             for i in 0..n {
-                let mut f = self.lines.record(S, || {
-                    format!("coordinates of node {} of block {}", i + 1, b + 1)
-                })?;
+                let mut f = self.lines.record(S, || format!("coordinates of node {} of block {}", i + 1, b + 1))?;
                 let x = f.real("x coordinate")?;
                 let y = f.real("y coordinate")?;
                 let z = f.real("z coordinate")?;
@@ -649,10 +562,9 @@ impl<'a> Reader<'a> {
         if self.coords.len() != n_nodes {
             // Report on the line that should have been a block header.
             self.lines.next_line()?;
-            return Err(self.lines.err(format!(
-                "the $Nodes header announces {n_nodes} nodes, the blocks hold {}",
-                self.coords.len()
-            )));
+            return Err(self
+                .lines
+                .err(format!("the $Nodes header announces {n_nodes} nodes, the blocks hold {}", self.coords.len())));
         }
         self.tags = Some(tags);
         self.lines.end_of(S)
@@ -664,9 +576,7 @@ impl<'a> Reader<'a> {
         let Some(tags) = self.tags.take() else {
             return Err(self.lines.err("$Elements must come after $Nodes"));
         };
-        let mut f = self
-            .lines
-            .record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
+        let mut f = self.lines.record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
         let n_blocks = f.count("number of entity blocks")?;
         let n_elements = f.count("number of elements")?;
         f.count("minimum element tag")?;
@@ -674,9 +584,7 @@ impl<'a> Reader<'a> {
         f.end("the maximum element tag")?;
         let mut total = 0usize;
         for b in 0..n_blocks {
-            let mut f = self
-                .lines
-                .record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
             let dim = f.int("entity dimension")?;
             let entity = f.int("entity tag")?;
             let ty: u32 = f.parse("element type", "a positive integer")?;
@@ -695,9 +603,7 @@ impl<'a> Reader<'a> {
                 _ => {
                     *self.report.skipped_elements.entry(ty).or_insert(0) += n;
                     for i in 0..n {
-                        let mut f = self
-                            .lines
-                            .record(S, || format!("element {} of block {}", i + 1, b + 1))?;
+                        let mut f = self.lines.record(S, || format!("element {} of block {}", i + 1, b + 1))?;
                         f.node_tag("element tag")?;
                         let nodes = f.it.by_ref().count();
                         let ok = match element_type_nodes(ty) {
@@ -706,9 +612,7 @@ impl<'a> Reader<'a> {
                         };
                         if !ok {
                             let k = element_type_nodes(ty).unwrap_or(0);
-                            return Err(f.err(format!(
-                                "element of type {ty} has {nodes} node tags, expected {k}"
-                            )));
+                            return Err(f.err(format!("element of type {ty} has {nodes} node tags, expected {k}")));
                         }
                     }
                 }
@@ -716,9 +620,9 @@ impl<'a> Reader<'a> {
         }
         if total != n_elements {
             self.lines.next_line()?;
-            return Err(self.lines.err(format!(
-                "the $Elements header announces {n_elements} elements, the blocks hold {total}"
-            )));
+            return Err(self
+                .lines
+                .err(format!("the $Elements header announces {n_elements} elements, the blocks hold {total}")));
         }
         self.tags = Some(tags);
         self.lines.end_of(S)
@@ -735,37 +639,22 @@ impl<'a> Reader<'a> {
         let mut nodes = [0u32; K];
         for v in &mut nodes {
             let tag = f.node_tag("node tag")?;
-            *v = tags
-                .get(tag)
-                .ok_or_else(|| f.err(format!("node tag {tag} is not in $Nodes")))?;
+            *v = tags.get(tag).ok_or_else(|| f.err(format!("node tag {tag} is not in $Nodes")))?;
         }
         let line = f.line;
         f.end("the node tags")?;
         Ok((nodes, line))
     }
 
-    fn tet_block(
-        &mut self,
-        tags: &TagMap,
-        dim: i32,
-        entity: i32,
-        n: usize,
-        line: usize,
-    ) -> Result<(), MeshError> {
+    fn tet_block(&mut self, tags: &TagMap, dim: i32, entity: i32, n: usize, line: usize) -> Result<(), MeshError> {
         if dim != 3 {
-            return Err(err_at(
-                line,
-                format!("tets (type 4) on an entity of dimension {dim}"),
-            ));
+            return Err(err_at(line, format!("tets (type 4) on an entity of dimension {dim}")));
         }
         let phys = match &self.volumes {
             None => None,
             Some(v) => match v.get(&entity).map(Vec::as_slice) {
                 None => {
-                    return Err(err_at(
-                        line,
-                        format!("volume entity {entity} is not listed in $Entities"),
-                    ));
+                    return Err(err_at(line, format!("volume entity {entity} is not listed in $Entities")));
                 }
                 Some([]) => None,
                 Some([p]) => Some(*p),
@@ -785,36 +674,22 @@ impl<'a> Reader<'a> {
         self.tets.reserve(cap);
         self.tet_phys.reserve(cap);
         for i in 0..n {
-            let (t, _) =
-                self.element::<4>(tags, || format!("tet {} of {n} on volume {entity}", i + 1))?;
+            let (t, _) = self.element::<4>(tags, || format!("tet {} of {n} on volume {entity}", i + 1))?;
             self.tets.push(t);
             self.tet_phys.push(phys);
         }
         Ok(())
     }
 
-    fn triangle_block(
-        &mut self,
-        tags: &TagMap,
-        dim: i32,
-        entity: i32,
-        n: usize,
-        line: usize,
-    ) -> Result<(), MeshError> {
+    fn triangle_block(&mut self, tags: &TagMap, dim: i32, entity: i32, n: usize, line: usize) -> Result<(), MeshError> {
         if dim != 2 {
-            return Err(err_at(
-                line,
-                format!("triangles (type 2) on an entity of dimension {dim}"),
-            ));
+            return Err(err_at(line, format!("triangles (type 2) on an entity of dimension {dim}")));
         }
         let grouped = match &self.volumes {
             None => false,
             Some(_) => match self.surfaces.get(&entity) {
                 None => {
-                    return Err(err_at(
-                        line,
-                        format!("surface entity {entity} is not listed in $Entities"),
-                    ));
+                    return Err(err_at(line, format!("surface entity {entity} is not listed in $Entities")));
                 }
                 Some(p) => !p.is_empty(),
             },
@@ -825,15 +700,9 @@ impl<'a> Reader<'a> {
             self.report.ungrouped_triangles += n;
         }
         for i in 0..n {
-            let (nodes, line) = self.element::<3>(tags, || {
-                format!("triangle {} of {n} on surface {entity}", i + 1)
-            })?;
+            let (nodes, line) = self.element::<3>(tags, || format!("triangle {} of {n} on surface {entity}", i + 1))?;
             if grouped {
-                self.triangles.push(RawTriangle {
-                    nodes,
-                    entity,
-                    line,
-                });
+                self.triangles.push(RawTriangle { nodes, entity, line });
             }
         }
         Ok(())
@@ -870,15 +739,8 @@ impl<'a> Reader<'a> {
             }
         }
         self.report.dropped_nodes = self.coords.len() - coords.len();
-        let mut mesh = TetMesh {
-            coords,
-            ..Default::default()
-        };
-        mesh.tets = self
-            .tets
-            .iter()
-            .map(|t| t.map(|v| new_index[v as usize]))
-            .collect();
+        let mut mesh = TetMesh { coords, ..Default::default() };
+        mesh.tets = self.tets.iter().map(|t| t.map(|v| new_index[v as usize])).collect();
         for t in 0..mesh.tets.len() {
             if signed_volume(&mesh.tet_points(t)) < 0.0 {
                 mesh.tets[t].swap(2, 3);
@@ -896,18 +758,11 @@ impl<'a> Reader<'a> {
             }
             let i = u16::try_from(regions.len())
                 .map_err(|_| err_at(elements_line, "more than 65536 regions (physical volumes)"))?;
-            regions.push(Region {
-                name,
-                breakable: true,
-            });
+            regions.push(Region { name, breakable: true });
             Ok(i)
         };
         for &p in &phys_volumes {
-            let name = self
-                .names
-                .get(&(3, p))
-                .cloned()
-                .unwrap_or_else(|| format!("volume_{p}"));
+            let name = self.names.get(&(3, p)).cloned().unwrap_or_else(|| format!("volume_{p}"));
             region_of.insert(Some(p), add_region(&mut mesh.regions, name)?);
         }
         if self.tet_phys.iter().any(Option::is_none) {
@@ -919,18 +774,11 @@ impl<'a> Reader<'a> {
         let phys_surfaces: BTreeSet<i32> = self.surfaces.values().flatten().copied().collect();
         let mut group_of: HashMap<i32, usize> = HashMap::new();
         for &p in &phys_surfaces {
-            let name = self
-                .names
-                .get(&(2, p))
-                .cloned()
-                .unwrap_or_else(|| format!("surface_{p}"));
+            let name = self.names.get(&(2, p)).cloned().unwrap_or_else(|| format!("surface_{p}"));
             let g = match mesh.boundary.iter().position(|g| g.name == name) {
                 Some(g) => g,
                 None => {
-                    mesh.boundary.push(BoundaryGroup {
-                        name,
-                        faces: Vec::new(),
-                    });
+                    mesh.boundary.push(BoundaryGroup { name, faces: Vec::new() });
                     mesh.boundary.len() - 1
                 }
             };
@@ -940,13 +788,7 @@ impl<'a> Reader<'a> {
         for tri in &self.triangles {
             let nodes = tri.nodes.map(|v| new_index[v as usize]);
             let face = match_face(&mesh, &keys, nodes).ok_or_else(|| {
-                err_at(
-                    tri.line,
-                    format!(
-                        "triangle on surface {} is not a face of any tet",
-                        tri.entity
-                    ),
-                )
+                err_at(tri.line, format!("triangle on surface {} is not a face of any tet", tri.entity))
             })?;
             for p in self.surfaces.get(&tri.entity).into_iter().flatten() {
                 if let Some(&g) = group_of.get(p) {
@@ -969,10 +811,7 @@ fn match_face(mesh: &TetMesh, keys: &[(u128, u32)], nodes: [u32; 3]) -> Option<F
     let candidates = keys[first..].iter().take_while(|&&(k, _)| k == key);
     let mut found = None;
     for &(_, slot) in candidates {
-        let f = FaceRef {
-            tet: slot / 4,
-            local: (slot % 4) as u8,
-        };
+        let f = FaceRef { tet: slot / 4, local: (slot % 4) as u8 };
         let o = f.nodes(&mesh.tets);
         let same_turn = (0..3).any(|r| o[r] == nodes[0] && o[(r + 1) % 3] == nodes[1]);
         if same_turn {
@@ -989,10 +828,7 @@ mod tests {
 
     #[test]
     fn dense_and_sparse_tag_maps_agree() {
-        let mut dense = TagMap::Dense {
-            min: 5,
-            idx: vec![u32::MAX; 10],
-        };
+        let mut dense = TagMap::Dense { min: 5, idx: vec![u32::MAX; 10] };
         let mut sparse = TagMap::Sparse(HashMap::new());
         for m in [&mut dense, &mut sparse] {
             assert!(m.insert(7, 0));

@@ -26,13 +26,7 @@ use crate::TetMesh;
 /// tet that does not exist (a mesh that fails [`check`](crate::check::check)
 /// or has stale groups).
 pub fn write_msh(mesh: &TetMesh) -> String {
-    let num_volumes = mesh
-        .tet_region
-        .iter()
-        .map(|&r| usize::from(r) + 1)
-        .max()
-        .unwrap_or(0)
-        .max(mesh.regions.len());
+    let num_volumes = mesh.tet_region.iter().map(|&r| usize::from(r) + 1).max().unwrap_or(0).max(mesh.regions.len());
     // Nodes need an entity to live on, even in a mesh with no regions.
     let num_volume_entities = num_volumes.max(usize::from(!mesh.coords.is_empty()));
     let num_groups = mesh.boundary.len();
@@ -120,11 +114,7 @@ pub fn write_msh(mesh: &TetMesh) -> String {
     let num_elements = num_faces + mesh.tets.len();
     let num_blocks = mesh.boundary.iter().filter(|g| !g.faces.is_empty()).count() + runs.len();
     out.push_str("$Elements\n");
-    let _ = writeln!(
-        out,
-        "{num_blocks} {num_elements} {} {num_elements}",
-        usize::from(num_elements > 0)
-    );
+    let _ = writeln!(out, "{num_blocks} {num_elements} {} {num_elements}", usize::from(num_elements > 0));
     let mut tag = 0usize;
     for (g, group) in mesh.boundary.iter().enumerate() {
         if group.faces.is_empty() {
@@ -159,11 +149,7 @@ fn grow(b: &mut [[f64; 3]; 2], p: [f64; 3]) {
 
 /// Writes ` minX minY minZ maxX maxY maxZ`; an empty box as zeros.
 fn push_box(out: &mut String, b: &[[f64; 3]; 2]) {
-    let b = if b[0][0] <= b[1][0] {
-        *b
-    } else {
-        [[0.0; 3]; 2]
-    };
+    let b = if b[0][0] <= b[1][0] { *b } else { [[0.0; 3]; 2] };
     for x in b.iter().flatten() {
         out.push(' ');
         push_real(out, *x);
@@ -174,11 +160,7 @@ fn push_box(out: &mut String, b: &[[f64; 3]; 2]) {
 /// notation for ordinary magnitudes and in exponent notation otherwise
 /// (Rust's `{}` would spell 1e-300 with 300 zeros).
 fn push_real(out: &mut String, x: f64) {
-    let _ = if x == 0.0 || (1e-5..1e16).contains(&x.abs()) {
-        write!(out, "{x}")
-    } else {
-        write!(out, "{x:e}")
-    };
+    let _ = if x == 0.0 || (1e-5..1e16).contains(&x.abs()) { write!(out, "{x}") } else { write!(out, "{x:e}") };
 }
 
 /// `name` with the characters MSH cannot hold in a quoted name replaced.

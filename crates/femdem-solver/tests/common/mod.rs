@@ -10,26 +10,12 @@ use femdem_solver::{Loads, Model, RegionBehaviour, Solver, stable_time_step};
 
 /// The paper's rock (Table 1): ρ = 2340 kg/m³, E = 26 GPa, ν = 0.2.
 pub fn rock(viscosity: f64) -> Material {
-    ElasticParams {
-        young: 26e9,
-        poisson: 0.2,
-        density: 2340.0,
-        viscosity,
-    }
-    .validate()
-    .unwrap()
+    ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().unwrap()
 }
 
 /// The paper's rock with Poisson's ratio `nu`.
 pub fn rock_nu(viscosity: f64, nu: f64) -> Material {
-    ElasticParams {
-        young: 26e9,
-        poisson: nu,
-        density: 2340.0,
-        viscosity,
-    }
-    .validate()
-    .unwrap()
+    ElasticParams { young: 26e9, poisson: nu, density: 2340.0, viscosity }.validate().unwrap()
 }
 
 /// The paper's joint strengths with penalty `p0`.
@@ -53,10 +39,7 @@ pub fn box_mesh(min: [f64; 3], max: [f64; 3], h: f64, jitter: f64, breakable: bo
         element_size: h,
         jitter,
         seed: 11,
-        region: Region {
-            name: "rock".into(),
-            breakable,
-        },
+        region: Region { name: "rock".into(), breakable },
     })
     .unwrap()
 }
@@ -66,16 +49,7 @@ pub fn box_mesh(min: [f64; 3], max: [f64; 3], h: f64, jitter: f64, breakable: bo
 pub fn model(mesh: &TetMesh, law: Law, material: Material, p0: f64) -> (JointedMesh, Model) {
     let jointed = insert_joints(mesh).unwrap();
     let joints = mesh.regions[0].breakable.then(|| joints(p0));
-    let model = Model::new(
-        &jointed,
-        &[RegionBehaviour::Deformable {
-            law,
-            material,
-            joints,
-        }],
-        1.0,
-    )
-    .unwrap();
+    let model = Model::new(&jointed, &[RegionBehaviour::Deformable { law, material, joints }], 1.0).unwrap();
     (jointed, model)
 }
 
@@ -116,11 +90,7 @@ pub fn voigt_unit_stress(k: usize) -> femdem_core::Mat3 {
 pub fn voigt_strain(e: &femdem_core::Mat3) -> nalgebra::Vector6<f64> {
     nalgebra::Vector6::from_fn(|k, _| {
         let (i, j) = VOIGT[k];
-        if i == j {
-            e[(i, i)]
-        } else {
-            e[(i, j)] + e[(j, i)]
-        }
+        if i == j { e[(i, i)] } else { e[(i, j)] + e[(j, i)] }
     })
 }
 
@@ -146,11 +116,7 @@ pub fn isotropic_compliance(m: &Material) -> nalgebra::Matrix6<f64> {
 /// `S_j = (1/V) Σ (A h / p0) sym(n ⊗ (·) n)`. Geometry is taken from the
 /// reference positions of the joint's side-a face `N1 N2 N3`; `keep`
 /// chooses the joints counted (by the centroid of that face).
-pub fn joint_compliance(
-    model: &Model,
-    volume: f64,
-    keep: impl Fn(&Vec3) -> bool,
-) -> nalgebra::Matrix6<f64> {
+pub fn joint_compliance(model: &Model, volume: f64, keep: impl Fn(&Vec3) -> bool) -> nalgebra::Matrix6<f64> {
     let mut s = nalgebra::Matrix6::zeros();
     for (j, nodes) in model.joints.iter().enumerate() {
         let [a, b, c] = [nodes[0], nodes[1], nodes[2]].map(|n| model.x0[n as usize]);

@@ -98,3 +98,32 @@ fn ctrl_c_stops_cleanly_after_writing_the_state() {
     assert!(frames >= 2, "the state at the interruption must be written ({frames} frames)");
     assert!(out.join("history.csv").is_file());
 }
+
+/// The bundled pulled bar breaks: its fracture-surface series ends with the
+/// crack's triangles, the history counts the broken joints, and the energy
+/// account (with the work done on the joints booked as fracture) closes to
+/// 1% of the work.
+#[test]
+fn pulled_bar_writes_its_crack_and_closes_its_energy_account() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pulled-bar-run");
+    let _ = std::fs::remove_dir_all(&out);
+    let o = femdem(&["run", "cases/pulled-bar.toml", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let pvd = std::fs::read_to_string(out.join("pulled-bar_fractures.pvd")).unwrap();
+    let last = pvd.split("file=\"").last().unwrap().split('"').next().unwrap();
+    let vtu = std::fs::read_to_string(out.join(last)).unwrap();
+    let cells: usize = vtu.split("NumberOfCells=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+    assert!(cells >= 16, "the crack has {cells} faces");
+
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let last: Vec<f64> = lines.last().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+    let broken = last[col("broken_tensile")] + last[col("broken_shear")] + last[col("broken_mixed")];
+    assert_eq!(broken as usize, cells);
+    let work = last[col("external_work")];
+    assert!(last[col("fracture")] > 0.5 * work, "most of the work goes into the crack");
+    assert!(last[col("balance")].abs() < 0.01 * work, "balance {} vs work {work}", last[col("balance")]);
+    assert!(last[col("pull_fz")].abs() < 5.0, "the halves are apart: {} N", last[col("pull_fz")]);
+}

@@ -200,15 +200,14 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
         let rs = ds / dsp;
         if rs <= 1.0 { hardening(fs, rs).min(zd * fs) } else { zd * fs }
     };
-    let broke = (d_hist < 1.0 && damage >= 1.0).then(|| {
-        if dn >= dnc {
-            FailureMode::Tensile
-        } else if fs <= 0.0 || ds >= dsc {
-            FailureMode::Shear
-        } else {
-            FailureMode::Mixed
-        }
-    });
+    let mode = if dn >= dnc {
+        FailureMode::Tensile
+    } else if fs <= 0.0 || ds >= dsc {
+        FailureMode::Shear
+    } else {
+        FailureMode::Mixed
+    };
+    let broke = (d_hist < 1.0 && damage >= 1.0).then_some(mode);
     let dissipated = if damage > d_hist {
         let (wn2, ws2) = (dn_soft * dn_soft, ds_soft * ds_soft);
         let total = wn2 + ws2;

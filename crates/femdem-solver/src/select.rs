@@ -26,6 +26,16 @@ pub struct UnknownName {
     pub available: Vec<String>,
 }
 
+/// The boundary group called `name`.
+fn group<'a>(mesh: &'a JointedMesh, name: &str) -> Result<&'a femdem_mesh::BoundaryGroup, UnknownName> {
+    let m = &mesh.mesh;
+    m.boundary_group(name).ok_or_else(|| UnknownName {
+        kind: "group",
+        name: name.to_string(),
+        available: m.boundary.iter().map(|g| g.name.clone()).collect(),
+    })
+}
+
 /// The selected node ids, sorted.
 ///
 /// # Errors
@@ -34,11 +44,7 @@ pub fn select_nodes(mesh: &JointedMesh, s: &NodeSelection) -> Result<Vec<u32>, U
     let m = &mesh.mesh;
     let mut keep = vec![true; m.num_nodes()];
     if let Some(name) = &s.group {
-        let g = m.boundary_group(name).ok_or_else(|| UnknownName {
-            kind: "group",
-            name: name.clone(),
-            available: m.boundary.iter().map(|g| g.name.clone()).collect(),
-        })?;
+        let g = group(mesh, name)?;
         let mut on = vec![false; m.num_nodes()];
         for f in &g.faces {
             for n in f.nodes(&m.tets) {
@@ -77,11 +83,6 @@ pub fn select_nodes(mesh: &JointedMesh, s: &NodeSelection) -> Result<Vec<u32>, U
 /// # Errors
 /// [`UnknownName`] for a group the mesh lacks.
 pub fn group_faces(mesh: &JointedMesh, name: &str) -> Result<Vec<[u32; 3]>, UnknownName> {
-    let m = &mesh.mesh;
-    let g = m.boundary_group(name).ok_or_else(|| UnknownName {
-        kind: "group",
-        name: name.to_string(),
-        available: m.boundary.iter().map(|g| g.name.clone()).collect(),
-    })?;
-    Ok(g.faces.iter().map(|f| f.nodes(&m.tets)).collect())
+    let g = group(mesh, name)?;
+    Ok(g.faces.iter().map(|f| f.nodes(&mesh.mesh.tets)).collect())
 }

@@ -25,11 +25,14 @@
 //!
 //! Energy: the work dissipated on the softening branch is
 //! `[f_t (δnc − δnp) wn + f_s (δsc − δsp) ws] (Z(D) − Z(D_hist))` per unit
-//! area, with `Z(D) = ∫₀ᴰ z`, `wn = Dn²/(Dn² + Ds²)`, `ws = 1 − wn` (exact for
-//! a pure mode); the stored energy counts the compression and hardening
-//! branches up to `min(δ, δp)`; when the joint fails, its stored energy is
-//! released (`JointHistory::released`). Note that the shear part of it,
-//! `2/3 f_s δsp = 4/3 f_s² h / p0`, is not small when `c ≫ f_t`.
+//! area, with `Z(D) = ∫₀ᴰ z`, `wn = Dn/D`, `ws = Ds/D` (exact for a pure mode
+//! and for a radial path in `(Dn, Ds)`); the stored energy is the area under
+//! the curve the point would unload along (see `stored`); when the joint
+//! fails, its stored energy is released (`JointHistory::released`). Note
+//! that the shear part of it, up to `2/3 f_s δsp = 4/3 f_s² h / p0`, is not
+//! small when `c ≫ f_t`. The work done on the joint (`JointHistory::work`)
+//! is tracked independently; `work − stored` is what the run books as
+//! fracture energy.
 
 use femdem_core::{Real, Vec3};
 
@@ -94,7 +97,10 @@ impl Joint {
 pub struct JointHistory {
     /// The largest damage `D` reached at each integration point.
     pub damage: [Real; 3],
-    /// Energy dissipated on the softening branches so far, J.
+    /// Energy dissipated on the softening branches so far, J (the
+    /// Eq. 10–12 part: exact for pure modes and radial paths in
+    /// `(Dn, Ds)`; the hardening energy a broken point can no longer give
+    /// back is not in it). The authoritative total is `work`.
     pub dissipated: Real,
     /// Stored energy the joint held when it failed, J (lost with it).
     pub released: Real,
@@ -126,16 +132,24 @@ pub struct PointStress {
     pub stored: Real,
 }
 
-/// Area under the compression or hardening branch up to ratio `r = δ/δp`
-/// (capped at the peak), for peak `f`, per unit area: `f δp r²` for `r < 0`,
-/// `f δp (r² − r³/3)` for `0 ≤ r ≤ 1`, `2/3 f δp` beyond.
+/// Stored (recoverable) energy per unit area at ratio `r = δ/δp` for peak
+/// `f` and damage factor `zd = z(D)`: the area under the curve the point
+/// would unload along. In compression `f δp r²` (the linear branch `2 r f`);
+/// in tension the hardening branch capped at `zd f`, which it meets at
+/// `r* = 1 − √(1 − zd)`: `f δp (r² − r³/3)` up to `r*`, then
+/// `f δp (r*² − r*³/3) + zd f δp (r − r*)` (for an undamaged point `r* = 1`).
 #[inline]
-fn stored(f: Real, dp: Real, r: Real) -> Real {
+fn stored(f: Real, dp: Real, r: Real, zd: Real) -> Real {
     if r < 0.0 {
-        f * dp * r * r
-    } else {
-        let r = r.min(1.0);
+        return f * dp * r * r;
+    }
+    let rs = 1.0 - (1.0 - zd.clamp(0.0, 1.0)).sqrt();
+    if r <= rs {
         f * dp * (r * r - r * r * r / 3.0)
+    } else if zd > 0.0 {
+        f * dp * (rs * rs - rs * rs * rs / 3.0 + zd * (r - rs))
+    } else {
+        0.0
     }
 }
 
@@ -209,15 +223,15 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
     };
     let broke = (d_hist < 1.0 && damage >= 1.0).then_some(mode);
     let dissipated = if damage > d_hist {
-        let (wn2, ws2) = (dn_soft * dn_soft, ds_soft * ds_soft);
-        let total = wn2 + ws2;
-        let (wn, ws) = if total > 0.0 { (wn2 / total, ws2 / total) } else { (1.0, 0.0) };
+        // Along a radial path in (Dn, Ds), dDn = (Dn/D) dD and dDs = (Ds/D) dD.
+        let norm = (dn_soft * dn_soft + ds_soft * ds_soft).sqrt();
+        let (wn, ws) = if norm > 0.0 { (dn_soft / norm, ds_soft / norm) } else { (1.0, 0.0) };
         let scale = ft * (dnc - dnp) * wn + if fs > 0.0 { fs * (dsc - dsp) * ws } else { 0.0 };
         scale * z_integral(d_hist, damage)
     } else {
         0.0
     };
-    let stored = stored(ft, dnp, rn) + if fs > 0.0 { stored(fs, dsp, ds / dsp) } else { 0.0 };
+    let stored = stored(ft, dnp, rn, zd) + if fs > 0.0 { stored(fs, dsp, ds / dsp, zd) } else { 0.0 };
     PointStress { sigma, tau, damage, broke, dissipated, stored }
 }
 

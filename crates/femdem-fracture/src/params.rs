@@ -50,7 +50,8 @@ pub struct JointParams {
 
 impl JointParams {
     /// Checks every parameter: `p0, f_t, c, G_ft, G_fs > 0`, `0 ≤ φ < 90°`,
-    /// all finite.
+    /// all finite, and `c > f_t tan φ` (so that `f_s = c − σ tan φ` stays
+    /// positive up to `σ = f_t`: the tension cut-off of Eq. 5).
     ///
     /// # Errors
     /// The first parameter out of range, with the reason.
@@ -72,6 +73,14 @@ impl JointParams {
                 name: "friction_angle",
                 value: self.friction_angle,
                 reason: "must lie in [0°, 90°)",
+            });
+        }
+        if self.cohesion <= self.tensile_strength * self.friction_angle.tan() {
+            return Err(JointError {
+                name: "cohesion",
+                value: self.cohesion,
+                reason: "must exceed tensile_strength × tan(friction_angle), or Eq. 5 gives no shear strength \
+                         before the tensile strength is reached (the paper's automatic tension cut-off needs it)",
             });
         }
         Ok(self)

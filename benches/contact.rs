@@ -1,0 +1,51 @@
+//! NBS detection on clouds of 10⁴ to 10⁶ bounding spheres at a constant
+//! density (about one sphere per cell of the grid, as in a fragmented
+//! mesh). The time per element (criterion's `Elements` throughput) should
+//! stay flat: the target is within 1.5× from 10⁴ to 10⁶.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use femdem_contact::Nbs;
+
+/// `n` spheres of radius 0.5 on a jittered cubic lattice of spacing 1.
+fn cloud(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let side = (n as f64).cbrt().ceil() as usize;
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let centers: Vec<[f64; 3]> = (0..n)
+        .map(|i| {
+            [
+                (i % side) as f64 + 0.3 * rnd(),
+                ((i / side) % side) as f64 + 0.3 * rnd(),
+                (i / side / side) as f64 + 0.3 * rnd(),
+            ]
+        })
+        .collect();
+    (centers, vec![0.5; n])
+}
+
+fn nbs(c: &mut Criterion) {
+    let mut g = c.benchmark_group("nbs");
+    g.sample_size(10);
+    for n in [10_000usize, 100_000, 1_000_000] {
+        let (centers, radii) = cloud(n);
+        let mut search = Nbs::new();
+        let mut pairs = Vec::new();
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_function(BenchmarkId::from_parameter(n), |b| {
+            b.iter(|| {
+                pairs.clear();
+                search.detect(&centers, &radii, 0.0, &mut pairs);
+                pairs.len()
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, nbs);
+criterion_main!(benches);

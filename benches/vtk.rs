@@ -1,21 +1,12 @@
-//! Timing of one FEMDEM-sized output step (ignored by default):
-//!
-//! ```text
-//! cargo test --release -p femdem-vtk --test write_speed -- --ignored --nocapture
-//! ```
-//!
-//! 100 000 tets that each own their four nodes (400 000 points, as after
-//! joint insertion), with displacement and velocity on points and stress
-//! (9), damage and region on cells: about 70 MB of raw data.
+//! Writing one FEMDEM-sized output step: 100 000 tets that each own their
+//! four nodes (400 000 points, as after joint insertion), with displacement
+//! and velocity on points and stress (9), damage and region on cells —
+//! about 70 MB of raw data — for each compression.
 
-use std::path::Path;
-use std::time::Instant;
-
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use femdem_vtk::{Compression, Field, Frame, VtuOptions, write_vtu_with};
 
-#[test]
-#[ignore = "timing, run by hand"]
-fn write_100k_tet_frame() {
+fn write(c: &mut Criterion) {
     let tets_n = 100_000u32;
     let points: Vec<[f64; 3]> = (0..4 * tets_n)
         .map(|i| {
@@ -33,20 +24,23 @@ fn write_100k_tet_frame() {
     let pf = [Field::vector("displacement", &displacement), Field::vector("velocity", &velocity)];
     let cf = [Field::tensor("stress", &stress), Field::scalar("damage", &damage), Field::scalar("region", &region)];
     let frame = Frame::new(&points, &tets).with_point_fields(&pf).with_cell_fields(&cf);
+    let dir = std::env::temp_dir().join(format!("femdem-vtk-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
 
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("femdem-vtk-speed");
-    std::fs::create_dir_all(&dir).unwrap();
-    for (name, compression) in [
-        ("none", Compression::None),
-        ("lz4", Compression::Lz4),
-        ("zlib-1", Compression::Zlib { level: 1 }),
-        ("zlib-6", Compression::Zlib { level: 6 }),
-    ] {
+    let mut g = c.benchmark_group("write_vtu");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(u64::from(tets_n)));
+    for (name, compression) in
+        [("none", Compression::None), ("lz4", Compression::Lz4), ("zlib-1", Compression::Zlib { level: 1 })]
+    {
         let path = dir.join(format!("{name}.vtu"));
-        let start = Instant::now();
-        write_vtu_with(&path, &frame, VtuOptions { compression }).unwrap();
-        let secs = start.elapsed().as_secs_f64();
-        let mb = std::fs::metadata(&path).unwrap().len() as f64 / 1e6;
-        println!("{name:>7}: {secs:6.3} s, {mb:6.1} MB");
+        g.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| write_vtu_with(&path, &frame, VtuOptions { compression }).expect("write"))
+        });
     }
+    g.finish();
+    let _ = std::fs::remove_dir_all(&dir);
 }
+
+criterion_group!(benches, write);
+criterion_main!(benches);

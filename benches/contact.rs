@@ -4,7 +4,8 @@
 //! stay flat: the target is within 1.5× from 10⁴ to 10⁶.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use femdem_contact::Nbs;
+use femdem_contact::{Nbs, tet_tet_forces};
+use femdem_core::Vec3;
 
 /// `n` spheres of radius 0.5 on a jittered cubic lattice of spacing 1.
 fn cloud(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
@@ -47,5 +48,22 @@ fn nbs(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, nbs);
+/// One tet–tet potential contact evaluation (both passes: 8 faces clipped
+/// against 4 sub-tets each) for a shallow and a deep overlap.
+fn kernel(c: &mut Criterion) {
+    let a =
+        [Vec3::new(1.0, 1.0, 1.0), Vec3::new(1.0, -1.0, -1.0), Vec3::new(-1.0, -1.0, 1.0), Vec3::new(-1.0, 1.0, -1.0)]
+            .map(|v| v * 0.5);
+    let d = -Vec3::new(1.0, 1.0, 1.0).normalize();
+    let r_in = 2f64.sqrt() / (2.0 * 6f64.sqrt());
+    let mut g = c.benchmark_group("tet_tet_forces");
+    for (name, delta) in [("shallow", 0.01), ("deep", 0.3)] {
+        let mut b = a.map(|v| -v + d * (2.0 * r_in - delta));
+        b.swap(2, 3);
+        g.bench_function(name, |bench| bench.iter(|| tet_tet_forces(&a, &b, 1e9)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, nbs, kernel);
 criterion_main!(benches);

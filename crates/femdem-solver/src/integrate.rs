@@ -29,6 +29,7 @@ use rayon::prelude::*;
 use crate::SolverError;
 use femdem_fracture::{FailureMode, JointHistory, joint_kinematics};
 
+use crate::contact::{Contact, ContactSettings};
 use crate::forces::{CHUNK, ForceSums, Want, Workspace, internal_forces};
 use crate::loads::{Loads, surface_forces};
 use crate::model::Model;
@@ -66,13 +67,17 @@ pub struct Energies {
     pub external_work: Real,
     /// Energy dissipated by joint softening and failure since the start.
     pub fracture: Real,
+    /// Work absorbed by contact forces since the start (the penalty
+    /// potential's energy plus whatever the contact law does not give back).
+    pub contact: Real,
 }
 
 impl Energies {
     /// `kinetic + elastic + dissipated − external work`: constant in an
     /// exact solution (equal to the initial kinetic + elastic energy).
     pub fn balance(&self) -> Real {
-        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping + self.fracture - self.external_work
+        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping + self.fracture + self.contact
+            - self.external_work
     }
 }
 
@@ -121,6 +126,9 @@ pub struct Solver {
     pub workspace: Workspace,
     /// Every joint failure so far, in order.
     pub failures: Vec<Failure>,
+    /// The contact pass, when enabled ([`Solver::enable_contact`]).
+    pub contact: Option<Contact>,
+    contact_v: Vec<Vec3>,
     prescribed: Vec<[u16; 3]>,
     surface_nodes: Vec<u32>,
     f_surface: Vec<Vec3>,
@@ -201,6 +209,8 @@ impl Solver {
             dt,
             energies: Energies::default(),
             failures: Vec::new(),
+            contact: None,
+            contact_v: Vec::new(),
             prescribed,
             surface_nodes,
             viscous,
@@ -238,6 +248,15 @@ impl Solver {
         self.report.newly_failed = sums.newly_failed;
         if sums.newly_failed > 0 {
             self.record_failures(t);
+        }
+        // Contact forces join the internal ones (so reactions include them).
+        if let Some(contact) = &mut self.contact {
+            contact.pass(&self.model, &self.state.x);
+            self.contact_v.clear();
+            for &n in contact.touched() {
+                self.workspace.internal[n as usize] += contact.force[n as usize];
+                self.contact_v.push(self.state.v[n as usize]);
+            }
         }
 
         // Surface loads at t_n on the current geometry, in a fixed order.
@@ -316,6 +335,15 @@ impl Solver {
             });
         let (power, kinetic) = self.partials.iter().fold((0.0, 0.0), |(p, k), q| (p + q[0], k + q[1]));
         self.energies.external_work += dt * power + reaction_work;
+        if let Some(contact) = &self.contact {
+            // Work done by the contact forces over the step, with v_n.
+            let mut work = 0.0;
+            for (k, &n) in contact.touched().iter().enumerate() {
+                let v_n = (self.contact_v[k] + self.state.v[n as usize]) * 0.5;
+                work += dt * contact.force[n as usize].dot(&v_n);
+            }
+            self.energies.contact -= work;
+        }
         self.energies.damping += dt * sums.dissipation_rate;
         if want.energy {
             self.energies.kinetic = kinetic;
@@ -326,6 +354,12 @@ impl Solver {
         self.state.time += dt;
         self.state.step += 1;
         sums
+    }
+
+    /// Turns on contact (§2.3): `initial` are tet pairs in contact from the
+    /// start (pre-existing fractures).
+    pub fn enable_contact(&mut self, settings: ContactSettings, initial: &[(u32, u32)]) {
+        self.contact = Some(Contact::new(&self.model, settings, initial));
     }
 
     /// Appends the joints that failed in the last force evaluation to
@@ -344,6 +378,9 @@ impl Solver {
             let centroid = xp.iter().sum::<Vec3>() / 6.0;
             let area = joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
             self.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
+            if let Some(contact) = &mut self.contact {
+                contact.joint_failed(self.model.joint_tets[j]);
+            }
         }
     }
 }

@@ -8,6 +8,7 @@
 //! caller builds a [`Model`] and [`Loads`] and calls [`Solver::step`].
 //! Results are identical bit for bit for any number of threads.
 
+pub mod contact;
 mod error;
 pub mod forces;
 mod integrate;
@@ -16,6 +17,7 @@ mod model;
 pub mod select;
 mod timestep;
 
+pub use contact::{Contact, ContactSettings};
 pub use error::SolverError;
 pub use forces::{ForceSums, Want, Workspace};
 pub use integrate::{Energies, Failure, Solver, State, StepReport};

@@ -95,6 +95,8 @@ pub struct Model {
     pub joint_gather: Gather,
     /// Nodes of rigid tets.
     pub rigid_node: Vec<bool>,
+    /// For each node, the vertex of the unsplit mesh it came from.
+    pub origin: Vec<u32>,
     /// The mass-scaling factor applied (1 = none).
     pub mass_scaling: Real,
 }
@@ -216,6 +218,7 @@ impl Model {
             tet_gather,
             joint_gather,
             rigid_node,
+            origin: mesh.origin.clone(),
             mass_scaling,
         })
     }
@@ -238,6 +241,33 @@ impl Model {
             *joint = Joint::new(p, joint.h);
         }
         Ok(())
+    }
+
+    /// Whether each tet has a face on the outer surface of its body (a face
+    /// no other tet shares, joints and pre-existing fractures not counting
+    /// as surface): found from the faces' original vertices.
+    pub fn surface_tets(&self) -> Vec<bool> {
+        let mut keys: Vec<(u128, u32)> = Vec::with_capacity(self.tets.len() * 4);
+        for (t, tet) in self.tets.iter().enumerate() {
+            for face in femdem_core::tet::FACES {
+                let v = face.map(|k| self.origin[tet[k] as usize]);
+                keys.push((femdem_mesh::faces::face_key(v), t as u32));
+            }
+        }
+        keys.sort_unstable();
+        let mut out = vec![false; self.tets.len()];
+        let mut i = 0;
+        while i < keys.len() {
+            let mut j = i + 1;
+            while j < keys.len() && keys[j].0 == keys[i].0 {
+                j += 1;
+            }
+            if j - i == 1 {
+                out[keys[i].1 as usize] = true;
+            }
+            i = j;
+        }
+        out
     }
 
     /// Number of nodes.

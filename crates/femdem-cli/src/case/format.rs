@@ -28,6 +28,8 @@ pub struct Case {
     /// `[[loads]]`: constraints, velocities, pressures, tractions.
     #[serde(default)]
     pub loads: Vec<Spanned<LoadSpec>>,
+    /// `[contact]`: tet–tet potential contact (Eq. 17); off when absent.
+    pub contact: Option<Spanned<ContactSpec>>,
     /// `[heterogeneity]`: random joint strengths.
     pub heterogeneity: Option<Spanned<HeterogeneitySpec>>,
     /// `[solver]`: time span and the speed/accuracy knobs.
@@ -72,6 +74,22 @@ pub struct MaterialSpec {
     /// `"paper"` (δc = 3 Gf / f, Eq. 10; default) or `"exact"` (δc set so the
     /// softening branch dissipates exactly Gf).
     pub gf_calibration: Option<String>,
+}
+
+/// `[contact]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Normal penalty p of Eq. 17, Pa (of the order of E).
+    pub penalty: f64,
+    /// Whether the outer surfaces of bodies can touch (platens, collisions;
+    /// default true). Fracture surfaces always can.
+    #[serde(default = "yes")]
+    pub surfaces: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// `[heterogeneity]`: random joint strengths (f_t and c each times an

@@ -56,7 +56,7 @@ impl Output {
         .map(|s| s.to_string())
         .collect();
         for d in &solver.loads.drives {
-            columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", d.name)));
+            columns.extend(["fx", "fy", "fz", "ux", "uy", "uz"].map(|c| format!("{}_{c}", d.name)));
         }
         for s in &solver.loads.surfaces {
             columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", s.name)));
@@ -88,7 +88,16 @@ impl Output {
             broken[1],
             broken[2],
         ];
-        for f in solver.report.drive_forces.iter().chain(&solver.report.surface_forces) {
+        for (d, f) in solver.loads.drives.iter().zip(&solver.report.drive_forces) {
+            // Mean displacement of the driven nodes (for Eq. 22's Δa).
+            let mut u = femdem_core::Vec3::zeros();
+            for &n in &d.nodes {
+                u += solver.state.x[n as usize] - solver.model.x0[n as usize];
+            }
+            u /= d.nodes.len().max(1) as f64;
+            row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);
+        }
+        for f in &solver.report.surface_forces {
             row.extend([f.x, f.y, f.z]);
         }
         self.history.row(&row)?;

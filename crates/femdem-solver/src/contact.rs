@@ -60,12 +60,7 @@ impl Contact {
     /// in contact from the start (pre-existing fractures).
     pub fn new(model: &Model, settings: ContactSettings, initial: &[(u32, u32)]) -> Contact {
         let n_tets = model.tets.len();
-        let mut contactable = vec![false; n_tets];
-        for t in 0..n_tets {
-            if model.tet_material[t] == RIGID {
-                contactable[t] = true;
-            }
-        }
+        let mut contactable: Vec<bool> = model.tet_material.iter().map(|&m| m == RIGID).collect();
         if settings.surfaces {
             for (t, on) in model.surface_tets().into_iter().enumerate() {
                 contactable[t] |= on;

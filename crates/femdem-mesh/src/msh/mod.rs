@@ -30,8 +30,11 @@
 //! names the Gmsh option to change (`Mesh.Binary = 0`,
 //! `Mesh.MshFileVersion = 4.1`). Partitioned meshes are not supported.
 
+mod lex;
 mod read;
+mod report;
 mod write;
 
-pub use read::{MshReport, element_type_name, read_msh, read_msh_report};
+pub use read::{read_msh, read_msh_report};
+pub use report::{MshReport, element_type_name};
 pub use write::write_msh;

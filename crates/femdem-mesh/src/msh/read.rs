@@ -6,12 +6,13 @@
 //! checked against what follows, but never trusted for allocation.
 
 use std::collections::hash_map::Entry;
-use std::collections::{BTreeMap, BTreeSet, HashMap};
-use std::fmt;
-use std::str::{FromStr, SplitAsciiWhitespace};
+use std::collections::{BTreeSet, HashMap};
 
 use femdem_core::tet::signed_volume;
 
+use super::lex::{Fields, Lines, err_at};
+use super::report::MshReport;
+use super::report::element_type_nodes;
 use crate::faces::{face_key, sorted_face_keys};
 use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
 
@@ -21,82 +22,6 @@ const TRIANGLE: u32 = 2;
 const TET: u32 = 4;
 /// Name of the region that takes tets of volumes in no physical group.
 const UNNAMED: &str = "unnamed";
-
-/// What [`read_msh_report`] left out of the mesh or changed in it.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct MshReport {
-    /// Elements that are neither 4-node tets nor 3-node triangles, counted
-    /// by Gmsh element type number (see [`element_type_name`]).
-    pub skipped_elements: BTreeMap<u32, usize>,
-    /// Triangles on surfaces in no physical group: they name no boundary
-    /// group, so they are not kept.
-    pub ungrouped_triangles: usize,
-    /// Nodes used by no tet, dropped from the mesh.
-    pub dropped_nodes: usize,
-    /// Tets given in negative orientation, reoriented by swapping their
-    /// last two nodes.
-    pub reoriented_tets: usize,
-}
-
-impl fmt::Display for MshReport {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut parts = Vec::new();
-        if !self.skipped_elements.is_empty() {
-            let skipped: Vec<String> = self
-                .skipped_elements
-                .iter()
-                .map(|(&ty, &n)| match element_type_name(ty) {
-                    Some(name) => format!("{n} {name} (type {ty})"),
-                    None => format!("{n} of type {ty}"),
-                })
-                .collect();
-            parts.push(format!("skipped elements: {}", skipped.join(", ")));
-        }
-        if self.ungrouped_triangles > 0 {
-            parts.push(format!("{} triangle(s) in no physical surface ignored", self.ungrouped_triangles));
-        }
-        if self.dropped_nodes > 0 {
-            parts.push(format!("{} node(s) used by no tet dropped", self.dropped_nodes));
-        }
-        if self.reoriented_tets > 0 {
-            parts.push(format!("{} tet(s) reoriented", self.reoriented_tets));
-        }
-        if parts.is_empty() { f.write_str("nothing skipped") } else { f.write_str(&parts.join("; ")) }
-    }
-}
-
-/// Gmsh element types known by name, with their node counts.
-const ELEMENT_TYPES: [(u32, &str, usize); 19] = [
-    (1, "2-node line", 2),
-    (2, "3-node triangle", 3),
-    (3, "4-node quadrangle", 4),
-    (4, "4-node tetrahedron", 4),
-    (5, "8-node hexahedron", 8),
-    (6, "6-node prism", 6),
-    (7, "5-node pyramid", 5),
-    (8, "3-node line", 3),
-    (9, "6-node triangle", 6),
-    (10, "9-node quadrangle", 9),
-    (11, "10-node tetrahedron", 10),
-    (12, "27-node hexahedron", 27),
-    (13, "18-node prism", 18),
-    (14, "14-node pyramid", 14),
-    (15, "point", 1),
-    (16, "8-node quadrangle", 8),
-    (17, "20-node hexahedron", 20),
-    (18, "15-node prism", 15),
-    (19, "13-node pyramid", 13),
-];
-
-/// The Gmsh name of element type `ty` (e.g. `"2-node line"` for 1), for the
-/// common first- and second-order types; `None` for others.
-pub fn element_type_name(ty: u32) -> Option<&'static str> {
-    ELEMENT_TYPES.iter().find(|e| e.0 == ty).map(|e| e.1)
-}
-
-fn element_type_nodes(ty: u32) -> Option<usize> {
-    ELEMENT_TYPES.iter().find(|e| e.0 == ty).map(|e| e.2)
-}
 
 /// Reads an ASCII Gmsh MSH 4.1 file; see the [module docs](super) for what
 /// is kept. Use [`read_msh_report`] to also learn what was skipped.
@@ -116,118 +41,6 @@ pub fn read_msh(bytes: &[u8]) -> Result<TetMesh, MeshError> {
 /// As [`read_msh`].
 pub fn read_msh_report(bytes: &[u8]) -> Result<(TetMesh, MshReport), MeshError> {
     Reader::new(bytes).read()
-}
-
-/// Lines of the file, numbered from 1.
-struct Lines<'a> {
-    rest: &'a [u8],
-    /// Number of the line last returned (0 before the first).
-    line: usize,
-}
-
-impl<'a> Lines<'a> {
-    fn err(&self, message: impl Into<String>) -> MeshError {
-        err_at(self.line.max(1), message)
-    }
-
-    /// The next line without its line break, or `None` at end of file.
-    fn next_line(&mut self) -> Result<Option<&'a str>, MeshError> {
-        if self.rest.is_empty() {
-            return Ok(None);
-        }
-        let (raw, rest) = match self.rest.iter().position(|&b| b == b'\n') {
-            Some(i) => (&self.rest[..i], &self.rest[i + 1..]),
-            None => (self.rest, &self.rest[self.rest.len()..]),
-        };
-        self.rest = rest;
-        self.line += 1;
-        let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
-        std::str::from_utf8(raw).map(Some).map_err(|_| self.err("not valid UTF-8 (binary data in an ASCII MSH file?)"))
-    }
-
-    /// The next record of section `section`, trimmed. A section end (any
-    /// line starting with `$`) or the end of file is an error that says
-    /// `what` was expected.
-    fn record(&mut self, section: &str, what: impl FnOnce() -> String) -> Result<Fields<'a>, MeshError> {
-        match self.next_line()? {
-            None => Err(self.err(format!("file ends inside ${section}: expected {}", what()))),
-            Some(l) if l.trim_start().starts_with('$') => {
-                Err(self.err(format!("${section} ends early: expected {}, found `{}`", what(), l.trim())))
-            }
-            Some(l) => Ok(Fields { raw: l, it: l.split_ascii_whitespace(), line: self.line }),
-        }
-    }
-
-    /// Expects the line `$End<section>`.
-    fn end_of(&mut self, section: &str) -> Result<(), MeshError> {
-        match self.next_line()? {
-            Some(l) if l.trim() == format!("$End{section}") => Ok(()),
-            Some(l) => Err(self.err(format!("expected $End{section}, found `{}`", l.trim()))),
-            None => Err(self.err(format!("file ends inside ${section}: expected $End{section}"))),
-        }
-    }
-}
-
-fn err_at(line: usize, message: impl Into<String>) -> MeshError {
-    MeshError::Msh { line, message: message.into() }
-}
-
-/// The whitespace-separated fields of one record.
-struct Fields<'a> {
-    /// The whole line.
-    raw: &'a str,
-    it: SplitAsciiWhitespace<'a>,
-    line: usize,
-}
-
-impl<'a> Fields<'a> {
-    fn err(&self, message: impl Into<String>) -> MeshError {
-        err_at(self.line, message)
-    }
-
-    fn token(&mut self, name: &str) -> Result<&'a str, MeshError> {
-        let line = self.line;
-        self.it.next().ok_or_else(|| err_at(line, format!("missing {name}")))
-    }
-
-    fn parse<T: FromStr>(&mut self, name: &str, kind: &str) -> Result<T, MeshError> {
-        let line = self.line;
-        let tok = self.token(name)?;
-        tok.parse().map_err(|_| err_at(line, format!("bad {name} `{tok}`: expected {kind}")))
-    }
-
-    fn count(&mut self, name: &str) -> Result<usize, MeshError> {
-        self.parse(name, "a non-negative integer")
-    }
-
-    fn int(&mut self, name: &str) -> Result<i32, MeshError> {
-        self.parse(name, "an integer")
-    }
-
-    fn node_tag(&mut self, name: &str) -> Result<u64, MeshError> {
-        let tag: u64 = self.parse(name, "a positive integer")?;
-        if tag == 0 {
-            return Err(self.err(format!("bad {name} `0`: tags start at 1")));
-        }
-        Ok(tag)
-    }
-
-    fn real(&mut self, name: &str) -> Result<f64, MeshError> {
-        let line = self.line;
-        let tok = self.token(name)?;
-        match tok.parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(err_at(line, format!("bad {name} `{tok}`: expected a finite number"))),
-        }
-    }
-
-    /// Checks that no field is left.
-    fn end(&mut self, what: &str) -> Result<(), MeshError> {
-        match self.it.next() {
-            None => Ok(()),
-            Some(tok) => Err(self.err(format!("unexpected `{tok}` after {what}"))),
-        }
-    }
 }
 
 /// Node tag → index into the file's node list.
@@ -824,6 +637,7 @@ fn match_face(mesh: &TetMesh, keys: &[(u128, u32)], nodes: [u32; 3]) -> Option<F
 
 #[cfg(test)]
 mod tests {
+    use super::super::report::element_type_name;
     use super::*;
 
     #[test]

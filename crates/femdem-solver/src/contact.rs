@@ -32,6 +32,8 @@ pub struct ContactSettings {
     /// Whether the outer surfaces of bodies are contactable (for collisions
     /// and platens); fracture surfaces always are.
     pub surfaces: bool,
+    /// Coulomb friction coefficient μ (0: frictionless).
+    pub friction: Real,
 }
 
 /// The contact pass's state.
@@ -53,6 +55,9 @@ pub struct Contact {
     touched: Vec<u32>,
     /// Pairs in contact at the last pass.
     pub active_pairs: usize,
+    /// Tangential spring stretch of each pair in contact (friction history).
+    stick: std::collections::HashMap<(u32, u32), Vec3>,
+    stick_next: std::collections::HashMap<(u32, u32), Vec3>,
 }
 
 impl Contact {
@@ -88,6 +93,8 @@ impl Contact {
             force: vec![Vec3::zeros(); model.num_nodes()],
             touched: Vec::new(),
             active_pairs: 0,
+            stick: Default::default(),
+            stick_next: Default::default(),
         }
     }
 
@@ -112,8 +119,18 @@ impl Contact {
 
     /// Detects contacts at positions `x` and computes the contact force on
     /// every node into [`Contact::force`] (zero elsewhere; the nodes with a
-    /// force are [`Contact::touched`]).
-    pub fn pass(&mut self, model: &Model, x: &[Vec3]) {
+    /// force are [`Contact::touched`]). `v` (velocities) and `dt` drive the
+    /// friction springs.
+    ///
+    /// Friction: each pair in contact carries a tangential spring `s`,
+    /// stretched by the tangential relative velocity of the two tets'
+    /// centroids, `s += v_t Δt`, kept in the current tangent plane (normal
+    /// `n̂` along the pair's normal force `N`); the friction force is
+    /// `−k_t s` with `k_t = p ℓ` (`ℓ` the smaller tet's `V^{1/3}`, so that the
+    /// tangential stiffness is of the order of the normal one), capped at the
+    /// Coulomb limit `μ N`, where the spring slips (is shortened to the
+    /// limit). It acts on the centroids (a quarter on each node).
+    pub fn pass(&mut self, model: &Model, x: &[Vec3], v: &[Vec3], dt: Real) {
         for &n in &self.touched {
             self.force[n as usize] = Vec3::zeros();
         }
@@ -150,11 +167,41 @@ impl Contact {
             }
             let pa = ta.map(|n| x[n as usize]);
             let pb = tb.map(|n| x[n as usize]);
-            let (fa, fb) = tet_tet_forces(&pa, &pb, self.settings.penalty);
+            let (mut fa, mut fb) = tet_tet_forces(&pa, &pb, self.settings.penalty);
             if fa.iter().all(|f| f.norm() == 0.0) && fb.iter().all(|f| f.norm() == 0.0) {
                 continue;
             }
             self.active_pairs += 1;
+            if self.settings.friction > 0.0 {
+                let normal: Vec3 = fb.iter().sum();
+                let n_mag = normal.norm();
+                if n_mag > 0.0 {
+                    let n = normal / n_mag;
+                    let va: Vec3 = ta.iter().map(|&k| v[k as usize]).sum::<Vec3>() / 4.0;
+                    let vb: Vec3 = tb.iter().map(|&k| v[k as usize]).sum::<Vec3>() / 4.0;
+                    let rel = vb - va;
+                    let vt = rel - n * rel.dot(&n);
+                    let key = (a.min(b), a.max(b));
+                    // Orient the spring as b relative to a.
+                    let sign = if a < b { 1.0 } else { -1.0 };
+                    let mut spring = self.stick.get(&key).copied().unwrap_or_else(Vec3::zeros) * sign;
+                    spring -= n * spring.dot(&n);
+                    spring += vt * dt;
+                    let size = model.tet_ref[a as usize].volume.min(model.tet_ref[b as usize].volume).cbrt();
+                    let kt = self.settings.penalty * size;
+                    let limit = self.settings.friction * n_mag;
+                    let mut ft = -spring * kt;
+                    if ft.norm() > limit {
+                        ft *= limit / ft.norm();
+                        spring = -ft / kt;
+                    }
+                    self.stick_next.insert(key, spring * sign);
+                    for k in 0..4 {
+                        fb[k] += ft * 0.25;
+                        fa[k] -= ft * 0.25;
+                    }
+                }
+            }
             for (nodes, forces) in [(ta, fa), (tb, fb)] {
                 for (n, f) in nodes.iter().zip(forces) {
                     if self.force[*n as usize] == Vec3::zeros() {
@@ -166,5 +213,8 @@ impl Contact {
         }
         self.touched.sort_unstable();
         self.touched.dedup();
+        // Springs of pairs no longer in contact are dropped.
+        std::mem::swap(&mut self.stick, &mut self.stick_next);
+        self.stick_next.clear();
     }
 }

@@ -251,7 +251,7 @@ impl Solver {
         }
         // Contact forces join the internal ones (so reactions include them).
         if let Some(contact) = &mut self.contact {
-            contact.pass(&self.model, &self.state.x);
+            contact.pass(&self.model, &self.state.x, &self.state.v, self.dt);
             self.contact_v.clear();
             for &n in contact.touched() {
                 self.workspace.internal[n as usize] += contact.force[n as usize];

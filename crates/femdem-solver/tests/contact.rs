@@ -42,7 +42,7 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     mesh.append(&other);
     let (_, m) = model(&mesh, Law::NeoHookean, rock(0.0), 0.0);
     let mut s = Solver::new(m, Loads::default(), 1.0).unwrap();
-    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: true }, &[]);
+    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: true, friction: 0.0 }, &[]);
     let stable = stable_time_step(&s.model, &s.held_nodes(), 300);
     // Contact stiffens the top frequency; a fifth of the step keeps it safe.
     s.dt = 0.2 * stable.critical;
@@ -114,7 +114,7 @@ fn block_on_a_rigid_plate_carries_its_weight() {
     };
     let mut s = Solver::new(m, loads, 1.0).unwrap();
     let p = 10.0 * 26e9;
-    s.enable_contact(ContactSettings { penalty: p, surfaces: true }, &[]);
+    s.enable_contact(ContactSettings { penalty: p, surfaces: true, friction: 0.0 }, &[]);
     s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     let weight = s.model.mass.iter().sum::<f64>() * g;
     let mut reaction = 0.0;
@@ -157,7 +157,7 @@ fn broken_bar_halves_separate_without_contact_force() {
         ..Loads::default()
     };
     let mut s = Solver::new(m, loads, 1.0).unwrap();
-    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: false }, &[]);
+    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: false, friction: 0.0 }, &[]);
     s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     let mut peak: f64 = 0.0;
     while s.state.time < 4e-4 {
@@ -173,4 +173,80 @@ fn broken_bar_halves_separate_without_contact_force() {
     // themselves exert nothing on each other.
     assert!(largest < 1e-6 * peak, "contact force {largest} N after separation (peak pull {peak} N)");
     assert!(s.report.drive_forces[0].z.abs() < 1.0, "the halves still pull: {} N", s.report.drive_forces[0].z);
+}
+
+/// A block on a rigid plate under gravity tilted by θ (the incline, without
+/// rotating the mesh), friction μ = 0.5: for tan θ < μ it stays put (it
+/// creeps only by the friction spring's stretch, `m g sin θ / k_t`, far below
+/// the element size); for tan θ > μ it slides with `a = g (sin θ − μ cos θ)`
+/// within 3% (measured from the block's mean velocity between two times
+/// after the start-up).
+#[test]
+fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
+    let h = 0.005;
+    let mu = 0.5;
+    let run = |theta: f64| -> (f64, f64) {
+        let mut mesh = box_mesh([0.0, 0.0, 0.0], [0.02, 0.02, 0.01], h, 0.0, false);
+        let mut plate = box_mesh([-0.03, -0.03, -0.005], [0.05, 0.05, 0.0], 0.01, 0.0, false);
+        plate.regions[0] = Region { name: "plate".into(), breakable: false };
+        mesh.append(&plate);
+        let jointed = insert_joints(&mesh).unwrap();
+        let visc = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 0.3;
+        let behaviour = [
+            RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(visc), joints: None },
+            RegionBehaviour::Rigid,
+        ];
+        let m = Model::new(&jointed, &behaviour, 1.0).unwrap();
+        let plate_nodes =
+            select_nodes(&jointed, &NodeSelection { region: Some("plate".into()), ..Default::default() }).unwrap();
+        let g = 9.81 * 1000.0;
+        let loads = Loads {
+            gravity: Vec3::new(g * theta.sin(), 0.0, -g * theta.cos()),
+            drives: vec![VelocityDrive {
+                name: "plate".into(),
+                nodes: plate_nodes,
+                velocity: Vec3::zeros(),
+                components: [true; 3],
+                ramp: Ramp::STEP,
+            }],
+            ..Loads::default()
+        };
+        let mut s = Solver::new(m, loads, 1.0).unwrap();
+        s.enable_contact(ContactSettings { penalty: 26e9, surfaces: true, friction: mu }, &[]);
+        s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
+        let block_v = |s: &Solver| -> f64 {
+            let (mut p, mut m) = (0.0, 0.0);
+            for i in 0..s.model.num_nodes() {
+                p += s.model.mass[i] * s.state.v[i].x;
+                m += s.model.mass[i];
+            }
+            p / m
+        };
+        let (t1, t2) = (2e-4, 4e-4);
+        let mut v1 = 0.0;
+        while s.state.time < t2 {
+            s.step(Want::default());
+            if v1 == 0.0 && s.state.time >= t1 {
+                v1 = block_v(&s);
+            }
+        }
+        let a = (block_v(&s) - v1) / (s.state.time - t1);
+        let slide = (0..s.model.num_nodes())
+            .filter(|&i| s.model.mass[i] > 0.0)
+            .map(|i| s.state.x[i].x - s.model.x0[i].x)
+            .sum::<f64>()
+            / s.model.mass.iter().filter(|&&m| m > 0.0).count() as f64;
+        (a, slide)
+    };
+    let g = 9.81 * 1000.0;
+    let stick = 20f64.to_radians(); // tan 20° = 0.36 < 0.5
+    let (a, slide) = run(stick);
+    eprintln!("θ = 20°: a = {a:.4e} m/s², slide {slide:.3e} m");
+    assert!(a.abs() < 0.01 * g * stick.sin(), "the block accelerates at {a} m/s² below the friction angle");
+    assert!(slide.abs() < 0.01 * h, "the block slid {slide} m below the friction angle");
+    let slip = 40f64.to_radians(); // tan 40° = 0.84 > 0.5
+    let (a, _) = run(slip);
+    let expected = g * (slip.sin() - mu * slip.cos());
+    eprintln!("θ = 40°: a = {a:.4e} m/s² vs {expected:.4e}");
+    assert!((a / expected - 1.0).abs() < 0.03, "a = {a} vs {expected}");
 }

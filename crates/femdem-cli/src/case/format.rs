@@ -86,6 +86,10 @@ pub struct ContactSpec {
     /// default true). Fracture surfaces always can.
     #[serde(default = "yes")]
     pub surfaces: bool,
+    /// Coulomb friction coefficient μ between all contacting surfaces
+    /// (default 0; per-region-pair coefficients are not yet supported).
+    #[serde(default)]
+    pub friction: f64,
 }
 
 fn yes() -> bool {

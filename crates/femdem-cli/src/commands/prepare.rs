@@ -66,7 +66,10 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
             bail!(loaded.error_at(c.span(), format!("contact.penalty must be > 0 Pa, got {}", spec.penalty)));
         }
         let initial: Vec<(u32, u32)> = jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
-        solver.enable_contact(ContactSettings { penalty: spec.penalty, surfaces: spec.surfaces }, &initial);
+        solver.enable_contact(
+            ContactSettings { penalty: spec.penalty, surfaces: spec.surfaces, friction: spec.friction },
+            &initial,
+        );
     }
     let stable = stable_time_step(&solver.model, &solver.held_nodes(), POWER_ITERATIONS);
     let dt = match s.time_step {

@@ -14,8 +14,8 @@
 //! which depends only on the input, so results do not depend on the thread
 //! count.
 //!
-//! Not yet: Coulomb friction, the Eq. 18 ramp for shear fractures, and a
-//! detection interval from the largest velocity and a buffer.
+//! Not yet: friction coefficients per pair of regions, and a detection
+//! interval from the largest velocity and a buffer.
 
 use std::collections::HashSet;
 
@@ -35,6 +35,10 @@ pub struct ContactSettings {
     /// Coulomb friction coefficient μ (0: frictionless).
     pub friction: Real,
 }
+
+/// Steps over which the contact force of a joint that failed in
+/// compression rises from zero to its full value (Eq. 18, `n_total`).
+pub const RAMP_STEPS: u32 = 10;
 
 /// The contact pass's state.
 #[derive(Clone, Debug)]
@@ -58,6 +62,9 @@ pub struct Contact {
     /// Tangential spring stretch of each pair in contact (friction history).
     stick: std::collections::HashMap<(u32, u32), Vec3>,
     stick_next: std::collections::HashMap<(u32, u32), Vec3>,
+    /// Pairs of joints that failed in compression, with their step count
+    /// `n_c` of Eq. 18.
+    ramp: std::collections::HashMap<(u32, u32), u32>,
 }
 
 impl Contact {
@@ -95,13 +102,21 @@ impl Contact {
             active_pairs: 0,
             stick: Default::default(),
             stick_next: Default::default(),
+            ramp: Default::default(),
         }
     }
 
     /// Makes the two tets of a failed joint contactable and unbonds them
-    /// (Eq. 14).
-    pub fn joint_failed(&mut self, tets: [u32; 2]) {
-        self.bonded.remove(&(tets[0].min(tets[1]), tets[0].max(tets[1])));
+    /// (Eq. 14). A joint that failed in compression (`compressed`: its mean
+    /// opening was negative) has the contact force between its two tets
+    /// ramped in over [`RAMP_STEPS`] steps (Eq. 18), so that the joint force,
+    /// which vanishes at failure, is not replaced by a sudden contact force.
+    pub fn joint_failed(&mut self, tets: [u32; 2], compressed: bool) {
+        let key = (tets[0].min(tets[1]), tets[0].max(tets[1]));
+        self.bonded.remove(&key);
+        if compressed {
+            self.ramp.insert(key, 0);
+        }
         for t in tets {
             self.activated[t as usize] = true;
             if !self.contactable[t as usize] {
@@ -168,6 +183,17 @@ impl Contact {
             let pa = ta.map(|n| x[n as usize]);
             let pb = tb.map(|n| x[n as usize]);
             let (mut fa, mut fb) = tet_tet_forces(&pa, &pb, self.settings.penalty);
+            // Eq. 18: f = (n_c / n_total) f while the ramp lasts.
+            if let Some(n_c) = self.ramp.get_mut(&(a.min(b), a.max(b))) {
+                let factor = Real::from(*n_c) / Real::from(RAMP_STEPS);
+                for f in fa.iter_mut().chain(fb.iter_mut()) {
+                    *f *= factor;
+                }
+                *n_c += 1;
+                if *n_c > RAMP_STEPS {
+                    self.ramp.remove(&(a.min(b), a.max(b)));
+                }
+            }
             if fa.iter().all(|f| f.norm() == 0.0) && fb.iter().all(|f| f.norm() == 0.0) {
                 continue;
             }

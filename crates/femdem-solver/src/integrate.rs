@@ -379,7 +379,8 @@ impl Solver {
             let area = joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
             self.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
             if let Some(contact) = &mut self.contact {
-                contact.joint_failed(self.model.joint_tets[j]);
+                let opening = joint_kinematics(&xp).map_or(0.0, |k| k.opening.iter().sum::<Real>());
+                contact.joint_failed(self.model.joint_tets[j], opening < 0.0);
             }
         }
     }

@@ -17,7 +17,7 @@ mod model;
 pub mod select;
 mod timestep;
 
-pub use contact::{Contact, ContactSettings};
+pub use contact::{Contact, ContactSettings, RAMP_STEPS};
 pub use error::SolverError;
 pub use forces::{ForceSums, Want, Workspace};
 pub use integrate::{Energies, Failure, Solver, State, StepReport};

@@ -250,3 +250,35 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
     eprintln!("θ = 40°: a = {a:.4e} m/s² vs {expected:.4e}");
     assert!((a / expected - 1.0).abs() < 0.03, "a = {a} vs {expected}");
 }
+
+/// Eq. 18: when a joint fails in compression, the contact force between its
+/// two tets rises linearly from zero to its full value over `n_total` = 10
+/// steps, so the force carried across the face does not jump.
+#[test]
+fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
+    let mesh = box_mesh([0.0; 3], [0.01; 3], 0.01, 0.0, true);
+    let (jointed, m) = model(&mesh, Law::NeoHookean, rock(0.0), 2.6e11);
+    let [a, b] = m.joint_tets[0];
+    let jn = jointed.joints[0];
+    let p = |k: usize| m.x0[jn[k] as usize];
+    let n = (p(1) - p(0)).cross(&(p(2) - p(0))).normalize();
+    // Push tet b 1 µm into tet a, across their common face.
+    let mut x = m.x0.clone();
+    for &node in &m.tets[b as usize] {
+        x[node as usize] -= n * 1e-6;
+    }
+    let v = vec![Vec3::zeros(); x.len()];
+    let settings = ContactSettings { penalty: 26e9, surfaces: false, friction: 0.0 };
+    let pa = m.tets[a as usize].map(|k| x[k as usize]);
+    let pb = m.tets[b as usize].map(|k| x[k as usize]);
+    let full: Vec3 = femdem_contact::tet_tet_forces(&pa, &pb, 26e9).1.iter().sum();
+    assert!(full.norm() > 0.0);
+    let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
+    contact.joint_failed([a, b], true);
+    for step in 0..=femdem_solver::RAMP_STEPS + 2 {
+        contact.pass(&m, &x, &v, 1e-8);
+        let on_b: Vec3 = m.tets[b as usize].iter().map(|&k| contact.force[k as usize]).sum();
+        let expected = f64::from(step.min(femdem_solver::RAMP_STEPS)) / f64::from(femdem_solver::RAMP_STEPS);
+        assert!((on_b - full * expected).norm() <= 1e-12 * full.norm(), "step {step}: {on_b} vs {expected} × {full}");
+    }
+}

@@ -67,16 +67,27 @@ pub struct Energies {
     pub external_work: Real,
     /// Energy dissipated by joint softening and failure since the start.
     pub fracture: Real,
-    /// Work absorbed by contact forces since the start (the penalty
-    /// potential's energy plus whatever the contact law does not give back).
+    /// Work absorbed by the normal contact forces since the start (the
+    /// penalty potential's energy plus whatever the Eq. 18 ramp does not
+    /// give back), plus the elastic energy of the friction springs now.
     pub contact: Real,
+    /// Energy dissipated by Coulomb friction since the start: the work
+    /// absorbed by friction forces less the energy the sticking springs
+    /// still hold.
+    pub friction: Real,
 }
 
 impl Energies {
     /// `kinetic + elastic + dissipated − external work`: constant in an
     /// exact solution (equal to the initial kinetic + elastic energy).
     pub fn balance(&self) -> Real {
-        self.kinetic + self.tet_elastic + self.joint_elastic + self.damping + self.fracture + self.contact
+        self.kinetic
+            + self.tet_elastic
+            + self.joint_elastic
+            + self.damping
+            + self.fracture
+            + self.contact
+            + self.friction
             - self.external_work
     }
 }
@@ -129,6 +140,10 @@ pub struct Solver {
     /// The contact pass, when enabled ([`Solver::enable_contact`]).
     pub contact: Option<Contact>,
     contact_v: Vec<Vec3>,
+    /// Work absorbed by friction forces so far, J.
+    friction_absorbed: Real,
+    /// Friction spring energy booked in `energies.contact`, J.
+    contact_spring: Real,
     prescribed: Vec<[u16; 3]>,
     surface_nodes: Vec<u32>,
     f_surface: Vec<Vec3>,
@@ -211,6 +226,8 @@ impl Solver {
             failures: Vec::new(),
             contact: None,
             contact_v: Vec::new(),
+            friction_absorbed: 0.0,
+            contact_spring: 0.0,
             prescribed,
             surface_nodes,
             viscous,
@@ -254,7 +271,7 @@ impl Solver {
             contact.pass(&self.model, &self.state.x, &self.state.v, self.dt);
             self.contact_v.clear();
             for &n in contact.touched() {
-                self.workspace.internal[n as usize] += contact.force[n as usize];
+                self.workspace.internal[n as usize] += contact.force[n as usize] + contact.friction_force[n as usize];
                 self.contact_v.push(self.state.v[n as usize]);
             }
         }
@@ -337,12 +354,16 @@ impl Solver {
         self.energies.external_work += dt * power + reaction_work;
         if let Some(contact) = &self.contact {
             // Work done by the contact forces over the step, with v_n.
-            let mut work = 0.0;
+            let (mut normal, mut friction) = (0.0, 0.0);
             for (k, &n) in contact.touched().iter().enumerate() {
                 let v_n = (self.contact_v[k] + self.state.v[n as usize]) * 0.5;
-                work += dt * contact.force[n as usize].dot(&v_n);
+                normal += dt * contact.force[n as usize].dot(&v_n);
+                friction += dt * contact.friction_force[n as usize].dot(&v_n);
             }
-            self.energies.contact -= work;
+            self.friction_absorbed -= friction;
+            self.energies.contact += contact.spring_energy - self.contact_spring - normal;
+            self.energies.friction = self.friction_absorbed - contact.spring_energy;
+            self.contact_spring = contact.spring_energy;
         }
         self.energies.damping += dt * sums.dissipation_rate;
         if want.energy {

@@ -42,7 +42,7 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     mesh.append(&other);
     let (_, m) = model(&mesh, Law::NeoHookean, rock(0.0), 0.0);
     let mut s = Solver::new(m, Loads::default(), 1.0).unwrap();
-    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: true, friction: 0.0 }, &[]);
+    s.enable_contact(ContactSettings::new(26e9), &[]);
     let stable = stable_time_step(&s.model, &s.held_nodes(), 300);
     // Contact stiffens the top frequency; a fifth of the step keeps it safe.
     s.dt = 0.2 * stable.critical;
@@ -114,7 +114,7 @@ fn block_on_a_rigid_plate_carries_its_weight() {
     };
     let mut s = Solver::new(m, loads, 1.0).unwrap();
     let p = 10.0 * 26e9;
-    s.enable_contact(ContactSettings { penalty: p, surfaces: true, friction: 0.0 }, &[]);
+    s.enable_contact(ContactSettings::new(p), &[]);
     s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     let weight = s.model.mass.iter().sum::<f64>() * g;
     let mut reaction = 0.0;
@@ -157,7 +157,7 @@ fn broken_bar_halves_separate_without_contact_force() {
         ..Loads::default()
     };
     let mut s = Solver::new(m, loads, 1.0).unwrap();
-    s.enable_contact(ContactSettings { penalty: 26e9, surfaces: false, friction: 0.0 }, &[]);
+    s.enable_contact(ContactSettings { surfaces: false, ..ContactSettings::new(26e9) }, &[]);
     s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     let mut peak: f64 = 0.0;
     while s.state.time < 4e-4 {
@@ -212,7 +212,7 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
             ..Loads::default()
         };
         let mut s = Solver::new(m, loads, 1.0).unwrap();
-        s.enable_contact(ContactSettings { penalty: 26e9, surfaces: true, friction: mu }, &[]);
+        s.enable_contact(ContactSettings { friction: mu, ..ContactSettings::new(26e9) }, &[]);
         s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
         let block_v = |s: &Solver| -> f64 {
             let (mut p, mut m) = (0.0, 0.0);
@@ -268,7 +268,7 @@ fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
         x[node as usize] -= n * 1e-6;
     }
     let v = vec![Vec3::zeros(); x.len()];
-    let settings = ContactSettings { penalty: 26e9, surfaces: false, friction: 0.0 };
+    let settings = ContactSettings { surfaces: false, ..ContactSettings::new(26e9) };
     let pa = m.tets[a as usize].map(|k| x[k as usize]);
     let pb = m.tets[b as usize].map(|k| x[k as usize]);
     let full: Vec3 = femdem_contact::tet_tet_forces(&pa, &pb, 26e9).1.iter().sum();

@@ -86,9 +86,29 @@ pub struct ContactSpec {
     /// default true). Fracture surfaces always can.
     #[serde(default = "yes")]
     pub surfaces: bool,
-    /// Coulomb friction coefficient μ between all contacting surfaces
-    /// (default 0; per-region-pair coefficients are not yet supported).
+    /// Coulomb friction coefficient μ between contacting surfaces of region
+    /// pairs not listed in `pairs` (default 0: frictionless).
     #[serde(default)]
+    pub friction: f64,
+    /// Per-region-pair friction coefficients (`[[contact.pairs]]`).
+    #[serde(default)]
+    pub pairs: Vec<Spanned<FrictionPairSpec>>,
+    /// Detection buffer, m (default 0: detect at every step). Detection is
+    /// repeated once a contactable node has moved half of it; a larger
+    /// buffer detects less often but evaluates more candidate pairs. It does
+    /// not change the result.
+    #[serde(default)]
+    pub buffer: f64,
+}
+
+/// `[[contact.pairs]]`: the friction coefficient between two regions.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionPairSpec {
+    /// The two regions (the same name twice for contacts within a region,
+    /// e.g. crack faces).
+    pub regions: [String; 2],
+    /// Coulomb friction coefficient μ.
     pub friction: f64,
 }
 

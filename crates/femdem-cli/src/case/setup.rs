@@ -7,7 +7,9 @@ use femdem_fracture::{GfCalibration, JointParams};
 use femdem_material::{ElasticParams, Law};
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
-use femdem_solver::{Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive};
+use femdem_solver::{
+    ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
+};
 
 use super::format::{LoadSpec, NodeSpec};
 use super::{CaseError, LoadedCase};
@@ -249,4 +251,45 @@ pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result
         model.randomise_strengths(dist, spec.seed.unwrap_or(case.case.mesh.seed)).map_err(|e| at(e.to_string()))?;
     }
     Ok(model)
+}
+
+/// Builds the contact settings of the case's `[contact]`, if any.
+///
+/// # Errors
+/// A located [`CaseError`] for a penalty that is not positive, a friction
+/// coefficient that is negative or not finite, a negative buffer, or an
+/// unknown region in `[[contact.pairs]]`.
+pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSettings>, CaseError> {
+    let Some(c) = &case.case.contact else { return Ok(None) };
+    let spec = c.get_ref();
+    let at = |msg: String| case.error_at(c.span(), format!("contact.{msg}"));
+    if !(spec.penalty.is_finite() && spec.penalty > 0.0) {
+        return Err(at(format!("penalty must be > 0 Pa, got {}", spec.penalty)));
+    }
+    if !(spec.friction.is_finite() && spec.friction >= 0.0) {
+        return Err(at(format!("friction must be ≥ 0, got {}", spec.friction)));
+    }
+    if !(spec.buffer.is_finite() && spec.buffer >= 0.0) {
+        return Err(at(format!("buffer must be ≥ 0 m, got {}", spec.buffer)));
+    }
+    let mut settings = ContactSettings {
+        penalty: spec.penalty,
+        surfaces: spec.surfaces,
+        friction: spec.friction,
+        pair_friction: Vec::new(),
+        buffer: spec.buffer,
+    };
+    for (i, p) in spec.pairs.iter().enumerate() {
+        let pair = p.get_ref();
+        let at = |msg: String| case.error_at(p.span(), format!("contact.pairs[{i}]: {msg}"));
+        let mut ids = [0u16; 2];
+        for (k, name) in pair.regions.iter().enumerate() {
+            ids[k] = mesh.mesh.region_index(name).ok_or_else(|| at(format!("`{name}` is not a region of the mesh")))?;
+        }
+        if !(pair.friction.is_finite() && pair.friction >= 0.0) {
+            return Err(at(format!("friction must be ≥ 0, got {}", pair.friction)));
+        }
+        settings.pair_friction.push((ids, pair.friction));
+    }
+    Ok(Some(settings))
 }

@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use femdem_mesh::{JointedMesh, TetMesh};
-use femdem_solver::{ContactSettings, Solver, SolverError, StableStep, stable_time_step};
+use femdem_solver::{Solver, SolverError, StableStep, stable_time_step};
 
 use crate::case::{self, LoadedCase};
 
@@ -60,16 +60,9 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
     let loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
     let mut solver = Solver::new(model, loads, 1.0).map_err(|e| at(e.to_string()))?;
-    if let Some(c) = &loaded.case.contact {
-        let spec = c.get_ref();
-        if !(spec.penalty.is_finite() && spec.penalty > 0.0) {
-            bail!(loaded.error_at(c.span(), format!("contact.penalty must be > 0 Pa, got {}", spec.penalty)));
-        }
+    if let Some(settings) = case::setup::contact(&loaded, &jointed)? {
         let initial: Vec<(u32, u32)> = jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
-        solver.enable_contact(
-            ContactSettings { penalty: spec.penalty, surfaces: spec.surfaces, friction: spec.friction },
-            &initial,
-        );
+        solver.enable_contact(settings, &initial);
     }
     let stable = stable_time_step(&solver.model, &solver.held_nodes(), POWER_ITERATIONS);
     let dt = match s.time_step {

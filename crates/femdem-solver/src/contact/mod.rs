@@ -1,0 +1,311 @@
+//! The solver's contact pass (reference paper §2.3): which tets may touch,
+//! NBS detection among them, and the tet–tet potential forces (Eq. 17) with
+//! Coulomb friction and the Eq. 18 ramp.
+//!
+//! A scene pays only for what it uses: with contact off nothing here runs;
+//! with it on, only *contactable* tets are searched — the tets of rigid
+//! regions, the tets on the outer surface of each body (when surface contact
+//! is asked for), the tets on pre-existing fractures, and the two tets of
+//! every joint that fails (added as it fails, Eq. 14). Pairs still bonded by
+//! an active joint, sharing a node (neighbours in a continuous region), or
+//! sharing an original vertex while not both activated by a fracture
+//! (neighbours in an intact body, which would otherwise push on each other
+//! across their common edge; this stands in for the node groups G1–G6 of
+//! Eq. 15–16) are excluded, as are pairs of rigid tets.
+//!
+//! Detection (NBS, O(N) in the contactable tets) keeps the pairs whose
+//! bounding spheres are less than the buffer `b` apart, and is repeated only
+//! when some contactable node has moved more than `b/2` since the last
+//! detection, or when a joint failure changed the contactable set: any two
+//! tets that overlap now were then within `b` of each other (below). The
+//! candidate pairs are evaluated in parallel, and their forces are summed
+//! in ascending pair order, so results depend neither on the thread count
+//! nor on the buffer.
+
+mod pair;
+mod settings;
+
+use std::collections::{HashMap, HashSet};
+
+use femdem_contact::Nbs;
+use femdem_core::{Real, Vec3};
+use rayon::prelude::*;
+
+use crate::model::{Model, RIGID};
+use pair::{PairForce, PairInput, evaluate, spring_key};
+pub use settings::ContactSettings;
+use settings::FrictionTable;
+
+/// Steps over which the contact force of a joint that failed in
+/// compression rises from zero to its full value (Eq. 18, `n_total`).
+pub const RAMP_STEPS: u32 = 10;
+
+/// The contact pass's state.
+#[derive(Clone, Debug)]
+pub struct Contact {
+    /// Settings.
+    pub settings: ContactSettings,
+    friction: FrictionTable,
+    contactable: Vec<bool>,
+    /// Tets made contactable by a fracture (failed joint or pre-existing).
+    activated: Vec<bool>,
+    list: Vec<u32>,
+    bonded: HashSet<(u32, u32)>,
+    nbs: Nbs,
+    centers: Vec<[Real; 3]>,
+    radii: Vec<Real>,
+    pairs: Vec<(u32, u32)>,
+    /// Candidate pairs (tet indices) from the last detection.
+    candidates: Vec<(u32, u32)>,
+    /// Nodes of the contactable tets and their positions at the last
+    /// detection.
+    nodes: Vec<u32>,
+    x_ref: Vec<Vec3>,
+    /// Whether the contactable set changed since the last detection.
+    stale: bool,
+    results: Vec<Option<PairForce>>,
+    /// Normal contact force per node from the last pass, N.
+    pub force: Vec<Vec3>,
+    /// Friction force per node from the last pass, N.
+    pub friction_force: Vec<Vec3>,
+    touched: Vec<u32>,
+    is_touched: Vec<bool>,
+    /// Pairs in contact at the last pass.
+    pub active_pairs: usize,
+    /// Detections run so far.
+    pub detections: u64,
+    /// Elastic energy of the friction springs after the last pass, J.
+    pub spring_energy: Real,
+    /// Tangential spring stretch of each pair in contact (friction history).
+    stick: HashMap<(u32, u32), Vec3>,
+    stick_next: HashMap<(u32, u32), Vec3>,
+    /// Pairs of joints that failed in compression, with their step count
+    /// `n_c` of Eq. 18.
+    ramp: HashMap<(u32, u32), u32>,
+}
+
+impl Contact {
+    /// The contact state of `model` with `settings`; `initial` are tet pairs
+    /// in contact from the start (pre-existing fractures).
+    pub fn new(model: &Model, settings: ContactSettings, initial: &[(u32, u32)]) -> Contact {
+        let n_tets = model.tets.len();
+        let mut contactable: Vec<bool> = model.tet_material.iter().map(|&m| m == RIGID).collect();
+        if settings.surfaces {
+            for (t, on) in model.surface_tets().into_iter().enumerate() {
+                contactable[t] |= on;
+            }
+        }
+        let mut activated = vec![false; n_tets];
+        for &(a, b) in initial {
+            for t in [a, b] {
+                contactable[t as usize] = true;
+                activated[t as usize] = true;
+            }
+        }
+        let bonded = model.joint_tets.iter().map(|&[a, b]| spring_key(a, b)).collect();
+        let list = (0..n_tets as u32).filter(|&t| contactable[t as usize]).collect();
+        let n_regions = model.tet_region.iter().copied().max().map_or(1, |r| r as usize + 1);
+        let friction = FrictionTable::new(&settings, n_regions);
+        Contact {
+            settings,
+            friction,
+            contactable,
+            activated,
+            list,
+            bonded,
+            nbs: Nbs::new(),
+            centers: Vec::new(),
+            radii: Vec::new(),
+            pairs: Vec::new(),
+            candidates: Vec::new(),
+            nodes: Vec::new(),
+            x_ref: Vec::new(),
+            stale: true,
+            results: Vec::new(),
+            force: vec![Vec3::zeros(); model.num_nodes()],
+            friction_force: vec![Vec3::zeros(); model.num_nodes()],
+            touched: Vec::new(),
+            is_touched: vec![false; model.num_nodes()],
+            active_pairs: 0,
+            detections: 0,
+            spring_energy: 0.0,
+            stick: HashMap::new(),
+            stick_next: HashMap::new(),
+            ramp: HashMap::new(),
+        }
+    }
+
+    /// Makes the two tets of a failed joint contactable and unbonds them
+    /// (Eq. 14). A joint that failed in compression (`compressed`: its mean
+    /// opening was negative) has the contact force between its two tets
+    /// ramped in over [`RAMP_STEPS`] steps (Eq. 18), so that the joint force,
+    /// which vanishes at failure, is not replaced by a sudden contact force.
+    pub fn joint_failed(&mut self, tets: [u32; 2], compressed: bool) {
+        let key = spring_key(tets[0], tets[1]);
+        self.bonded.remove(&key);
+        if compressed {
+            self.ramp.insert(key, 0);
+        }
+        for t in tets {
+            self.activated[t as usize] = true;
+            if !self.contactable[t as usize] {
+                self.contactable[t as usize] = true;
+                let at = self.list.partition_point(|&x| x < t);
+                self.list.insert(at, t);
+            }
+        }
+        self.stale = true;
+    }
+
+    /// The nodes the last pass put a force on, ascending.
+    pub fn touched(&self) -> &[u32] {
+        &self.touched
+    }
+
+    /// The tets that can touch, ascending.
+    pub fn contactable(&self) -> &[u32] {
+        &self.list
+    }
+
+    /// Whether tets `a` and `b` may exert contact forces on each other (see
+    /// the module documentation).
+    fn may_touch(&self, model: &Model, a: u32, b: u32) -> bool {
+        if model.tet_material[a as usize] == RIGID && model.tet_material[b as usize] == RIGID {
+            return false;
+        }
+        if self.bonded.contains(&spring_key(a, b)) {
+            return false;
+        }
+        let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
+        if ta.iter().any(|n| tb.contains(n)) {
+            return false;
+        }
+        let (oa, ob) = (ta.map(|n| model.origin[n as usize]), tb.map(|n| model.origin[n as usize]));
+        !(oa.iter().any(|v| ob.contains(v)) && !(self.activated[a as usize] && self.activated[b as usize]))
+    }
+
+    /// Runs NBS over the contactable tets at positions `x` with margin
+    /// `b/2`, keeping the pairs that may touch as the candidates.
+    fn detect(&mut self, model: &Model, x: &[Vec3]) {
+        self.centers.clear();
+        self.radii.clear();
+        for &t in &self.list {
+            let p = model.tets[t as usize].map(|n| x[n as usize]);
+            let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+            let r = p.iter().map(|q| (q - c).norm()).fold(0.0, Real::max);
+            self.centers.push([c.x, c.y, c.z]);
+            self.radii.push(r);
+        }
+        self.pairs.clear();
+        self.nbs.detect(&self.centers, &self.radii, 0.5 * self.settings.buffer, &mut self.pairs);
+        let mut candidates = std::mem::take(&mut self.candidates);
+        candidates.clear();
+        for &(i, j) in &self.pairs {
+            let (a, b) = (self.list[i as usize], self.list[j as usize]);
+            if self.may_touch(model, a, b) {
+                candidates.push((a, b));
+            }
+        }
+        // A canonical order: the forces are then summed in the same order
+        // whatever the buffer (which changes NBS's grid and so its order).
+        candidates.sort_unstable();
+        self.candidates = candidates;
+        if self.stale {
+            self.nodes.clear();
+            self.nodes.extend(self.list.iter().flat_map(|&t| model.tets[t as usize]));
+            self.nodes.sort_unstable();
+            self.nodes.dedup();
+        }
+        self.x_ref.clear();
+        self.x_ref.extend(self.nodes.iter().map(|&n| x[n as usize]));
+        self.stale = false;
+        self.detections += 1;
+    }
+
+    /// Whether the candidates must be found again: the contactable set
+    /// changed, or a contactable node moved more than `b/2` since the last
+    /// detection.
+    ///
+    /// Why `b/2` suffices: let `d` bound every node's move. A point `q` in
+    /// both tets now is a convex combination of each tet's current nodes;
+    /// the same combination of the nodes at detection lies in that tet then,
+    /// within `d` of `q`, so `|c_A − c_B| ≤ r_A + r_B + 2d` for the centres
+    /// and radii at detection, and NBS with margin `b/2` kept every pair with
+    /// `|c_A − c_B| ≤ r_A + r_B + b`. (The comparison is strict, so `b = 0`
+    /// detects again whenever anything moved.)
+    fn needs_detection(&self, x: &[Vec3]) -> bool {
+        if self.stale {
+            return true;
+        }
+        let half = 0.5 * self.settings.buffer;
+        let limit = half * half;
+        self.nodes.par_iter().zip(&self.x_ref).any(|(&n, r)| (x[n as usize] - r).norm_squared() > limit)
+    }
+
+    /// Detects contacts at positions `x` (when needed) and computes the
+    /// contact forces on every node into [`Contact::force`] (normal) and
+    /// [`Contact::friction_force`] (zero elsewhere; the nodes with a force
+    /// are [`Contact::touched`]). `v` (velocities) and `dt` drive the
+    /// friction springs (see `pair::evaluate`).
+    pub fn pass(&mut self, model: &Model, x: &[Vec3], v: &[Vec3], dt: Real) {
+        for &n in &self.touched {
+            self.force[n as usize] = Vec3::zeros();
+            self.friction_force[n as usize] = Vec3::zeros();
+            self.is_touched[n as usize] = false;
+        }
+        self.touched.clear();
+        if self.needs_detection(x) {
+            self.detect(model, x);
+        }
+        let (friction, stick, ramp) = (&self.friction, &self.stick, &self.ramp);
+        let penalty = self.settings.penalty;
+        self.candidates
+            .par_iter()
+            .map(|&(a, b)| {
+                let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
+                let key = spring_key(a, b);
+                evaluate(PairInput {
+                    tets: [a, b],
+                    x: [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])],
+                    v: [ta.map(|n| v[n as usize]), tb.map(|n| v[n as usize])],
+                    size: model.tet_ref[a as usize].volume.min(model.tet_ref[b as usize].volume).cbrt(),
+                    penalty,
+                    mu: friction.get(model.tet_region[a as usize], model.tet_region[b as usize]),
+                    ramp: ramp.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / Real::from(RAMP_STEPS)),
+                    spring: stick.get(&key),
+                    dt,
+                })
+            })
+            .collect_into_vec(&mut self.results);
+        self.active_pairs = 0;
+        self.spring_energy = 0.0;
+        for r in self.results.iter().flatten() {
+            self.active_pairs += 1;
+            let [a, b] = r.tets;
+            if r.friction != Vec3::zeros() || r.spring_energy > 0.0 {
+                self.stick_next.insert(spring_key(a, b), r.spring);
+                self.spring_energy += r.spring_energy;
+            }
+            for (side, (t, sign)) in [(a, -1.0), (b, 1.0)].into_iter().enumerate() {
+                for (k, &n) in model.tets[t as usize].iter().enumerate() {
+                    let n = n as usize;
+                    if !self.is_touched[n] {
+                        self.is_touched[n] = true;
+                        self.touched.push(n as u32);
+                    }
+                    self.force[n] += r.normal[side][k];
+                    self.friction_force[n] += r.friction * (0.25 * sign);
+                }
+            }
+        }
+        self.touched.sort_unstable();
+        // Eq. 18: n_c counts the steps since the joint failed.
+        self.ramp.retain(|_, n_c| {
+            *n_c += 1;
+            *n_c <= RAMP_STEPS
+        });
+        // Springs of pairs no longer in contact are dropped.
+        std::mem::swap(&mut self.stick, &mut self.stick_next);
+        self.stick_next.clear();
+    }
+}

@@ -1,0 +1,87 @@
+//! Contact settings: the normal penalty, which surfaces may touch, Coulomb
+//! friction per pair of regions, and the detection buffer.
+
+use femdem_core::Real;
+
+/// Contact settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactSettings {
+    /// Normal penalty `p` of Eq. 17, Pa (a multiple of E).
+    pub penalty: Real,
+    /// Whether the outer surfaces of bodies are contactable (for collisions
+    /// and platens); fracture surfaces always are.
+    pub surfaces: bool,
+    /// Coulomb friction coefficient μ of every pair of regions not listed in
+    /// [`ContactSettings::pair_friction`] (0: frictionless).
+    pub friction: Real,
+    /// Coulomb friction coefficient of particular pairs of regions (region
+    /// indices of the mesh, either order): the paper uses 0.6 on crack faces
+    /// (rock against rock) and 0.1 between the disc and the steel platens.
+    pub pair_friction: Vec<([u16; 2], Real)>,
+    /// Detection buffer `b`, m: NBS keeps every pair whose bounding spheres
+    /// are less than `b` apart, and detection is repeated only once some
+    /// contactable node has moved more than `b/2` since the last one (two
+    /// tets that touch now were then at most `b` apart: see
+    /// [`crate::Contact::pass`]). 0 detects at every step.
+    pub buffer: Real,
+}
+
+impl ContactSettings {
+    /// Frictionless contact with penalty `p` (Pa) between all surfaces,
+    /// detected at every step.
+    pub fn new(penalty: Real) -> ContactSettings {
+        ContactSettings { penalty, surfaces: true, friction: 0.0, pair_friction: Vec::new(), buffer: 0.0 }
+    }
+
+    /// The friction coefficient between regions `a` and `b`: the last
+    /// matching entry of [`ContactSettings::pair_friction`], else
+    /// [`ContactSettings::friction`].
+    pub fn friction_between(&self, a: u16, b: u16) -> Real {
+        self.pair_friction
+            .iter()
+            .rev()
+            .find(|([p, q], _)| (*p, *q) == (a, b) || (*p, *q) == (b, a))
+            .map_or(self.friction, |&(_, mu)| mu)
+    }
+}
+
+/// A dense table of μ per pair of regions, for the pair loop.
+#[derive(Clone, Debug)]
+pub(crate) struct FrictionTable {
+    n: usize,
+    mu: Vec<Real>,
+}
+
+impl FrictionTable {
+    pub(crate) fn new(settings: &ContactSettings, n_regions: usize) -> FrictionTable {
+        let mut mu = vec![0.0; n_regions * n_regions];
+        for a in 0..n_regions {
+            for b in 0..n_regions {
+                mu[a * n_regions + b] = settings.friction_between(a as u16, b as u16);
+            }
+        }
+        FrictionTable { n: n_regions, mu }
+    }
+
+    pub(crate) fn get(&self, a: u16, b: u16) -> Real {
+        self.mu[a as usize * self.n + b as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pair_friction_overrides_the_default_in_either_order() {
+        let mut s = ContactSettings::new(1e9);
+        s.friction = 0.6;
+        s.pair_friction.push(([0, 2], 0.1));
+        assert_eq!(s.friction_between(0, 0), 0.6);
+        assert_eq!(s.friction_between(2, 0), 0.1);
+        assert_eq!(s.friction_between(0, 2), 0.1);
+        let t = FrictionTable::new(&s, 3);
+        assert_eq!(t.get(2, 0), 0.1);
+        assert_eq!(t.get(1, 2), 0.6);
+    }
+}

@@ -103,6 +103,8 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("negative_size.toml", ":7:1:", "element_size"),
         ("missing_msh.toml", ":7:1:", "does_not_exist.msh"),
         ("undeclared_physical_volume.toml", ":7:1:", "physical volume `inclusion`"),
+        ("contact_pair_unknown_region.toml", ":24:1:", "contact.pairs[0]: `steel` is not a region"),
+        ("load_strain_unknown_platen.toml", ":23:1:", "output.load_strain.upper: `platen_top` is not a platen"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");

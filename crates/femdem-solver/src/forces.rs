@@ -167,7 +167,9 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
                 let j = c * CHUNK + k;
                 *f = 0;
                 if h.failed {
-                    // Left the force loop when it failed: all its work is lost.
+                    // Left the force loop when it failed (naturally, or by
+                    // `Solver::break_joints`): no force, all its work lost.
+                    *slot = [Vec3::zeros(); 6];
                     if want.energy {
                         sums.fracture += h.work;
                     }

@@ -383,6 +383,31 @@ impl Solver {
         self.contact = Some(Contact::new(&self.model, settings, initial));
     }
 
+    /// Breaks joints by decree (a notch or a saw cut seeded in an intact
+    /// mesh, or a test of the switch to contact): each joint of `joints`
+    /// not yet failed stops carrying force from the next step, and, with
+    /// contact on, its two tets become contactable, with the Eq. 18 ramp if
+    /// the joint is closed (mean opening < 0) at the current positions, as
+    /// for a natural failure. It is not a material failure: nothing is
+    /// added to [`Solver::failures`]. As for a natural failure, all the work
+    /// done on the joint (its stored energy included) counts as `fracture`
+    /// energy from then on.
+    pub fn break_joints(&mut self, joints: &[u32]) {
+        for &j in joints {
+            let j = j as usize;
+            let history = &mut self.state.joints[j];
+            if history.failed {
+                continue;
+            }
+            history.failed = true;
+            let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
+            if let Some(contact) = &mut self.contact {
+                let opening = joint_kinematics(&xp).map_or(0.0, |k| k.opening.iter().sum::<Real>());
+                contact.joint_failed(self.model.joint_tets[j], opening < 0.0);
+            }
+        }
+    }
+
     /// Appends the joints that failed in the last force evaluation to
     /// [`Solver::failures`], in joint order.
     fn record_failures(&mut self, time: Real) {

@@ -23,4 +23,4 @@ pub use forces::{ForceSums, Want, Workspace};
 pub use integrate::{Energies, Failure, Solver, State, StepReport};
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RIGID, RegionBehaviour};
-pub use timestep::{StableStep, element_transit, stable_time_step};
+pub use timestep::{StableStep, contact_omega, element_transit, stable_time_step};

@@ -266,6 +266,30 @@ pub struct OutputSpec {
     /// Fields written (default all): `displacement`, `velocity`, `stress`,
     /// `principal_stress`, `von_mises`, `region`.
     pub fields: Option<Vec<String>>,
+    /// `[output.load_strain]`: the load–strain curve of a specimen between
+    /// two platens, as history columns `load` and `strain`.
+    pub load_strain: Option<Spanned<LoadStrainSpec>>,
+}
+
+/// `[output.load_strain]`: the paper's load `F = ½ (F_upper + F_lower)`
+/// (Eq. 21) and strain `ε = Δa / d` (Eq. 22) from two platens.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadStrainSpec {
+    /// The platen on the `+axis` side (its region name).
+    pub upper: String,
+    /// The platen on the `−axis` side.
+    pub lower: String,
+    /// The specimen's length `d` between them (the disc's diameter), m.
+    pub length: f64,
+    /// Loading axis, from the lower platen to the upper one (default
+    /// `[0, 1, 0]`; normalised).
+    #[serde(default = "y_axis")]
+    pub axis: [f64; 3],
+}
+
+fn y_axis() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
 }
 
 /// `[mesh]`: regions, parts and the seed of random generators.

@@ -293,3 +293,61 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
     }
     Ok(Some(settings))
 }
+
+/// The load–strain columns of `[output.load_strain]`, resolved against the
+/// drives of `loads`.
+#[derive(Clone, Copy, Debug)]
+pub struct LoadStrain {
+    /// Index of the upper platen's drive.
+    pub upper: usize,
+    /// Index of the lower platen's drive.
+    pub lower: usize,
+    /// Specimen length `d`, m.
+    pub length: f64,
+    /// Unit loading axis.
+    pub axis: Vec3,
+}
+
+impl LoadStrain {
+    /// `(F, ε)` of Eq. 21–22 from the drives' reaction forces `forces` (the
+    /// force each drive applies to its platen) and mean displacements `u`:
+    /// the specimen pushes the upper platen along `+axis`, so
+    /// `F_upper = −f_upper·axis` and `F_lower = f_lower·axis`, and
+    /// `Δa = (u_lower − u_upper)·axis` is the shortening.
+    pub fn evaluate(&self, forces: &[Vec3], u: &[Vec3]) -> (f64, f64) {
+        let f_upper = -forces[self.upper].dot(&self.axis);
+        let f_lower = forces[self.lower].dot(&self.axis);
+        let shortening = (u[self.lower] - u[self.upper]).dot(&self.axis);
+        (0.5 * (f_upper + f_lower), shortening / self.length)
+    }
+}
+
+/// Resolves `[output.load_strain]`, if any.
+///
+/// # Errors
+/// A located [`CaseError`] when a name is not a platen of the case, the two
+/// are the same, the length is not positive or the axis is zero.
+pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain>, CaseError> {
+    let Some(spec) = &case.case.output.load_strain else { return Ok(None) };
+    let s = spec.get_ref();
+    let at = |msg: String| case.error_at(spec.span(), format!("output.load_strain.{msg}"));
+    let find = |key: &str, name: &str| {
+        loads
+            .drives
+            .iter()
+            .position(|d| d.name == name)
+            .ok_or_else(|| at(format!("{key}: `{name}` is not a platen of the case")))
+    };
+    let (upper, lower) = (find("upper", &s.upper)?, find("lower", &s.lower)?);
+    if upper == lower {
+        return Err(at("lower: must differ from upper".into()));
+    }
+    if !(s.length.is_finite() && s.length > 0.0) {
+        return Err(at(format!("length must be > 0 m, got {}", s.length)));
+    }
+    let axis = Vec3::from(s.axis);
+    if !(axis.norm().is_finite() && axis.norm() > 0.0) {
+        return Err(at("axis must be a non-zero vector".into()));
+    }
+    Ok(Some(LoadStrain { upper, lower, length: s.length, axis: axis.normalize() }))
+}

@@ -57,6 +57,7 @@ struct TimeStepReport {
     time_step: f64,
     element_transit_time: f64,
     omega_max: f64,
+    contact_omega: f64,
     damping_ratio: f64,
     steps: u64,
     deformable_tets: usize,
@@ -112,6 +113,7 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
             time_step: r.solver.dt,
             element_transit_time: r.stable.element_transit,
             omega_max: r.stable.omega_max,
+            contact_omega: r.stable.contact_omega,
             damping_ratio: r.stable.damping_ratio,
             steps: r.steps,
             deformable_tets: r.solver.model.num_deformable_tets(),
@@ -150,8 +152,9 @@ fn print_text(r: &CheckReport) {
     }
     if let Some(t) = &r.time_stepping {
         println!(
-            "time step {:.4e} s (critical {:.4e} s from ω_max = {:.4e} rad/s, damping ratio {:.3}; element transit {:.4e} s)",
-            t.time_step, t.critical_time_step, t.omega_max, t.damping_ratio, t.element_transit_time
+            "time step {:.4e} s (critical {:.4e} s from ω_max = {:.4e} rad/s, contact ω_c = {:.4e} rad/s, \
+             damping ratio {:.3}; element transit {:.4e} s)",
+            t.time_step, t.critical_time_step, t.omega_max, t.contact_omega, t.damping_ratio, t.element_transit_time
         );
         println!("steps     {} ({:.3e} tet-steps)", t.steps, t.steps as f64 * t.deformable_tets as f64);
     }

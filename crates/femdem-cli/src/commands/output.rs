@@ -8,6 +8,8 @@ use femdem_material::{principal_stresses, von_mises};
 use femdem_solver::Solver;
 use femdem_vtk::{Field, Frame, HistoryWriter, SeriesWriter};
 
+use crate::case::setup::LoadStrain;
+
 /// Fields a case may ask for.
 pub const FIELDS: [&str; 6] = ["displacement", "velocity", "stress", "principal_stress", "von_mises", "region"];
 
@@ -19,6 +21,7 @@ pub struct Output {
     fields: Vec<String>,
     /// Pre-existing fracture faces (node triples of one side).
     pre_existing: Vec<[u32; 3]>,
+    load_strain: Option<LoadStrain>,
 }
 
 impl Output {
@@ -30,6 +33,7 @@ impl Output {
         fields: Vec<String>,
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
+        load_strain: Option<LoadStrain>,
     ) -> Result<Output> {
         for f in &fields {
             if !FIELDS.contains(&f.as_str()) {
@@ -46,6 +50,8 @@ impl Output {
             "joint_elastic",
             "damping",
             "fracture",
+            "contact",
+            "friction",
             "external_work",
             "balance",
             "broken_tensile",
@@ -61,9 +67,12 @@ impl Output {
         for s in &solver.loads.surfaces {
             columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", s.name)));
         }
+        if load_strain.is_some() {
+            columns.extend(["load".to_string(), "strain".to_string()]);
+        }
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
-        Ok(Output { series, fractures, history, fields, pre_existing })
+        Ok(Output { series, fractures, history, fields, pre_existing, load_strain })
     }
 
     /// Appends a history row for time `t` (the state the last step's
@@ -82,12 +91,15 @@ impl Output {
             e.joint_elastic,
             e.damping,
             e.fracture,
+            e.contact,
+            e.friction,
             e.external_work,
             e.balance(),
             broken[0],
             broken[1],
             broken[2],
         ];
+        let mut displacements = Vec::with_capacity(solver.loads.drives.len());
         for (d, f) in solver.loads.drives.iter().zip(&solver.report.drive_forces) {
             // Mean displacement of the driven nodes (for Eq. 22's Δa).
             let mut u = femdem_core::Vec3::zeros();
@@ -96,9 +108,14 @@ impl Output {
             }
             u /= d.nodes.len().max(1) as f64;
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);
+            displacements.push(u);
         }
         for f in &solver.report.surface_forces {
             row.extend([f.x, f.y, f.z]);
+        }
+        if let Some(ls) = &self.load_strain {
+            let (load, strain) = ls.evaluate(&solver.report.drive_forces, &displacements);
+            row.extend([load, strain]);
         }
         self.history.row(&row)?;
         Ok(())

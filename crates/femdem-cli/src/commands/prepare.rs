@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use femdem_mesh::{JointedMesh, TetMesh};
-use femdem_solver::{Solver, SolverError, StableStep, stable_time_step};
+use femdem_solver::{Solver, SolverError, StableStep, contact_omega, stable_time_step};
 
 use crate::case::{self, LoadedCase};
 
@@ -31,6 +31,8 @@ pub struct Runnable {
     pub steps: u64,
     /// The end time, s.
     pub end_time: f64,
+    /// The load–strain columns, if asked for.
+    pub load_strain: Option<case::setup::LoadStrain>,
 }
 
 /// Loads the case, builds the mesh and joints, and, if the case has a
@@ -59,12 +61,16 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     }
     let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
     let loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
+    let load_strain = case::setup::load_strain(&loaded, &loads)?;
     let mut solver = Solver::new(model, loads, 1.0).map_err(|e| at(e.to_string()))?;
     if let Some(settings) = case::setup::contact(&loaded, &jointed)? {
         let initial: Vec<(u32, u32)> = jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
         solver.enable_contact(settings, &initial);
     }
-    let stable = stable_time_step(&solver.model, &solver.held_nodes(), POWER_ITERATIONS);
+    let mut stable = stable_time_step(&solver.model, &solver.held_nodes(), POWER_ITERATIONS);
+    if let Some(contact) = &solver.contact {
+        stable = stable.with_contact(contact_omega(&solver.model, contact.settings.penalty));
+    }
     let dt = match s.time_step {
         Some(dt) if !(dt.is_finite() && dt > 0.0) => {
             bail!(at(format!("time_step must be > 0 s, got {dt}")))
@@ -84,5 +90,5 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     solver.dt = dt;
     let steps = (s.end_time / dt).ceil() as u64;
     let end_time = s.end_time;
-    Ok(Prepared { case: loaded, mesh, jointed, run: Some(Runnable { solver, stable, steps, end_time }) })
+    Ok(Prepared { case: loaded, mesh, jointed, run: Some(Runnable { solver, stable, steps, end_time, load_strain }) })
 }

@@ -32,7 +32,7 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
     let solver = &mut run.solver;
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
-    let mut output = Output::create(&dir, &stem, fields, solver, pre_existing)
+    let mut output = Output::create(&dir, &stem, fields, solver, pre_existing, run.load_strain)
         .with_context(|| format!("output directory {}", dir.display()))?;
 
     let stop = Arc::new(AtomicBool::new(false));

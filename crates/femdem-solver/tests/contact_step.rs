@@ -35,7 +35,7 @@ fn collide(penalty: f64, factor: f64) -> (f64, f64) {
     for _ in 0..steps {
         s.step(Want { energy: true, ..Want::default() });
         let e = s.energies.kinetic + s.energies.tet_elastic;
-        if !(e < 10.0 * e0) {
+        if e.is_nan() || e >= 10.0 * e0 {
             return (f64::INFINITY, stable.critical / bulk.critical);
         }
     }

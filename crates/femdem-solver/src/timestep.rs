@@ -202,6 +202,16 @@ impl StableStep {
     }
 }
 
+/// Reference volume and largest face area of tet `t`.
+fn volume_and_largest_face(model: &Model, t: usize) -> (Real, Real) {
+    let p = model.tets[t].map(|n| model.x0[n as usize]);
+    let area = femdem_core::tet::FACES
+        .iter()
+        .map(|f| femdem_core::tet::triangle_area(&p[f[0]], &p[f[1]], &p[f[2]]))
+        .fold(0.0, Real::max);
+    (femdem_core::tet::signed_volume(&p), area)
+}
+
 /// A bound on the frequency of the contact springs of penalty `p` (Pa):
 /// `ω_c² = max_t k_t / m_t` over the deformable tets, where
 /// `k_t = 8 p A² / (3 V)` is the stiffness of a shallow face-on overlap of
@@ -217,12 +227,7 @@ pub fn contact_omega(model: &Model, penalty: Real) -> Real {
     (0..model.tets.len())
         .filter(|&t| model.tet_material[t] != RIGID)
         .map(|t| {
-            let p = model.tets[t].map(|n| model.x0[n as usize]);
-            let v = femdem_core::tet::signed_volume(&p);
-            let a = femdem_core::tet::FACES
-                .iter()
-                .map(|f| femdem_core::tet::triangle_area(&p[f[0]], &p[f[1]], &p[f[2]]))
-                .fold(0.0, Real::max);
+            let (v, a) = volume_and_largest_face(model, t);
             let k = 8.0 * penalty * a * a / (3.0 * v);
             let m = model.tets[t].iter().map(|&n| model.mass[n as usize]).fold(Real::INFINITY, Real::min);
             k / m
@@ -236,12 +241,7 @@ pub fn element_transit(model: &Model) -> Real {
     (0..model.tets.len())
         .filter(|&t| model.tet_material[t] != RIGID)
         .map(|t| {
-            let p = model.tets[t].map(|n| model.x0[n as usize]);
-            let v = femdem_core::tet::signed_volume(&p);
-            let amax = femdem_core::tet::FACES
-                .iter()
-                .map(|f| femdem_core::tet::triangle_area(&p[f[0]], &p[f[1]], &p[f[2]]))
-                .fold(0.0, Real::max);
+            let (v, amax) = volume_and_largest_face(model, t);
             let altitude = 3.0 * v / amax;
             altitude / model.materials[model.tet_material[t] as usize].1.p_wave_speed() * model.mass_scaling.sqrt()
         })

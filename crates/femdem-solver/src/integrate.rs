@@ -379,8 +379,17 @@ impl Solver {
 
     /// Turns on contact (§2.3): `initial` are tet pairs in contact from the
     /// start (pre-existing fractures).
+    /// Joints that have already failed (naturally or by
+    /// [`Solver::break_joints`]) unbond their tets as if failing now
+    /// (without the Eq. 18 ramp).
     pub fn enable_contact(&mut self, settings: ContactSettings, initial: &[(u32, u32)]) {
-        self.contact = Some(Contact::new(&self.model, settings, initial));
+        let mut contact = Contact::new(&self.model, settings, initial);
+        for (j, history) in self.state.joints.iter().enumerate() {
+            if history.failed {
+                contact.joint_failed(self.model.joint_tets[j], false);
+            }
+        }
+        self.contact = Some(contact);
     }
 
     /// Breaks joints by decree (a notch or a saw cut seeded in an intact

@@ -103,8 +103,10 @@ impl Output {
         for (d, f) in solver.loads.drives.iter().zip(&solver.report.drive_forces) {
             // Mean displacement of the driven nodes (for Eq. 22's Δa).
             let mut u = femdem_core::Vec3::zeros();
+            // At t_n, like the forces: x_n = x_{n+1} − Δt v_{n+½}.
             for &n in &d.nodes {
-                u += solver.state.x[n as usize] - solver.model.x0[n as usize];
+                let n = n as usize;
+                u += solver.state.x[n] - solver.state.v[n] * solver.dt - solver.model.x0[n];
             }
             u /= d.nodes.len().max(1) as f64;
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);

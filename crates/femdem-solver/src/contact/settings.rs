@@ -19,10 +19,10 @@ pub struct ContactSettings {
     /// (rock against rock) and 0.1 between the disc and the steel platens.
     pub pair_friction: Vec<([u16; 2], Real)>,
     /// Detection buffer `b`, m: NBS keeps every pair whose bounding spheres
-    /// are less than `b` apart, and detection is repeated only once some
+    /// are at most `b` apart, and detection is repeated only once some
     /// contactable node has moved more than `b/2` since the last one (two
     /// tets that touch now were then at most `b` apart: see
-    /// [`crate::Contact::pass`]). 0 detects at every step.
+    /// `Contact::needs_detection`). 0 detects at every step.
     pub buffer: Real,
 }
 

@@ -263,8 +263,9 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
 }
 
 /// Eq. 18: when a joint fails in compression, the contact force between its
-/// two tets rises linearly from zero to its full value over `n_total` = 10
-/// steps, so the force carried across the face does not jump.
+/// two tets rises linearly from zero to its full value over `n_total` steps
+/// (the paper's 10, the case's `ramp_steps`), so the force carried across
+/// the face does not jump; `n_total = 0` applies it at once.
 #[test]
 fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
     let mesh = box_mesh([0.0; 3], [0.01; 3], 0.01, 0.0, true);
@@ -279,17 +280,23 @@ fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
         x[node as usize] -= n * 1e-6;
     }
     let v = vec![Vec3::zeros(); x.len()];
-    let settings = ContactSettings { surfaces: false, ..ContactSettings::new(26e9) };
     let pa = m.tets[a as usize].map(|k| x[k as usize]);
     let pb = m.tets[b as usize].map(|k| x[k as usize]);
     let full: Vec3 = femdem_contact::tet_tet_forces(&pa, &pb, 26e9).1.iter().sum();
     assert!(full.norm() > 0.0);
-    let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
-    contact.joint_failed([a, b], true);
-    for step in 0..=femdem_solver::RAMP_STEPS + 2 {
-        contact.pass(&m, &x, &v, 1e-8);
-        let on_b: Vec3 = m.tets[b as usize].iter().map(|&k| contact.force[k as usize]).sum();
-        let expected = f64::from(step.min(femdem_solver::RAMP_STEPS)) / f64::from(femdem_solver::RAMP_STEPS);
-        assert!((on_b - full * expected).norm() <= 1e-12 * full.norm(), "step {step}: {on_b} vs {expected} × {full}");
+    // The paper's 10 steps, a shorter ramp, and none.
+    for n_total in [femdem_solver::RAMP_STEPS, 4, 0] {
+        let settings = ContactSettings { surfaces: false, ramp_steps: n_total, ..ContactSettings::new(26e9) };
+        let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
+        contact.joint_failed([a, b], true);
+        for step in 0..=n_total + 2 {
+            contact.pass(&m, &x, &v, 1e-8);
+            let on_b: Vec3 = m.tets[b as usize].iter().map(|&k| contact.force[k as usize]).sum();
+            let expected = if n_total == 0 { 1.0 } else { f64::from(step.min(n_total)) / f64::from(n_total) };
+            assert!(
+                (on_b - full * expected).norm() <= 1e-12 * full.norm(),
+                "n_total {n_total}, step {step}: {on_b} vs {expected} × {full}"
+            );
+        }
     }
 }

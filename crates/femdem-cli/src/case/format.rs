@@ -99,6 +99,14 @@ pub struct ContactSpec {
     /// not change the result.
     #[serde(default)]
     pub buffer: f64,
+    /// Steps over which the contact force of a joint that failed in
+    /// compression is ramped in (Eq. 18's `n_total`; default 10, 0: none).
+    #[serde(default = "ten")]
+    pub ramp_steps: u32,
+}
+
+fn ten() -> u32 {
+    10
 }
 
 /// `[[contact.pairs]]`: the friction coefficient between two regions.

@@ -278,6 +278,7 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         friction: spec.friction,
         pair_friction: Vec::new(),
         buffer: spec.buffer,
+        ramp_steps: spec.ramp_steps,
     };
     for (i, p) in spec.pairs.iter().enumerate() {
         let pair = p.get_ref();

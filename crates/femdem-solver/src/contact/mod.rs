@@ -36,8 +36,9 @@ use pair::{PairForce, PairInput, evaluate, spring_key};
 pub use settings::ContactSettings;
 use settings::FrictionTable;
 
-/// Steps over which the contact force of a joint that failed in
-/// compression rises from zero to its full value (Eq. 18, `n_total`).
+/// The paper's `n_total` of Eq. 18: steps over which the contact force of
+/// a joint that failed in compression rises from zero to its full value
+/// (the default of [`ContactSettings::ramp_steps`]).
 pub const RAMP_STEPS: u32 = 10;
 
 /// The contact pass's state.
@@ -138,12 +139,12 @@ impl Contact {
     /// Makes the two tets of a failed joint contactable and unbonds them
     /// (Eq. 14). A joint that failed in compression (`compressed`: its mean
     /// opening was negative) has the contact force between its two tets
-    /// ramped in over [`RAMP_STEPS`] steps (Eq. 18), so that the joint force,
+    /// ramped in over [`ContactSettings::ramp_steps`] steps (Eq. 18), so that the joint force,
     /// which vanishes at failure, is not replaced by a sudden contact force.
     pub fn joint_failed(&mut self, tets: [u32; 2], compressed: bool) {
         let key = spring_key(tets[0], tets[1]);
         self.bonded.remove(&key);
-        if compressed {
+        if compressed && self.settings.ramp_steps > 0 {
             self.ramp.insert(key, 0);
         }
         for t in tets {
@@ -258,7 +259,7 @@ impl Contact {
             self.detect(model, x);
         }
         let (friction, stick, ramp) = (&self.friction, &self.stick, &self.ramp);
-        let penalty = self.settings.penalty;
+        let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
         self.candidates
             .par_iter()
             .map(|&(a, b)| {
@@ -271,7 +272,7 @@ impl Contact {
                     size: model.tet_ref[a as usize].volume.min(model.tet_ref[b as usize].volume).cbrt(),
                     penalty,
                     mu: friction.get(model.tet_region[a as usize], model.tet_region[b as usize]),
-                    ramp: ramp.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / Real::from(RAMP_STEPS)),
+                    ramp: ramp.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / n_total),
                     spring: stick.get(&key),
                     dt,
                 })
@@ -300,9 +301,10 @@ impl Contact {
         }
         self.touched.sort_unstable();
         // Eq. 18: n_c counts the steps since the joint failed.
+        let n_total = self.settings.ramp_steps;
         self.ramp.retain(|_, n_c| {
             *n_c += 1;
-            *n_c <= RAMP_STEPS
+            *n_c <= n_total
         });
         // Springs of pairs no longer in contact are dropped.
         std::mem::swap(&mut self.stick, &mut self.stick_next);

@@ -24,13 +24,24 @@ pub struct ContactSettings {
     /// tets that touch now were then at most `b` apart: see
     /// `Contact::needs_detection`). 0 detects at every step.
     pub buffer: Real,
+    /// Steps `n_total` over which the contact force between the tets of a
+    /// joint that failed in compression rises from zero (Eq. 18; the paper
+    /// uses [`crate::RAMP_STEPS`] = 10; 0: no ramp).
+    pub ramp_steps: u32,
 }
 
 impl ContactSettings {
     /// Frictionless contact with penalty `p` (Pa) between all surfaces,
-    /// detected at every step.
+    /// detected at every step, with the paper's 10-step ramp.
     pub fn new(penalty: Real) -> ContactSettings {
-        ContactSettings { penalty, surfaces: true, friction: 0.0, pair_friction: Vec::new(), buffer: 0.0 }
+        ContactSettings {
+            penalty,
+            surfaces: true,
+            friction: 0.0,
+            pair_friction: Vec::new(),
+            buffer: 0.0,
+            ramp_steps: crate::RAMP_STEPS,
+        }
     }
 
     /// The friction coefficient between regions `a` and `b`: the last

@@ -379,6 +379,7 @@ impl Solver {
 
     /// Turns on contact (§2.3): `initial` are tet pairs in contact from the
     /// start (pre-existing fractures).
+    ///
     /// Joints that have already failed (naturally or by
     /// [`Solver::break_joints`]) unbond their tets as if failing now
     /// (without the Eq. 18 ramp).

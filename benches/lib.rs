@@ -37,7 +37,7 @@ pub fn disc_extrusion(element_size: f64) -> ExtrusionSpec {
 pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver {
     use femdem_fracture::JointParams;
     use femdem_material::{ElasticParams, Law};
-    use femdem_solver::{Loads, Model, RegionBehaviour, Solver, stable_time_step};
+    use femdem_solver::{Loads, Model, RegionBehaviour, Solver, StepParams, held_nodes, stable_time_step};
     let mut spec = disc_extrusion(element_size);
     spec.region.breakable = breakable;
     let mesh = femdem_mesh::generate::generate_extrusion(&spec).expect("disc");
@@ -55,8 +55,9 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
     });
     let model = Model::new(&jointed, &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints }], 1.0)
         .expect("model");
-    let mut s = Solver::new(model, Loads::default(), 1.0).expect("solver");
-    s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
+    let held = held_nodes(&model, &Loads::default()).expect("constraints");
+    let dt = 0.9 * stable_time_step(&model, &held, 300).critical;
+    let mut s = Solver::new(model, Loads::default(), StepParams::new(dt).expect("step")).expect("solver");
     s.set_velocity(|x| femdem_core::Vec3::new(x.y, -x.x, 0.0) * 10.0);
     s
 }

@@ -9,7 +9,7 @@
 //! chunk order, for the same reason.
 
 use femdem_core::{Mat3, Real, Vec3};
-use femdem_fracture::{JointHistory, joint_update};
+use femdem_fracture::{FailureMode, JointHistory, joint_update};
 use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
@@ -25,8 +25,6 @@ pub struct Want {
     pub stress: bool,
     /// Sum the stored elastic energies.
     pub energy: bool,
-    /// Sum the viscous dissipation rate `∫ η D:D dv`.
-    pub dissipation: bool,
 }
 
 /// Sums returned by [`internal_forces`] (zero where not asked for).
@@ -68,9 +66,9 @@ pub struct Workspace {
     pub internal: Vec<Vec3>,
     /// Cauchy stress per tet (filled when asked for).
     pub stress: Vec<Mat3>,
-    /// Failure mode code of each joint that failed in the last evaluation
-    /// (0: none; see `FailureMode::code`).
-    pub failed_now: Vec<u8>,
+    /// How each joint that failed in the last evaluation failed (`None`
+    /// for the others).
+    pub failed_now: Vec<Option<FailureMode>>,
     tet_partials: Vec<ForceSums>,
     joint_partials: Vec<ForceSums>,
 }
@@ -83,7 +81,7 @@ impl Workspace {
             joint_slots: vec![[Vec3::zeros(); 6]; model.joints.len()],
             internal: vec![Vec3::zeros(); model.num_nodes()],
             stress: vec![Mat3::zeros(); model.tets.len()],
-            failed_now: vec![0; model.joints.len()],
+            failed_now: vec![None; model.joints.len()],
             tet_partials: vec![ForceSums::default(); model.tets.len().div_ceil(CHUNK)],
             joint_partials: vec![ForceSums::default(); model.joints.len().div_ceil(CHUNK)],
         }
@@ -94,7 +92,8 @@ impl Workspace {
 /// velocities `v` (the velocities enter only the viscous term of Eq. 1)
 /// into `ws.internal`, updates the joints' damage `history`, and returns
 /// the sums asked for in `want` (the count of newly failed joints always;
-/// `ws.failed_now` says which).
+/// `ws.failed_now` says which), and with `dissipation` the viscous
+/// dissipation rate `∫ η D:D dv`.
 pub fn internal_forces(
     model: &Model,
     x: &[Vec3],
@@ -102,15 +101,16 @@ pub fn internal_forces(
     history: &mut [JointHistory],
     ws: &mut Workspace,
     want: Want,
+    dissipation: bool,
 ) -> ForceSums {
-    tet_pass(model, x, v, ws, want);
+    tet_pass(model, x, v, ws, want, dissipation);
     joint_pass(model, x, history, ws, want);
     gather(model, ws);
     let tets = ws.tet_partials.iter().fold(ForceSums::default(), |a, &b| a.add(b));
     ws.joint_partials.iter().fold(tets, |a, &b| a.add(b))
 }
 
-fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Want) {
+fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Want, dissipation: bool) {
     let stress_out = &mut ws.stress;
     ws.tet_slots
         .par_chunks_mut(CHUNK)
@@ -139,7 +139,7 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
                 if want.energy {
                     sums.tet_energy += out.energy;
                 }
-                if want.dissipation && material.viscosity() > 0.0 {
+                if dissipation && material.viscosity() > 0.0 {
                     // Rate of viscous work −Σ f_visc·v = ∫ η D:D dv.
                     let l = velocity_gradient(&xp, &vp);
                     let d = (l + l.transpose()) * 0.5;
@@ -165,7 +165,7 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
             let mut sums = ForceSums::default();
             for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
                 let j = c * CHUNK + k;
-                *f = 0;
+                *f = None;
                 if h.failed {
                     // Left the force loop when it failed (naturally, or by
                     // `Solver::break_joints`): no force, all its work lost.
@@ -178,8 +178,8 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
                 let xp = model.joints[j].map(|n| x[n as usize]);
                 let out = joint_update(&model.joint_law[j], h, &xp, want.energy);
                 *slot = out.forces;
-                if let Some(mode) = out.failed {
-                    *f = mode.code();
+                if out.failed.is_some() {
+                    *f = out.failed;
                     sums.newly_failed += 1;
                 }
                 if want.energy {

@@ -112,20 +112,16 @@ impl Model {
     /// (lower tensile strength).
     ///
     /// # Errors
-    /// [`SolverError::Setup`] for a missing region behaviour, a breakable
-    /// region without joint parameters, an inverted tet, or a bad
-    /// mass-scaling factor.
+    /// [`SolverError::RegionCount`], [`SolverError::MissingJointParams`],
+    /// [`SolverError::InvertedTet`], [`SolverError::UnbreakableJoint`] or
+    /// [`SolverError::MassScaling`].
     pub fn new(mesh: &JointedMesh, behaviour: &[RegionBehaviour], mass_scaling: Real) -> Result<Model, SolverError> {
         let m = &mesh.mesh;
         if behaviour.len() != m.regions.len() {
-            return Err(SolverError::Setup(format!(
-                "{} regions but {} region behaviours",
-                m.regions.len(),
-                behaviour.len()
-            )));
+            return Err(SolverError::RegionCount { regions: m.regions.len(), behaviours: behaviour.len() });
         }
         if !(mass_scaling.is_finite() && mass_scaling >= 1.0) {
-            return Err(SolverError::Setup(format!("mass_scaling must be ≥ 1, got {mass_scaling}")));
+            return Err(SolverError::MassScaling(mass_scaling));
         }
         let x0: Vec<Vec3> = m.coords.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect();
         let mut materials: Vec<(Law, Material)> = Vec::new();
@@ -134,10 +130,7 @@ impl Model {
             match b {
                 RegionBehaviour::Deformable { law, material, joints } => {
                     if m.regions[r].breakable && joints.is_none() {
-                        return Err(SolverError::Setup(format!(
-                            "region `{}` is breakable but has no joint parameters",
-                            m.regions[r].name
-                        )));
+                        return Err(SolverError::MissingJointParams(m.regions[r].name.clone()));
                     }
                     let idx = materials.iter().position(|q| q == &(*law, *material)).unwrap_or_else(|| {
                         materials.push((*law, *material));
@@ -154,8 +147,7 @@ impl Model {
         let mut tet_material = Vec::with_capacity(m.tets.len());
         for (t, tet) in m.tets.iter().enumerate() {
             let p = tet.map(|n| x0[n as usize]);
-            let reference =
-                TetReference::new(&p).ok_or_else(|| SolverError::Setup(format!("tet {t} has non-positive volume")))?;
+            let reference = TetReference::new(&p).ok_or(SolverError::InvertedTet(t))?;
             let mat = region_material[m.tet_region[t] as usize];
             if mat == RIGID {
                 for &n in tet {
@@ -188,7 +180,7 @@ impl Model {
                 }
                 (Some(a), None) | (None, Some(a)) => a,
                 (None, None) => {
-                    return Err(SolverError::Setup(format!("joint {j} touches no breakable region")));
+                    return Err(SolverError::UnbreakableJoint(j));
                 }
             };
             let p = [jn[0], jn[1], jn[2]].map(|n| x0[n as usize]);
@@ -229,11 +221,11 @@ impl Model {
     /// quantities are recomputed.
     ///
     /// # Errors
-    /// [`SolverError::Setup`] for a bad distribution parameter.
+    /// [`SolverError::Heterogeneity`] for a bad distribution parameter.
     pub fn randomise_strengths(&mut self, dist: Distribution, seed: u64) -> Result<(), SolverError> {
         let n = self.joint_law.len();
-        let ft = strength_factors(n, dist, seed).map_err(SolverError::Setup)?;
-        let c = strength_factors(n, dist, seed.wrapping_add(1)).map_err(SolverError::Setup)?;
+        let ft = strength_factors(n, dist, seed).map_err(SolverError::Heterogeneity)?;
+        let c = strength_factors(n, dist, seed.wrapping_add(1)).map_err(SolverError::Heterogeneity)?;
         for (j, joint) in self.joint_law.iter_mut().enumerate() {
             let mut p = joint.params;
             p.tensile_strength *= ft[j];

@@ -110,7 +110,7 @@ pub fn run(path: &Path, json: bool) -> Result<()> {
             .collect(),
         time_stepping: prepared.run.as_ref().map(|r| TimeStepReport {
             critical_time_step: r.stable.critical,
-            time_step: r.solver.dt,
+            time_step: r.solver.dt(),
             element_transit_time: r.stable.element_transit,
             omega_max: r.stable.omega_max,
             contact_omega: r.stable.contact_omega,

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::{Result, bail};
 use femdem_material::{principal_stresses, von_mises};
-use femdem_solver::Solver;
+use femdem_solver::{Solver, StepRecord};
 use femdem_vtk::{Field, Frame, HistoryWriter, SeriesWriter};
 
 use crate::case::setup::LoadStrain;
@@ -75,17 +75,12 @@ impl Output {
         Ok(Output { series, fractures, history, fields, pre_existing, load_strain })
     }
 
-    /// Appends a history row for time `t` (the state the last step's
-    /// energies and forces belong to).
-    pub fn history_row(&mut self, solver: &Solver, t: f64, step: u64) -> Result<()> {
-        let e = &solver.energies;
-        let mut broken = [0.0; 3];
-        for f in &solver.failures {
-            broken[f.mode.code() as usize - 1] += 1.0;
-        }
+    /// Appends the history row of a step's record.
+    pub fn history_row(&mut self, r: &StepRecord) -> Result<()> {
+        let e = &r.energies;
         let mut row = vec![
-            t,
-            step as f64,
+            r.time,
+            r.step as f64,
             e.kinetic,
             e.tet_elastic,
             e.joint_elastic,
@@ -95,41 +90,31 @@ impl Output {
             e.friction,
             e.external_work,
             e.balance(),
-            broken[0],
-            broken[1],
-            broken[2],
+            r.failures.tensile as f64,
+            r.failures.shear as f64,
+            r.failures.mixed as f64,
         ];
-        let mut displacements = Vec::with_capacity(solver.loads.drives.len());
-        for (d, f) in solver.loads.drives.iter().zip(&solver.report.drive_forces) {
-            // Mean displacement of the driven nodes (for Eq. 22's Δa).
-            let mut u = femdem_core::Vec3::zeros();
-            // At t_n, like the forces: x_n = x_{n+1} − Δt v_{n+½}.
-            for &n in &d.nodes {
-                let n = n as usize;
-                u += solver.state.x[n] - solver.state.v[n] * solver.dt - solver.model.x0[n];
-            }
-            u /= d.nodes.len().max(1) as f64;
+        for (f, u) in r.drive_forces.iter().zip(&r.drive_displacements) {
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);
-            displacements.push(u);
         }
-        for f in &solver.report.surface_forces {
+        for f in &r.surface_forces {
             row.extend([f.x, f.y, f.z]);
         }
         if let Some(ls) = &self.load_strain {
-            let (load, strain) = ls.evaluate(&solver.report.drive_forces, &displacements);
+            let (load, strain) = ls.evaluate(&r.drive_forces, &r.drive_displacements);
             row.extend([load, strain]);
         }
         self.history.row(&row)?;
         Ok(())
     }
 
-    /// Writes the frame of time `t`: positions `x_n = x_{n+1} − Δt v_{n+½}`
-    /// (the state the stresses of the last step belong to), velocities
-    /// `v_{n+½}`, and the tet fields.
+    /// Writes the frame of time `t`: positions at the last step's record
+    /// (`Solver::recorded_position`, the state the stresses of the last step
+    /// belong to), velocities `v_{n+½}`, and the tet fields.
     pub fn frame(&mut self, solver: &Solver, t: f64) -> Result<()> {
         let s = &solver.state;
         let m = &solver.model;
-        let points: Vec<[f64; 3]> = s.x.iter().zip(&s.v).map(|(x, v)| (x - v * solver.dt).into()).collect();
+        let points: Vec<[f64; 3]> = (0..s.x.len()).map(|i| solver.recorded_position(i).into()).collect();
         let disp: Vec<[f64; 3]> =
             points.iter().zip(&m.x0).map(|(p, x0)| [p[0] - x0.x, p[1] - x0.y, p[2] - x0.z]).collect();
         let vel: Vec<[f64; 3]> = s.v.iter().map(|v| (*v).into()).collect();
@@ -182,8 +167,7 @@ impl Output {
     /// 2 shear, 3 mixed), `failure_time` (s; −1 for pre-existing) and
     /// `pre_existing` (1 or 0).
     pub fn fracture_frame(&mut self, solver: &Solver, t: f64) -> Result<()> {
-        let s = &solver.state;
-        let at = |n: u32| -> [f64; 3] { (s.x[n as usize] - s.v[n as usize] * solver.dt).into() };
+        let at = |n: u32| -> [f64; 3] { solver.recorded_position(n as usize).into() };
         let mut points = Vec::new();
         let mut triangles = Vec::new();
         let (mut mode, mut time, mut pre) = (Vec::new(), Vec::new(), Vec::new());
@@ -198,7 +182,7 @@ impl Output {
         for &f in &self.pre_existing {
             push(f, 0.0, -1.0, 1.0);
         }
-        for f in &solver.failures {
+        for f in solver.failures() {
             let j = solver.model.joints[f.joint as usize];
             push([j[0], j[1], j[2]], f64::from(f.mode.code()), f.time, 0.0);
         }

@@ -2,11 +2,11 @@
 
 use anyhow::{Result, bail};
 use femdem_mesh::{JointedMesh, TetMesh};
-use femdem_solver::{Solver, SolverError, StableStep, contact_omega, stable_time_step};
+use femdem_solver::{Solver, SolverError, StableStep, StepParams, contact_omega, held_nodes, stable_time_step};
 
 use crate::case::{self, LoadedCase};
 
-/// Power iterations allowed for the stable-step estimate.
+/// Lanczos iterations allowed for the stable-step estimate.
 pub const POWER_ITERATIONS: usize = 400;
 
 /// A case with its mesh, and a solver when the case has a `[solver]`.
@@ -23,7 +23,7 @@ pub struct Prepared {
 
 /// A solver ready to step.
 pub struct Runnable {
-    /// The solver, `dt` set.
+    /// The solver.
     pub solver: Solver,
     /// The stable-step estimate.
     pub stable: StableStep,
@@ -62,14 +62,11 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
     let loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
     let load_strain = case::setup::load_strain(&loaded, &loads)?;
-    let mut solver = Solver::new(model, loads, 1.0).map_err(|e| at(e.to_string()))?;
-    if let Some(settings) = case::setup::contact(&loaded, &jointed)? {
-        let initial: Vec<(u32, u32)> = jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
-        solver.enable_contact(settings, &initial);
-    }
-    let mut stable = stable_time_step(&solver.model, &solver.held_nodes(), POWER_ITERATIONS);
-    if let Some(contact) = &solver.contact {
-        stable = stable.with_contact(contact_omega(&solver.model, contact.settings.penalty));
+    let held = held_nodes(&model, &loads).map_err(|e| at(e.to_string()))?;
+    let contact = case::setup::contact(&loaded, &jointed)?;
+    let mut stable = stable_time_step(&model, &held, POWER_ITERATIONS);
+    if let Some(settings) = &contact {
+        stable = stable.with_contact(contact_omega(&model, settings.penalty));
     }
     let dt = match s.time_step {
         Some(dt) if !(dt.is_finite() && dt > 0.0) => {
@@ -87,7 +84,12 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     if !dt.is_finite() {
         bail!(at("no deformable free node: nothing to integrate".into()));
     }
-    solver.dt = dt;
+    let params = StepParams::new(dt).map_err(|e| at(e.to_string()))?;
+    let mut solver = Solver::new(model, loads, params).map_err(|e| at(e.to_string()))?;
+    if let Some(settings) = contact {
+        let initial: Vec<(u32, u32)> = jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
+        solver.enable_contact(settings, &initial);
+    }
     let steps = (s.end_time / dt).ceil() as u64;
     let end_time = s.end_time;
     Ok(Prepared { case: loaded, mesh, jointed, run: Some(Runnable { solver, stable, steps, end_time, load_strain }) })

@@ -49,13 +49,13 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
         elements,
         solver.model.joints.len(),
         solver.model.num_nodes(),
-        solver.dt,
-        solver.dt / run.stable.critical,
+        solver.dt(),
+        solver.dt() / run.stable.critical,
         run.stable.critical,
         run.steps
     );
     let mut progress = Progress::new(run.steps, elements);
-    let dt = solver.dt;
+    let dt = solver.dt();
     let mut next_frame = 0.0;
     let mut next_row = 0.0;
     let mut interrupted = false;
@@ -65,9 +65,9 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
         let stopping = stop.load(Ordering::SeqCst);
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
-        solver.step(Want { stress: frame_due, energy: row_due, dissipation: false });
+        let record = solver.step(Want { stress: frame_due, energy: row_due });
         if row_due {
-            output.history_row(solver, t, n)?;
+            output.history_row(record)?;
             next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
         }
         if frame_due {
@@ -94,7 +94,7 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
     println!("wall time   {wall:.2} s");
     println!("throughput  {:.3e} tet-steps/s ({} threads)", progress.throughput(steps), rayon::current_num_threads());
     println!("results     {}", output.pvd().display());
-    println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures.len());
+    println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures().len());
     println!("history     {}", output.history_path().display());
     if interrupted {
         bail!("interrupted by Ctrl-C; the state at t = {:.6e} s was written", solver.state.time);

@@ -41,6 +41,19 @@ use settings::FrictionTable;
 /// (the default of [`ContactSettings::ramp_steps`]).
 pub const RAMP_STEPS: u32 = 10;
 
+/// The contact terms of the energy account, J.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactEnergy {
+    /// Work absorbed by the normal forces since the start, plus the elastic
+    /// energy of the friction springs now.
+    pub contact: Real,
+    /// Energy dissipated by friction since the start: the work absorbed by
+    /// the friction forces less what the springs still hold.
+    pub friction: Real,
+    friction_absorbed: Real,
+    spring_booked: Real,
+}
+
 /// The contact pass's state.
 #[derive(Clone, Debug)]
 pub struct Contact {
@@ -69,6 +82,13 @@ pub struct Contact {
     pub force: Vec<Vec3>,
     /// Friction force per node from the last pass, N.
     pub friction_force: Vec<Vec3>,
+    /// Normal plus friction force per node from the last pass, N (what the
+    /// update adds to the internal forces).
+    total: Vec<Vec3>,
+    /// Velocities `v_{n−½}` of the touched nodes at the last pass.
+    v_before: Vec<Vec3>,
+    /// The contact terms of the energy account.
+    pub energy: ContactEnergy,
     touched: Vec<u32>,
     is_touched: Vec<bool>,
     /// Pairs in contact at the last pass.
@@ -125,6 +145,9 @@ impl Contact {
             results: Vec::new(),
             force: vec![Vec3::zeros(); model.num_nodes()],
             friction_force: vec![Vec3::zeros(); model.num_nodes()],
+            total: vec![Vec3::zeros(); model.num_nodes()],
+            v_before: Vec::new(),
+            energy: ContactEnergy::default(),
             touched: Vec::new(),
             is_touched: vec![false; model.num_nodes()],
             active_pairs: 0,
@@ -161,6 +184,32 @@ impl Contact {
     /// The nodes the last pass put a force on, ascending.
     pub fn touched(&self) -> &[u32] {
         &self.touched
+    }
+
+    /// Normal plus friction force per node from the last pass, N (zero on
+    /// nodes the pass did not touch).
+    pub fn total_force(&self) -> &[Vec3] {
+        &self.total
+    }
+
+    /// Books the work of the last pass's forces over the step, once the
+    /// update has produced the velocities `v_{n+½}` (`v_new`): with
+    /// `v_n = (v_{n−½} + v_{n+½}) / 2`, the normal forces absorb
+    /// `−Δt Σ f_N · v_n` (the potential's energy plus what the Eq. 18 ramp
+    /// does not give back) and the friction forces `−Δt Σ f_T · v_n`, of
+    /// which the sticking springs still hold `spring_energy`.
+    pub fn book_work(&mut self, v_new: &[Vec3], dt: Real) {
+        let (mut normal, mut friction) = (0.0, 0.0);
+        for (k, &n) in self.touched.iter().enumerate() {
+            let v_n = (self.v_before[k] + v_new[n as usize]) * 0.5;
+            normal += dt * self.force[n as usize].dot(&v_n);
+            friction += dt * self.friction_force[n as usize].dot(&v_n);
+        }
+        let e = &mut self.energy;
+        e.friction_absorbed -= friction;
+        e.contact += self.spring_energy - e.spring_booked - normal;
+        e.friction = e.friction_absorbed - self.spring_energy;
+        e.spring_booked = self.spring_energy;
     }
 
     /// The tets that can touch, ascending.
@@ -252,6 +301,7 @@ impl Contact {
         for &n in &self.touched {
             self.force[n as usize] = Vec3::zeros();
             self.friction_force[n as usize] = Vec3::zeros();
+            self.total[n as usize] = Vec3::zeros();
             self.is_touched[n as usize] = false;
         }
         self.touched.clear();
@@ -300,6 +350,12 @@ impl Contact {
             }
         }
         self.touched.sort_unstable();
+        self.v_before.clear();
+        for &n in &self.touched {
+            let n = n as usize;
+            self.total[n] = self.force[n] + self.friction_force[n];
+            self.v_before.push(v[n]);
+        }
         // Eq. 18: n_c counts the steps since the joint failed.
         let n_total = self.settings.ramp_steps;
         self.ramp.retain(|_, n_c| {

@@ -15,9 +15,7 @@
 //! quantities with relative round-off ~1e-16 × cond(Dm) (≤ ~100): 1e-12 of
 //! `Σ |xₐ| |fₐ|`.
 
-mod common;
-
-use common::{good_tet, points, reference, rock, vec3};
+use crate::common::{good_tet, points, reference, rock, vec3};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::{Law, nodal_forces, tet_forces};
 use proptest::prelude::*;

@@ -19,16 +19,12 @@
 //! * a broken bar's two halves, pulled apart, exert no contact force (up to
 //!   1e-6 of the peak pull: see the test).
 
-mod common;
-
-use common::{box_mesh, model, rock};
+use crate::common::{at_step, box_mesh, model, rock, stable};
 use femdem_core::Vec3;
 use femdem_material::Law;
 use femdem_mesh::{Region, insert_joints};
 use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{
-    ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want, stable_time_step,
-};
+use femdem_solver::{ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want};
 
 fn momentum(s: &Solver) -> Vec3 {
     (0..s.model.num_nodes()).map(|i| s.state.v[i] * s.model.mass[i]).sum()
@@ -44,11 +40,10 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     let other = box_mesh([0.021, 0.0, 0.0], [0.041, 0.02, 0.02], 0.005, 0.0, false);
     mesh.append(&other);
     let (_, m) = model(&mesh, Law::NeoHookean, rock(0.0), 0.0);
-    let mut s = Solver::new(m, Loads::default(), 1.0).unwrap();
-    s.enable_contact(ContactSettings::new(26e9), &[]);
-    let stable = stable_time_step(&s.model, &s.held_nodes(), 300);
     // Contact stiffens the top frequency; a fifth of the step keeps it safe.
-    s.dt = 0.2 * stable.critical;
+    let dt = 0.2 * stable(&m, &Loads::default(), 300).critical;
+    let mut s = at_step(m, Loads::default(), dt);
+    s.enable_contact(ContactSettings::new(26e9), &[]);
     s.set_velocity(|x| if x.x < 0.0205 { Vec3::new(1.0, 0.0, 0.0) } else { Vec3::new(-1.0, 0.0, 0.0) });
     let p0 = momentum(&s);
     let k0 = kinetic(&s);
@@ -57,7 +52,7 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     let mut apart = 0;
     for _ in 0..20_000 {
         s.step(Want::default());
-        let pairs = s.contact.as_ref().unwrap().active_pairs;
+        let pairs = s.contact().unwrap().active_pairs;
         touched |= pairs > 0;
         apart = if touched && pairs == 0 { apart + 1 } else { 0 };
         if apart > 200 {
@@ -77,7 +72,7 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     }
     let rigid: f64 = (0..2).map(|k| 0.5 * pv[k].norm_squared() / ms[k]).sum();
     s.step(Want { energy: true, ..Want::default() });
-    let k1 = s.energies.kinetic + s.energies.tet_elastic;
+    let k1 = s.energies().kinetic + s.energies().tet_elastic;
     eprintln!(
         "KE before {k0:.4e}, after {k1:.4e} (rigid part {rigid:.4e}), v after {:?} {:?}",
         pv[0] / ms[0],
@@ -115,15 +110,15 @@ fn block_on_a_rigid_plate_carries_its_weight() {
         }],
         ..Loads::default()
     };
-    let mut s = Solver::new(m, loads, 1.0).unwrap();
+    let dt = 0.2 * stable(&m, &loads, 300).critical;
+    let mut s = at_step(m, loads, dt);
     let p = 10.0 * 26e9;
     s.enable_contact(ContactSettings::new(p), &[]);
-    s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     let weight = s.model.mass.iter().sum::<f64>() * g;
     let mut reaction = 0.0;
     for _ in 0..3_000 {
         s.step(Want::default());
-        reaction = s.report.drive_forces[0].z;
+        reaction = s.record().drive_forces[0].z;
     }
     // The plate pushes the block up: the force the plate's drive applies is
     // minus the contact force on the plate, i.e. −(−weight).
@@ -151,7 +146,7 @@ fn broken_bar_halves_separate_without_contact_force() {
     let (w, len, h) = (0.01, 0.02, 0.0025);
     let mesh = box_mesh([0.0; 3], [w, w, len], h, 0.1, true);
     let jointed = insert_joints(&mesh).unwrap();
-    let params = femdem_fracture::JointParams { gf_tension: 10.0, gf_shear: 10.0, ..common::joints(2.6e11) };
+    let params = femdem_fracture::JointParams { gf_tension: 10.0, gf_shear: 10.0, ..crate::common::joints(2.6e11) };
     let visc = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 0.1;
     let behaviour = [RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(visc), joints: Some(params) }];
     let m = Model::new(&jointed, &behaviour, 1.0).unwrap();
@@ -167,23 +162,23 @@ fn broken_bar_halves_separate_without_contact_force() {
         }],
         ..Loads::default()
     };
-    let mut s = Solver::new(m, loads, 1.0).unwrap();
+    let dt = 0.9 * stable(&m, &loads, 300).critical;
+    let mut s = at_step(m, loads, dt);
     s.enable_contact(ContactSettings { surfaces: false, ..ContactSettings::new(26e9) }, &[]);
-    s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
     let mut peak: f64 = 0.0;
     while s.state.time < 4e-4 {
         s.step(Want::default());
-        peak = peak.max(s.report.drive_forces[0].z.abs());
+        peak = peak.max(s.record().drive_forces[0].z.abs());
     }
-    assert!(!s.failures.is_empty(), "the bar must break");
-    let contact = s.contact.as_ref().unwrap();
+    assert!(!s.failures().is_empty(), "the bar must break");
+    let contact = s.contact().unwrap();
     let largest = contact.touched().iter().map(|&n| contact.force[n as usize].norm()).fold(0.0, f64::max);
     // Not exactly zero: tets on the same side of the crack that were both
     // activated by failed joints and share an edge touch along it when the
     // half deforms (measured 4e-7 N, 1e-9 of the peak pull). The halves
     // themselves exert nothing on each other.
     assert!(largest < 1e-6 * peak, "contact force {largest} N after separation (peak pull {peak} N)");
-    assert!(s.report.drive_forces[0].z.abs() < 1.0, "the halves still pull: {} N", s.report.drive_forces[0].z);
+    assert!(s.record().drive_forces[0].z.abs() < 1.0, "the halves still pull: {} N", s.record().drive_forces[0].z);
 }
 
 /// A block on a rigid plate under gravity tilted by θ (the incline, without
@@ -222,9 +217,9 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
             }],
             ..Loads::default()
         };
-        let mut s = Solver::new(m, loads, 1.0).unwrap();
+        let dt = 0.2 * stable(&m, &loads, 300).critical;
+        let mut s = at_step(m, loads, dt);
         s.enable_contact(ContactSettings { friction: mu, ..ContactSettings::new(26e9) }, &[]);
-        s.dt = 0.2 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
         let block_v = |s: &Solver| -> f64 {
             let (mut p, mut m) = (0.0, 0.0);
             for i in 0..s.model.num_nodes() {

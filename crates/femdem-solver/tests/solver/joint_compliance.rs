@@ -11,7 +11,7 @@
 //! carries the same stress σ, every joint carries the traction σ n with the
 //! jump `[u] = (h/p0) σ n`, and by the average-strain theorem the joints add
 //! `S_j = (1/(p0 V)) Σ_j A_j h_j sym(n_j ⊗ (·) n_j)` to the compliance, built
-//! from the actual joints of the mesh (`common::joint_compliance`). Only
+//! from the actual joints of the mesh (`crate::common::joint_compliance`). Only
 //! σ_zz is non-zero, so `ε_R = (1/E + S_j,zzzz) σ_zz` (the Poisson and shear
 //! entries of S_j play no part in the axial stretch).
 //!
@@ -68,12 +68,10 @@
 //! - `q ≥ 1 − j²` (above), and the 1/p0 scaling of the excess to `j² + 10⁻³`.
 //! - Continuum: `|ε/ε_c − 1| ≤ 10⁻⁴` (exact up to the same small effects).
 
-mod common;
-
-use common::{box_mesh, isotropic_compliance, joint_compliance, model, rock};
+use crate::common::{at_step, box_mesh, isotropic_compliance, joint_compliance, model, rock, stable};
 use femdem_material::{Law, Material};
 use femdem_solver::select::group_faces;
-use femdem_solver::{Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, Want, stable_time_step};
+use femdem_solver::{Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, Want};
 
 /// Lattice cell size, m.
 const H: f64 = 0.005;
@@ -132,11 +130,11 @@ fn stretch(breakable: bool, p0: f64, jitter: f64) -> Stretch {
     };
     let loads =
         Loads { surfaces: vec![pressure("bottom", &faces[0]), pressure("top", &faces[1])], ..Default::default() };
-    let mut s = Solver::new(m, loads, 1.0).unwrap();
-    s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 400).critical;
+    let dt = 0.9 * stable(&m, &loads, 400).critical;
+    let mut s = at_step(m, loads, dt);
 
     let omega = std::f64::consts::PI * (1.0 / ((s_tet + s_j) * mat.density())).sqrt() / size[2];
-    let keep = 1.0 - omega * s.dt;
+    let keep = 1.0 - omega * s.dt();
     let strain = |s: &Solver| (mean_uz(s, &faces[0]) - mean_uz(s, &faces[1])) / size[2];
     let t_end = 40.0 / omega;
     let mut at_four_fifths = None;

@@ -25,9 +25,7 @@
 //! error of ~1e-15 E; relative to the stress scale `E |ε|` with
 //! `|ε| ≥ 1e-4` that is ≤ 1e-11, so the checks use 1e-10.
 
-mod common;
-
-use common::{map, reference, rock, skew_tet};
+use crate::common::{map, reference, rock, skew_tet};
 use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::{Law, cauchy_stress, deformation_gradient, nodal_forces, tet_forces};

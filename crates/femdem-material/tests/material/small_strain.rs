@@ -14,9 +14,7 @@
 //! stress is ~1e-15 E, far below the smallest difference (~1e-8 E at
 //! `ε = 1e-4`).
 
-mod common;
-
-use common::{map, reference, rock, skew_tet};
+use crate::common::{map, reference, rock, skew_tet};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::{Law, cauchy_stress, tet_forces};
 

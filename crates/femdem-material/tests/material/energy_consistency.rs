@@ -24,9 +24,7 @@
 //! nothing). Also: the kernel's reference-volume integration and
 //! `nodal_forces` of the Cauchy stress agree for positive elements.
 
-mod common;
-
-use common::{any_rotation, good_tet, max_edge, reference, rock, vec3};
+use crate::common::{any_rotation, good_tet, max_edge, reference, rock, vec3};
 use femdem_core::{Real, Vec3};
 use femdem_material::{
     Law, Material, TetReference, deformation_gradient, nodal_forces, strain_energy_density, tet_forces,

@@ -14,9 +14,7 @@
 //! ~1e-14 E; the requirement is < 1e-12 E. Rotated states compare to
 //! 1e-11 relative to the stress scale.
 
-mod common;
-
-use common::{any_rotation, good_tet, map, reference, rock, rotation, skew_tet, vec3};
+use crate::common::{any_rotation, good_tet, map, reference, rock, rotation, skew_tet, vec3};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::{Law, deformation_gradient, strain_energy_density, tet_forces};
 use proptest::prelude::*;

@@ -31,15 +31,13 @@
 //! Printed (`--nocapture`), not asserted: the joints damaged next to the
 //! crack without failing add ~0.2 J/m².
 
-mod common;
-
-use common::{box_mesh, rock};
+use crate::common::{at_step, box_mesh, rock, stable};
 use femdem_core::Vec3;
 use femdem_fracture::{GfCalibration, JointParams, softening::softening_area};
 use femdem_material::Law;
 use femdem_mesh::insert_joints;
 use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want, stable_time_step};
+use femdem_solver::{Fixed, Loads, Model, Ramp, RegionBehaviour, VelocityDrive, Want};
 
 const FT: f64 = 3e6;
 /// Pull velocity, m/s: the peak (strain f_t/E over the bar) is reached after
@@ -85,8 +83,8 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
         }],
         ..Loads::default()
     };
-    let mut s = Solver::new(model, loads, 1.0).unwrap();
-    s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 300).critical;
+    let dt = 0.9 * stable(&model, &loads, 300).critical;
+    let mut s = at_step(model, loads, dt);
     let mut peak: f64 = 0.0;
     // Pull until the top has moved 1.5 δc past the peak displacement.
     let joint = s.model.joint_law[0];
@@ -94,26 +92,26 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
     let end = 5e-5 / 2.0 + target / V;
     while s.state.time < end {
         s.step(Want { energy: false, ..Want::default() });
-        peak = peak.max(s.report.drive_forces[0].z);
+        peak = peak.max(s.record().drive_forces[0].z);
     }
     s.step(Want { energy: true, ..Want::default() });
-    let zs: Vec<f64> = s.failures.iter().map(|f| f.centroid.z).collect();
+    let zs: Vec<f64> = s.failures().iter().map(|f| f.centroid.z).collect();
     let work: f64 = s.state.joints.iter().filter(|h| h.failed).map(|h| h.work).sum();
     let crack: f64 = s.state.joints.iter().filter(|h| h.failed).map(|h| h.dissipated).sum();
     eprintln!("work done on the crack's joints {:.3} J/m²", work / (w * w));
     let released: f64 = s.state.joints.iter().map(|h| h.released).sum();
     let damaged = s.state.joints.iter().filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0)).count();
-    let residual = s.report.drive_forces[0].z;
+    let residual = s.record().drive_forces[0].z;
     let a = w * w;
     eprintln!(
         "{calibration:?}: peak {:.4e} Pa, {} joints failed (area {:.4e} m² for A = {a:.1e} m²), crack softening {:.3} J/m², \
          released at failure {:.3} J/m², all fracture energy {:.3} J/m², {damaged} joints damaged but intact",
         peak / a,
-        s.failures.len(),
-        s.failures.iter().map(|f| f.area).sum::<f64>(),
+        s.failures().len(),
+        s.failures().iter().map(|f| f.area).sum::<f64>(),
         crack / a,
         released / a,
-        s.energies.fracture / a
+        s.energies().fracture / a
     );
     (peak / a, zs, crack / a, work / a, residual)
 }

@@ -34,7 +34,7 @@
 //! ```
 //!
 //! built here from the actual joints of the mesh (reference areas, normals
-//! and h; `common::joint_compliance`), and `S = S_tet + S_j` goes into the
+//! and h; `crate::common::joint_compliance`), and `S = S_tet + S_j` goes into the
 //! Schur complement above. The uniform-stress field is statically admissible,
 //! so this is a (Reuss-type) upper bound on the compliance; the static test
 //! `joint_compliance.rs` shows it is attained exactly on the regular
@@ -81,12 +81,10 @@
 //! Measured (this mesh): continuum +0.27 %; jointed p0 = 10 E +0.34 %,
 //! p0 = E −0.12 % (predicted c_eff/c_p = 0.853 and 0.470).
 
-mod common;
-
-use common::{box_mesh, isotropic_compliance, joint_compliance, model, nodes_in_box, rock};
+use crate::common::{at_step, box_mesh, isotropic_compliance, joint_compliance, model, nodes_in_box, rock, stable};
 use femdem_core::Vec3;
 use femdem_material::{Law, Material};
-use femdem_solver::{Fixed, Loads, Model, Ramp, Solver, VelocityDrive, Want, stable_time_step};
+use femdem_solver::{Fixed, Loads, Model, Ramp, VelocityDrive, Want};
 use nalgebra::{Matrix2, Matrix6, Vector2};
 
 /// Lattice cell size, m.
@@ -163,15 +161,15 @@ fn wave_speed(breakable: bool, p0: f64) -> Speeds {
     let z = slabs.clone().map(|n| mass_mean(&m, &n, |i| m.x0[i].z));
 
     let loads = Loads { fixed, drives: vec![piston], ..Default::default() };
-    let mut solver = Solver::new(m, loads, 1.0).unwrap();
-    solver.dt = 0.9 * stable_time_step(&solver.model, &solver.held_nodes(), 400).critical;
+    let dt = 0.9 * stable(&m, &loads, 400).critical;
+    let mut solver = at_step(m, loads, dt);
 
     let mut crossing = [None; 2];
     let mut previous = [0.0; 2];
     let t_max = 2.0 * (STATIONS[1] + FRONT_CELLS) * H / expected;
     while crossing[1].is_none() && solver.state.time < t_max {
         solver.step(Want::default());
-        let dt = solver.dt;
+        let dt = solver.dt();
         // The velocities just computed are v_{n+½}.
         let t_half = solver.state.time - 0.5 * dt;
         for k in 0..2 {

@@ -87,14 +87,12 @@
 //! σ_y −0.1 % / −0.1 % (slow ramp and relaxed alike, to 0.03 %);
 //! joint-meshed σ_x +0.9 % / +2.3 %, σ_y +1.9 % / +0.2 %.
 
-mod common;
-
-use common::{model, nodes_in_box, rock};
+use crate::common::{at_step, model, nodes_in_box, rock, stable};
 use femdem_core::{Mat3, Vec3};
 use femdem_material::Law;
 use femdem_mesh::Region;
 use femdem_mesh::generate::{ExtrusionSpec, Outline, generate_extrusion};
-use femdem_solver::{Loads, Ramp, Solver, VelocityDrive, Want, stable_time_step};
+use femdem_solver::{Loads, Ramp, Solver, VelocityDrive, Want};
 use std::f64::consts::PI;
 
 /// Disc radius, m.
@@ -239,10 +237,11 @@ fn brazilian(breakable: bool, h: f64, layers: Option<usize>, loading: Loading) -
     let centroids: Vec<Vec3> = centre.iter().map(|&t| centroid(t)).collect();
     let near: Vec<usize> = centre.iter().copied().filter(|&t| centroid(t).xy().norm() <= A_NEAR_OVER_R * R).collect();
 
-    let mut s = Solver::new(m, Loads { drives, ..Default::default() }, 1.0).unwrap();
-    s.dt = 0.9 * stable_time_step(&s.model, &s.held_nodes(), 400).critical;
+    let loads = Loads { drives, ..Default::default() };
+    let dt = 0.9 * stable(&m, &loads, 400).critical;
+    let mut s = at_step(m, loads, dt);
     let keep = match loading {
-        Loading::Relaxed { c, .. } => 1.0 - c * s.dt,
+        Loading::Relaxed { c, .. } => 1.0 - c * s.dt(),
         Loading::SlowRamp { .. } => 1.0,
     };
     let stop = match loading {
@@ -251,7 +250,7 @@ fn brazilian(breakable: bool, h: f64, layers: Option<usize>, loading: Loading) -
     };
 
     let measure = |s: &Solver| {
-        let f = &s.report.drive_forces;
+        let f = &s.record().drive_forces;
         let load = 0.5 * (-f[0].y + f[1].y);
         let (mut vol, mut measured, mut exact) = (0.0, Mat3::zeros(), Mat3::zeros());
         for (&t, c) in centre.iter().zip(&centroids) {
@@ -292,7 +291,7 @@ fn brazilian(breakable: bool, h: f64, layers: Option<usize>, loading: Loading) -
         let drift = (last.measured - before.measured).abs().max() / last.unit();
         assert!(change < 1e-3 && drift < 1e-3, "not at rest: ΔP/P = {change:e}, Δσ = {drift:e} × 2P/(πDt)");
         // A body at rest: the two reactions balance.
-        let f = &s.report.drive_forces;
+        let f = &s.record().drive_forces;
         assert!((f[0].y + f[1].y).abs() < 1e-2 * last.load, "{f:?}");
     }
     last

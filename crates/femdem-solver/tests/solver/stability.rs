@@ -19,18 +19,16 @@
 //! small, badly shaped mesh (jitter 0.15) stay stable at the estimated step,
 //! and with strong damping the step is shortened accordingly.
 
-mod common;
-
-use common::{box_mesh, model, rock};
+use crate::common::{at_step, box_mesh, model, rock, stable};
 use femdem_core::{Real, Vec3};
 use femdem_material::Law;
-use femdem_solver::{Loads, Solver, Want, stable_time_step};
+use femdem_solver::{Loads, Solver, StepParams, Want};
 
 fn excited(p0_factor: f64, jitter: f64, viscosity: f64) -> (Solver, femdem_solver::StableStep) {
     let mesh = box_mesh([0.0; 3], [0.04, 0.03, 0.03], 0.01, jitter, true);
     let (_, m) = model(&mesh, Law::NeoHookean, rock(viscosity), p0_factor * 26e9);
-    let mut s = Solver::new(m, Loads::default(), 1.0).unwrap();
-    let stable = stable_time_step(&s.model, &s.held_nodes(), 2000);
+    let stable = stable(&m, &Loads::default(), 2000);
+    let mut s = at_step(m, Loads::default(), 0.9 * stable.critical);
     // Rough initial velocities excite every mode, the top one included.
     s.set_velocity(|x| {
         let k = (x.x * 1e4).sin() * (x.y * 7e3).cos() + (x.z * 9e3).sin();
@@ -40,7 +38,7 @@ fn excited(p0_factor: f64, jitter: f64, viscosity: f64) -> (Solver, femdem_solve
 }
 
 fn energy(s: &Solver) -> Real {
-    s.energies.kinetic + s.energies.tet_elastic + s.energies.joint_elastic
+    s.energies().kinetic + s.energies().tet_elastic + s.energies().joint_elastic
 }
 
 /// Runs `steps` steps; returns the largest `|E/E_ref − 1|` (or growth
@@ -68,7 +66,7 @@ fn run(s: &mut Solver, steps: usize) -> (Real, Real) {
 #[test]
 fn step_above_the_limit_blows_up_and_safety_step_stays_bounded() {
     let (mut above, stable) = excited(10.0, 0.1, 0.0);
-    above.dt = 1.05 * stable.critical;
+    above.set_params(StepParams::new(1.05 * stable.critical).unwrap());
     above.step(Want { energy: true, ..Want::default() });
     let e0 = energy(&above);
     for _ in 0..100 {
@@ -79,7 +77,7 @@ fn step_above_the_limit_blows_up_and_safety_step_stays_bounded() {
     assert!(growth > 1e3 || !growth.is_finite(), "energy grew only ×{growth} at 1.05 Δt_crit");
 
     let (mut safe, stable) = excited(10.0, 0.1, 0.0);
-    safe.dt = 0.9 * stable.critical;
+    safe.set_params(StepParams::new(0.9 * stable.critical).unwrap());
     let (_, growth) = run(&mut safe, 2000);
     assert!((growth - 1.0).abs() < 0.01, "energy changed ×{growth} at 0.9 Δt_crit");
 }
@@ -88,7 +86,7 @@ fn step_above_the_limit_blows_up_and_safety_step_stays_bounded() {
 fn stiff_penalty_and_distorted_mesh_are_stable_at_the_estimate() {
     for (p0, jitter) in [(100.0, 0.15), (1.0, 0.15)] {
         let (mut s, stable) = excited(p0, jitter, 0.0);
-        s.dt = 0.9 * stable.critical;
+        s.set_params(StepParams::new(0.9 * stable.critical).unwrap());
         let (_, growth) = run(&mut s, 1000);
         assert!((growth - 1.0).abs() < 0.01, "p0 = {p0} E: energy changed ×{growth}");
     }
@@ -109,7 +107,7 @@ fn damping_shortens_the_step_and_stays_stable() {
     let (_, undamped) = excited(10.0, 0.1, 0.0);
     assert!(stable.critical < undamped.critical);
     assert!(stable.beta_max > 0.0);
-    s.dt = 0.9 * stable.critical;
+    s.set_params(StepParams::new(0.9 * stable.critical).unwrap());
     let (_, growth) = run(&mut s, 1000);
     assert!(growth <= 1.0 + 1e-9, "damped energy grew ×{growth}");
     assert!(growth < 0.999, "damping must dissipate");

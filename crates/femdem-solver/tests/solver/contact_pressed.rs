@@ -17,16 +17,14 @@
 //!   (0.1% when written; it was 7% while joint work was summed with the
 //!   rectangle rule, which books the ringing of intact joints as fracture).
 
-mod common;
-
-use common::{box_mesh, joints, rock};
+use crate::common::{at_step, box_mesh, joints, rock, stable};
 use femdem_core::Vec3;
 use femdem_material::{Law, critical_viscosity};
 use femdem_mesh::{JointedMesh, insert_joints};
 use femdem_solver::select::{NodeSelection, group_faces, select_nodes};
 use femdem_solver::{
     ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want,
-    contact_omega, stable_time_step,
+    contact_omega,
 };
 
 const P: f64 = 2e6;
@@ -62,10 +60,9 @@ fn loads(jointed: &JointedMesh, ramp: f64) -> Loads {
 }
 
 fn start(model: Model, loads: Loads, penalty: f64) -> Solver {
-    let mut s = Solver::new(model, loads, 1.0).unwrap();
+    let stable = stable(&model, &loads, 300).with_contact(contact_omega(&model, penalty));
+    let mut s = at_step(model, loads, 0.9 * stable.critical);
     s.enable_contact(ContactSettings::new(penalty), &[]);
-    let stable = stable_time_step(&s.model, &s.held_nodes(), 300).with_contact(contact_omega(&s.model, penalty));
-    s.dt = 0.9 * stable.critical;
     s
 }
 
@@ -86,13 +83,13 @@ fn cubes_pressed_face_to_face_transmit_the_load() {
     let mut lower_nodes: Vec<usize> = s.model.tets[..n_lower].iter().flatten().map(|&n| n as usize).collect();
     lower_nodes.sort_unstable();
     lower_nodes.dedup();
-    let steps = (1.5e-4 / s.dt) as usize;
+    let steps = (1.5e-4 / s.dt()) as usize;
     for _ in 0..steps {
         s.step(Want::default());
     }
-    let contact = s.contact.as_ref().unwrap();
+    let contact = s.contact().unwrap();
     let on_lower: Vec3 = lower_nodes.iter().map(|&i| contact.force[i] + contact.friction_force[i]).sum();
-    let reaction = s.report.drive_forces[0];
+    let reaction = s.record().drive_forces[0];
     let f = P * area;
     eprintln!(
         "applied {f:.2} N; contact force on the lower cube {on_lower:?}; base reaction {reaction:?}; {} pairs",
@@ -118,22 +115,22 @@ fn load_passes_from_joints_to_contact_when_the_mid_plane_breaks() {
     assert_eq!(mid.len(), 2 * 4 * 4, "two triangles per grid square of the mid-plane");
     let mut s = start(model, loads(&jointed, 2e-5), 26e9);
     let f = P * 1e-4;
-    let settle = (1.0e-4 / s.dt) as usize;
+    let settle = (1.0e-4 / s.dt()) as usize;
     for _ in 0..settle {
         s.step(Want::default());
     }
-    let before = s.report.drive_forces[0].z;
+    let before = s.record().drive_forces[0].z;
     s.break_joints(&mid);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for _ in 0..settle {
         s.step(Want { energy: true, ..Want::default() });
-        let r = s.report.drive_forces[0].z;
+        let r = s.record().drive_forces[0].z;
         lo = lo.min(r);
         hi = hi.max(r);
     }
-    let after = s.report.drive_forces[0].z;
-    let (balance, work) = (s.energies.balance(), s.energies.external_work);
-    let contact = s.contact.as_ref().unwrap();
+    let after = s.record().drive_forces[0].z;
+    let (balance, work) = (s.energies().balance(), s.energies().external_work);
+    let contact = s.contact().unwrap();
     // The nodes of the lower half's tets (those at the cut included).
     let lower: Vec<usize> = {
         let mut v: Vec<usize> = (s.model.tets.iter())
@@ -150,7 +147,8 @@ fn load_passes_from_joints_to_contact_when_the_mid_plane_breaks() {
         "applied {f:.2} N; base reaction {before:.3} before, {lo:.3} to {hi:.3} through the switch, {after:.3} after; \
          contact across the cut {across:.3} N ({} pairs); energy balance {balance:.3e} J of {work:.3e} J of work; \
          contact energy {:.3e} J",
-        contact.active_pairs, s.energies.contact
+        contact.active_pairs,
+        s.energies().contact
     );
     assert!(s.state.joints.iter().filter(|h| h.failed).count() == mid.len(), "only the mid-plane is broken");
     assert!((before / f - 1.0).abs() < 0.01, "before: {before} vs {f}");

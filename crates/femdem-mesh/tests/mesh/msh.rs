@@ -246,7 +246,7 @@ proptest! {
 /// Written by Gmsh 4.15.2 from `data/gmsh_two_volumes.geo` (see
 /// `data/regenerate.py`): a 10 mm cube ("matrix") with a cylindrical
 /// inclusion of radius 2.5 mm and height 6 mm ("inclusion").
-const GMSH_TWO_VOLUMES: &[u8] = include_bytes!("data/gmsh_two_volumes.msh");
+const GMSH_TWO_VOLUMES: &[u8] = include_bytes!("../data/gmsh_two_volumes.msh");
 const CUBE: Real = 0.01;
 const RADIUS: Real = 0.0025;
 const HEIGHT: Real = 0.006;

@@ -12,9 +12,7 @@
 //! relative round-off ~1e-16 × cond² (≤ 1e-12 for the shapes used); the
 //! elastic part is subtracted back, adding ~1e-16 of its size.
 
-mod common;
-
-use common::{good_tet, points, reference, rock, vec3};
+use crate::common::{good_tet, points, reference, rock, vec3};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::{Law, cauchy_stress, deformation_gradient, tet_forces};
 use proptest::prelude::*;

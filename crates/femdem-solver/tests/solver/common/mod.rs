@@ -6,7 +6,7 @@ use femdem_fracture::JointParams;
 use femdem_material::{ElasticParams, Law, Material};
 use femdem_mesh::generate::{BoxSpec, generate_box};
 use femdem_mesh::{JointedMesh, Region, TetMesh, insert_joints};
-use femdem_solver::{Loads, Model, RegionBehaviour, Solver, stable_time_step};
+use femdem_solver::{Loads, Model, RegionBehaviour, Solver, StableStep, StepParams, held_nodes, stable_time_step};
 
 /// The paper's rock (Table 1): ρ = 2340 kg/m³, E = 26 GPa, ν = 0.2.
 pub fn rock(viscosity: f64) -> Material {
@@ -55,10 +55,19 @@ pub fn model(mesh: &TetMesh, law: Law, material: Material, p0: f64) -> (JointedM
 
 /// A solver stepping at `safety` times the estimated critical step.
 pub fn solver(model: Model, loads: Loads, safety: f64) -> Solver {
-    let mut s = Solver::new(model, loads, 1.0).unwrap();
-    let stable = stable_time_step(&s.model, &s.held_nodes(), 400);
-    s.dt = safety * stable.critical;
-    s
+    let dt = safety * stable(&model, &loads, 400).critical;
+    at_step(model, loads, dt)
+}
+
+/// The stable-step estimate of `model` under `loads` (`iterations` Lanczos
+/// steps; the nodes the loads hold are left out).
+pub fn stable(model: &Model, loads: &Loads, iterations: usize) -> StableStep {
+    stable_time_step(model, &held_nodes(model, loads).unwrap(), iterations)
+}
+
+/// A solver stepping at `dt`.
+pub fn at_step(model: Model, loads: Loads, dt: f64) -> Solver {
+    Solver::new(model, loads, StepParams::new(dt).unwrap()).unwrap()
 }
 
 /// Sets every node's position to `x0 + u(x0)`.

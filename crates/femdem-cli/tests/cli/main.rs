@@ -1,0 +1,5 @@
+//! The integration tests of `femdem-cli`, one module per topic, linked into
+//! one test binary (one link instead of one per file).
+
+mod check;
+mod run;

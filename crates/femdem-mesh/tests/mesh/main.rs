@@ -1,0 +1,6 @@
+//! The integration tests of `femdem-mesh`, one module per topic, linked into
+//! one test binary (one link instead of one per file).
+
+mod generators;
+mod joints;
+mod msh;

@@ -1,0 +1,81 @@
+//! What the solver carries from step to step, and what it accounts: the
+//! node state, the energy account, and the record of joint failures.
+
+use femdem_core::{Real, Vec3};
+use femdem_fracture::{FailureMode, JointHistory};
+
+/// Node positions and half-step velocities.
+#[derive(Clone, Debug, PartialEq)]
+pub struct State {
+    /// Positions `x_n`, m.
+    pub x: Vec<Vec3>,
+    /// Velocities `v_{n−½}`, m/s.
+    pub v: Vec<Vec3>,
+    /// Time `t_n`, s.
+    pub time: Real,
+    /// Step count `n`.
+    pub step: u64,
+    /// Damage history of every joint.
+    pub joints: Vec<JointHistory>,
+}
+
+/// The energy account, J.
+///
+/// The cumulative terms (`damping`, `external_work`, `contact`,
+/// `friction`) are booked at every step; the state terms (`kinetic`,
+/// `tet_elastic`, `joint_elastic`, `fracture`) are evaluated only at steps
+/// that ask for them ([`crate::Want::energy`]) and keep their last value
+/// otherwise.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Energies {
+    /// Kinetic energy `Σ ½ m |v_n|²`.
+    pub kinetic: Real,
+    /// Elastic energy stored in the tets.
+    pub tet_elastic: Real,
+    /// Elastic energy stored in the joints.
+    pub joint_elastic: Real,
+    /// Energy dissipated by viscous damping since the start.
+    pub damping: Real,
+    /// Work of loads, gravity and prescribed motions since the start.
+    pub external_work: Real,
+    /// Energy dissipated by joint softening and failure since the start.
+    pub fracture: Real,
+    /// Work absorbed by the normal contact forces since the start (the
+    /// penalty potential's energy plus whatever the Eq. 18 ramp does not
+    /// give back), plus the elastic energy of the friction springs now.
+    pub contact: Real,
+    /// Energy dissipated by Coulomb friction since the start: the work
+    /// absorbed by friction forces less the energy the sticking springs
+    /// still hold.
+    pub friction: Real,
+}
+
+impl Energies {
+    /// `kinetic + elastic + dissipated − external work`: constant in an
+    /// exact solution (equal to the initial kinetic + elastic energy).
+    pub fn balance(&self) -> Real {
+        self.kinetic
+            + self.tet_elastic
+            + self.joint_elastic
+            + self.damping
+            + self.fracture
+            + self.contact
+            + self.friction
+            - self.external_work
+    }
+}
+
+/// A joint failure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Failure {
+    /// Joint index.
+    pub joint: u32,
+    /// Time of failure, s (the start of the step that broke it).
+    pub time: Real,
+    /// Centroid of the joint's mid-plane at failure, m.
+    pub centroid: Vec3,
+    /// Mid-plane area at failure, m².
+    pub area: Real,
+    /// How it failed.
+    pub mode: FailureMode,
+}

@@ -1,0 +1,110 @@
+//! Stage 4 of the step: the external forces at `t_n` — surface loads on
+//! the current geometry (`crate::loads::surface_forces`), gravity — and
+//! the reactions of the prescribed velocities.
+
+use femdem_core::{Real, Vec3};
+
+use super::StepRecord;
+use super::prescribed::{FREE, Prescribed, prescribed};
+use crate::SolverError;
+use crate::loads::{Loads, surface_forces};
+use crate::model::Model;
+use crate::state::State;
+
+/// The external-force stage's state.
+pub(super) struct External {
+    /// Which components are prescribed, and by what.
+    pub prescribed: Prescribed,
+    /// Nodes that carry a surface load, ascending.
+    surface_nodes: Vec<u32>,
+    /// Surface-load force per node at `t_n` (zero off `surface_nodes`), N.
+    pub f_surface: Vec<Vec3>,
+    /// Each drive's target velocity at `t_n + Δt/2`, m/s.
+    pub targets: Vec<Vec3>,
+}
+
+/// Gravity's force on node `i`, N.
+#[inline]
+pub(super) fn weight(model: &Model, loads: &Loads, i: usize) -> Vec3 {
+    loads.gravity * model.mass[i]
+}
+
+impl External {
+    pub fn new(model: &Model, loads: &Loads) -> Result<External, SolverError> {
+        let prescribed = prescribed(model, loads)?;
+        let mut surface_nodes: Vec<u32> =
+            loads.surfaces.iter().flat_map(|s| s.faces.iter().flatten().copied()).collect();
+        surface_nodes.sort_unstable();
+        surface_nodes.dedup();
+        Ok(External {
+            prescribed,
+            surface_nodes,
+            f_surface: vec![Vec3::zeros(); model.num_nodes()],
+            targets: vec![Vec3::zeros(); loads.drives.len()],
+        })
+    }
+
+    pub fn held_nodes(&self) -> Vec<bool> {
+        self.prescribed.iter().map(|p| p.iter().all(|&c| c != FREE)).collect()
+    }
+
+    /// Evaluates the surface loads at `t_n = state.time` and the drives'
+    /// targets at `t_n + Δt/2`, and records the load totals, the drives'
+    /// reactions (given the internal and contact forces of this step) and
+    /// their mean displacements. Returns the work the reactions do over the
+    /// step, J.
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate(
+        &mut self,
+        model: &Model,
+        loads: &Loads,
+        state: &State,
+        internal: &[Vec3],
+        contact: Option<&[Vec3]>,
+        dt: Real,
+        record: &mut StepRecord,
+    ) -> Real {
+        let t = state.time;
+        // Surface loads at t_n on the current geometry, in a fixed order.
+        for &n in &self.surface_nodes {
+            self.f_surface[n as usize] = Vec3::zeros();
+        }
+        for (k, load) in loads.surfaces.iter().enumerate() {
+            let mut total = Vec3::zeros();
+            let f_surface = &mut self.f_surface;
+            surface_forces(load, &state.x, load.ramp.factor(t), |n, f| {
+                f_surface[n as usize] += f;
+                total += f;
+            });
+            record.surface_forces[k] = total;
+        }
+        // Reactions of the drives (sequential, small).
+        let t_half = t + 0.5 * dt;
+        let mut reaction_work = 0.0;
+        for (d, drive) in loads.drives.iter().enumerate() {
+            let target = drive.velocity * drive.ramp.factor(t_half);
+            self.targets[d] = target;
+            let mut total = Vec3::zeros();
+            let mut u = Vec3::zeros();
+            for &node in &drive.nodes {
+                let i = node as usize;
+                u += state.x[i] - model.x0[i];
+                let f_in = match contact {
+                    Some(c) => internal[i] + c[i],
+                    None => internal[i],
+                };
+                let f = f_in + self.f_surface[i] + weight(model, loads, i);
+                for c in 0..3 {
+                    if self.prescribed[i][c] == d as u16 {
+                        let r = model.mass[i] * (target[c] - state.v[i][c]) / dt - f[c];
+                        total[c] += r;
+                        reaction_work += dt * r * 0.5 * (target[c] + state.v[i][c]);
+                    }
+                }
+            }
+            record.drive_forces[d] = total;
+            record.drive_displacements[d] = u / drive.nodes.len().max(1) as Real;
+        }
+        reaction_work
+    }
+}

@@ -1,0 +1,68 @@
+//! What one step reports: the state of step `n` as the step computed it.
+
+use std::ops::Range;
+
+use femdem_core::{Real, Vec3};
+use femdem_fracture::FailureMode;
+
+use crate::state::Energies;
+
+/// Joint failures so far, by mode.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FailureCounts {
+    /// Failed by opening.
+    pub tensile: usize,
+    /// Failed by slip.
+    pub shear: usize,
+    /// Failed by the combined damage of Eq. 13.
+    pub mixed: usize,
+}
+
+impl FailureCounts {
+    /// Counts one more failure of `mode`.
+    pub fn add(&mut self, mode: FailureMode) {
+        match mode {
+            FailureMode::Tensile => self.tensile += 1,
+            FailureMode::Shear => self.shear += 1,
+            FailureMode::Mixed => self.mixed += 1,
+        }
+    }
+
+    /// All failures.
+    pub fn total(&self) -> usize {
+        self.tensile + self.shear + self.mixed
+    }
+}
+
+/// The record of step `n`, everything at time `t_n` (the step evaluates
+/// forces at `x_n` and then moves the nodes to `x_{n+1}`; what it reports
+/// belongs to `t_n`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StepRecord {
+    /// Step number `n`.
+    pub step: u64,
+    /// Time `t_n`, s.
+    pub time: Real,
+    /// Reaction force of each velocity drive (in [`crate::Loads::drives`]
+    /// order), N: what the drive had to apply to impose its velocity.
+    pub drive_forces: Vec<Vec3>,
+    /// Mean displacement `x_n − x_0` of each drive's nodes, m (Δa of
+    /// Eq. 22 for a platen).
+    pub drive_displacements: Vec<Vec3>,
+    /// Total force of each surface load (in [`crate::Loads::surfaces`]
+    /// order), N.
+    pub surface_forces: Vec<Vec3>,
+    /// The joints that failed in this step: indices into
+    /// [`crate::Solver::failures`].
+    pub new_failures: Range<usize>,
+    /// Failures since the start, by mode.
+    pub failures: FailureCounts,
+    /// The energy account after this step.
+    pub energies: Energies,
+    /// Whether the state terms of [`StepRecord::energies`] (kinetic,
+    /// elastic, fracture) were evaluated at this step ([`crate::Want::energy`]);
+    /// otherwise they are those of the last step that was asked.
+    pub energies_current: bool,
+    /// Contact pairs that exerted a force in this step (0 with contact off).
+    pub contact_pairs: usize,
+}

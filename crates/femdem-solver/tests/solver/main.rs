@@ -1,0 +1,18 @@
+//! The integration tests of `femdem-solver`, one module per topic, linked into
+//! one test binary (one link instead of one per file).
+
+mod common;
+
+mod bar_fracture;
+mod brazilian_hondros;
+mod contact;
+mod contact_detection;
+mod contact_pressed;
+mod contact_step;
+mod determinism;
+mod energy;
+mod joint_compliance;
+mod objectivity;
+mod patch;
+mod stability;
+mod wave_speed;

@@ -105,7 +105,9 @@ impl Model {
     /// Builds the model of a jointed mesh. `behaviour[r]` says how region
     /// `r` behaves. `mass_scaling ≥ 1` multiplies every nodal mass: it
     /// lengthens the stable time step by `√mass_scaling` at the price of
-    /// inertia (a knob for quasi-static runs; 1 is exact dynamics).
+    /// inertia (a knob for quasi-static runs; 1 is exact dynamics). Gravity
+    /// acts on the physical mass, `mass / mass_scaling`, so a body's weight
+    /// does not change with the factor.
     ///
     /// Joints take the parameters of their breakable side; where both sides
     /// are breakable with different parameters, those of the weaker side

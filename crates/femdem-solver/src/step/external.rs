@@ -23,10 +23,13 @@ pub(super) struct External {
     pub targets: Vec<Vec3>,
 }
 
-/// Gravity's force on node `i`, N.
+/// Gravity's force on node `i`, N: `g` times the node's physical mass
+/// (its lumped mass divided by the mass-scaling factor). Mass scaling slows
+/// the dynamics to lengthen the stable step; the weight a body carries must
+/// not grow with it.
 #[inline]
 pub(super) fn weight(model: &Model, loads: &Loads, i: usize) -> Vec3 {
-    loads.gravity * model.mass[i]
+    loads.gravity * (model.mass[i] / model.mass_scaling)
 }
 
 impl External {

@@ -11,6 +11,7 @@ mod contact_pressed;
 mod contact_step;
 mod determinism;
 mod energy;
+mod gravity;
 mod joint_compliance;
 mod objectivity;
 mod patch;

@@ -64,6 +64,7 @@
 pub mod contact;
 mod error;
 pub mod forces;
+mod guard;
 pub mod loads;
 mod model;
 pub mod select;
@@ -74,6 +75,7 @@ mod timestep;
 pub use contact::{Contact, ContactEnergy, ContactSettings, RAMP_STEPS};
 pub use error::SolverError;
 pub use forces::{ForceSums, Want, Workspace};
+pub use guard::Trouble;
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RIGID, RegionBehaviour};
 pub use state::{Energies, Failure, State};

@@ -251,6 +251,15 @@ pub struct SolverSpec {
     pub gravity: [f64; 3],
     /// Worker threads (default: all cores). Results do not depend on it.
     pub threads: Option<usize>,
+    /// Steps between run-guard checks (non-finite values, inverted tets,
+    /// the time step against the element-wise critical step; default 100;
+    /// 0 turns the guard off).
+    #[serde(default = "default_check_interval")]
+    pub check_interval: u64,
+}
+
+fn default_check_interval() -> u64 {
+    100
 }
 
 fn default_safety() -> f64 {

@@ -31,6 +31,8 @@ pub struct Runnable {
     pub steps: u64,
     /// The end time, s.
     pub end_time: f64,
+    /// Steps between run-guard checks (0: none).
+    pub check_interval: u64,
     /// The load–strain columns, if asked for.
     pub load_strain: Option<case::setup::LoadStrain>,
 }
@@ -92,5 +94,11 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     }
     let steps = (s.end_time / dt).ceil() as u64;
     let end_time = s.end_time;
-    Ok(Prepared { case: loaded, mesh, jointed, run: Some(Runnable { solver, stable, steps, end_time, load_strain }) })
+    let check_interval = s.check_interval;
+    Ok(Prepared {
+        case: loaded,
+        mesh,
+        jointed,
+        run: Some(Runnable { solver, stable, steps, end_time, check_interval, load_strain }),
+    })
 }

@@ -76,6 +76,18 @@ pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
             output.flush()?;
             next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
         }
+        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
+        if let Some(trouble) = checked.then(|| solver.check(run.stable.critical).err()).flatten() {
+            // Keep what shows the trouble: the current frame and the history so far.
+            output.frame(solver, solver.state.time)?;
+            output.fracture_frame(solver, solver.state.time)?;
+            output.flush()?;
+            progress.finish();
+            bail!(
+                "the run guard stopped the run: {trouble}\nthe state at that point was written to {}",
+                output.pvd().display()
+            );
+        }
         progress.update(n + 1, solver.state.time);
         if stopping {
             interrupted = true;

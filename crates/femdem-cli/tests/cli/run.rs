@@ -127,3 +127,16 @@ fn pulled_bar_writes_its_crack_and_closes_its_energy_account() {
     assert!(last[col("balance")].abs() < 0.01 * work, "balance {} vs work {work}", last[col("balance")]);
     assert!(last[col("pull_fz")].abs() < 5.0, "the halves are apart: {} N", last[col("pull_fz")]);
 }
+
+#[test]
+fn a_crushed_cube_is_stopped_by_the_run_guard_with_its_state_written() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("crushed-cube-run");
+    let _ = std::fs::remove_dir_all(&out);
+    let o = femdem(&["run", "crates/femdem-cli/tests/cases/bad/crushed_cube.toml", "--out", out.to_str().unwrap()]);
+    assert!(!o.status.success());
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(err.contains("the run guard stopped the run") && err.contains("exceeds the critical step"), "{err}");
+    assert!(err.contains("tet "), "{err}");
+    let pvd = std::fs::read_to_string(out.join("crushed_cube.pvd")).unwrap();
+    assert!(pvd.matches("file=\"").count() >= 2, "the state at the stop must be written: {pvd}");
+}

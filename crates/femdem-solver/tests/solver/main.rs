@@ -12,6 +12,7 @@ mod contact_step;
 mod determinism;
 mod energy;
 mod gravity;
+mod guard;
 mod joint_compliance;
 mod objectivity;
 mod patch;

@@ -1,0 +1,154 @@
+//! The run guard: checks that a run is still computing something
+//! meaningful, for a driver to call every so many steps
+//! ([`Solver::check`]).
+//!
+//! Three checks, one pass over nodes and one over tets (cheap next to a
+//! step: no force evaluation):
+//!
+//! 1. every position and velocity is finite;
+//! 2. no deformable tet is inverted (`J = V/V₀ ≤ 0`; the neo-Hookean law
+//!    has a C¹ continuation below `J = 0.01` that pushes an element back,
+//!    but a tet turned inside out means the step or the loading is wrong);
+//! 3. the time step is still below an element-wise estimate of the critical
+//!    step at the current configuration. The critical step `Δt₀` of the
+//!    reference configuration ([`crate::stable_time_step`]) is scaled, per
+//!    tet, by how much its shortest altitude `ℓ` has shrunk and how much its
+//!    P-wave speed has grown under compression:
+//!
+//!    ```text
+//!    Δt_t = Δt₀ · (ℓ / ℓ₀) · c₀ / c(J),   c(J)² / c₀² = (λ + 2μ − λ ln J) / (λ + 2μ)
+//!    ```
+//!
+//!    (the neo-Hookean tangent P-wave modulus of Eq. 1 at volume ratio `J`,
+//!    `(λ + 2μ − λ ln J) / J`, over the current density `ρ / J`). The run
+//!    is unsafe once `Δt > min_t Δt_t`: a crushed or flattened element has
+//!    stiffened past what the step was chosen for.
+
+use femdem_core::tet::{FACES, signed_volume, triangle_area};
+use femdem_core::{Real, Vec3};
+use rayon::prelude::*;
+use thiserror::Error;
+
+use crate::model::{Model, RIGID};
+use crate::step::Solver;
+
+/// Why a run must stop.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Trouble {
+    /// A position or velocity is NaN or infinite.
+    #[error("step {step}, t = {time:e} s: node {node} (initially at {x0:?} m) has a non-finite position or velocity")]
+    NonFinite {
+        /// Step number.
+        step: u64,
+        /// Time, s.
+        time: Real,
+        /// The first such node.
+        node: usize,
+        /// Its reference position, m.
+        x0: [Real; 3],
+    },
+    /// A deformable tet turned inside out.
+    #[error("step {step}, t = {time:e} s: tet {tet} at {centroid:?} m is inverted (J = {j:.3e})")]
+    Inverted {
+        /// Step number.
+        step: u64,
+        /// Time, s.
+        time: Real,
+        /// The first such tet.
+        tet: usize,
+        /// Its current centroid, m.
+        centroid: [Real; 3],
+        /// Its volume ratio.
+        j: Real,
+    },
+    /// The step exceeds the element-wise estimate of the critical step.
+    #[error(
+        "step {step}, t = {time:e} s: the time step {dt:e} s exceeds the critical step {estimate:e} s estimated for \
+         tet {tet} at {centroid:?} m, which has been compressed to J = {j:.3} with its shortest altitude at {shrink:.3} \
+         of its initial value; lower [solver] safety or time_step, or the loading rate"
+    )]
+    StepTooLarge {
+        /// Step number.
+        step: u64,
+        /// Time, s.
+        time: Real,
+        /// The time step, s.
+        dt: Real,
+        /// The estimate, s.
+        estimate: Real,
+        /// The tet that sets it.
+        tet: usize,
+        /// Its current centroid, m.
+        centroid: [Real; 3],
+        /// Its volume ratio.
+        j: Real,
+        /// Its shortest altitude over the initial one.
+        shrink: Real,
+    },
+}
+
+/// Shortest altitude of a tet: `3V / A_max`.
+fn altitude(p: &[Vec3; 4], volume: Real) -> Real {
+    let a = FACES.iter().map(|f| triangle_area(&p[f[0]], &p[f[1]], &p[f[2]])).fold(0.0, Real::max);
+    3.0 * volume / a
+}
+
+/// Per-tet factor `(ℓ/ℓ₀) · c₀/c(J)` by which tet `t`'s share of the
+/// critical step has changed, with its `J` and `ℓ/ℓ₀`.
+fn step_factor(model: &Model, x: &[Vec3], t: usize) -> (Real, Real, Real) {
+    let tet = model.tets[t];
+    let p = tet.map(|n| x[n as usize]);
+    let p0 = tet.map(|n| model.x0[n as usize]);
+    let (v, v0) = (signed_volume(&p), signed_volume(&p0));
+    let j = v / v0;
+    if j <= 0.0 {
+        return (0.0, j, 0.0);
+    }
+    let shrink = altitude(&p, v) / altitude(&p0, v0);
+    let m = &model.materials[model.tet_material[t] as usize].1;
+    let (l, mu) = (m.lambda(), m.mu());
+    let stiffening = ((l + 2.0 * mu - l * j.ln()) / (l + 2.0 * mu)).max(1.0).sqrt();
+    (shrink / stiffening, j, shrink)
+}
+
+impl Solver {
+    /// Checks the state (see the module documentation of `guard`) against a
+    /// reference critical step `critical` (s, from
+    /// [`crate::stable_time_step`]).
+    ///
+    /// # Errors
+    /// The first [`Trouble`] found, naming the node or tet and where it is.
+    pub fn check(&self, critical: Real) -> Result<(), Trouble> {
+        let (step, time) = (self.state.step, self.state.time);
+        let s = &self.state;
+        if let Some(node) = (0..s.x.len())
+            .into_par_iter()
+            .find_first(|&i| !(s.x[i].iter().all(|c| c.is_finite()) && s.v[i].iter().all(|c| c.is_finite())))
+        {
+            let x0 = self.model.x0[node];
+            return Err(Trouble::NonFinite { step, time, node, x0: [x0.x, x0.y, x0.z] });
+        }
+        let model = &self.model;
+        let worst = (0..model.tets.len())
+            .into_par_iter()
+            .filter(|&t| model.tet_material[t] != RIGID)
+            .map(|t| {
+                let (factor, j, shrink) = step_factor(model, &s.x, t);
+                (factor, t, j, shrink)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let Some((factor, tet, j, shrink)) = worst else {
+            return Ok(());
+        };
+        let centroid = model.tets[tet].iter().map(|&n| s.x[n as usize]).sum::<Vec3>() / 4.0;
+        let centroid = [centroid.x, centroid.y, centroid.z];
+        if j <= 0.0 {
+            return Err(Trouble::Inverted { step, time, tet, centroid, j });
+        }
+        let estimate = critical * factor;
+        if self.dt() > estimate {
+            return Err(Trouble::StepTooLarge { step, time, dt: self.dt(), estimate, tet, centroid, j, shrink });
+        }
+        Ok(())
+    }
+}

@@ -29,6 +29,9 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        /// Worker threads (overrides `[solver] threads`; default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
     /// Run a case to its end time, writing VTU frames, a PVD series and a
     /// CSV history.
@@ -38,14 +41,18 @@ enum Command {
         /// Output directory (default: `[output] dir`, else `out/<case stem>`).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Worker threads (overrides `[solver] threads`; default: all
+        /// cores). Results do not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
     },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Check { case, json } => commands::check::run(&case, json),
-        Command::Run { case, out } => commands::run::run(&case, out),
+        Command::Check { case, json, threads } => commands::check::run(&case, json, threads),
+        Command::Run { case, out, threads } => commands::run::run(&case, out, threads),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -152,6 +152,14 @@ fn unknown(u: UnknownName) -> String {
 /// and bad component strings.
 pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result<Loads, CaseError> {
     let mut loads = Loads { gravity: Vec3::from(gravity), ..Default::default() };
+    if !gravity.iter().all(|g| g.is_finite()) {
+        let at = case.case.solver.as_ref().map(|s| s.span());
+        let message = format!("solver: gravity must be finite, got {gravity:?} m/s²");
+        return Err(match at {
+            Some(span) => case.error_at(span, message),
+            None => CaseError { path: case.path.clone(), at: None, message },
+        });
+    }
     for (i, p) in case.case.platens.iter().enumerate() {
         let s = p.get_ref();
         let at = |msg: String| case.error_at(p.span(), format!("platens[{i}]: {msg}"));
@@ -166,12 +174,13 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             nodes.sort_unstable();
             nodes.dedup();
         }
+        finite("velocity", &s.velocity, "m/s").map_err(at)?;
         loads.drives.push(VelocityDrive {
             name: s.region.clone(),
             nodes,
             velocity: Vec3::from(s.velocity),
             components: [true; 3],
-            ramp: Ramp { ramp_time: s.ramp_time, stop_time: None },
+            ramp: ramp(s.ramp_time, None).map_err(at)?,
         });
     }
     for (i, l) in case.case.loads.iter().enumerate() {
@@ -192,35 +201,69 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                 }
                 let c = c.as_deref().unwrap_or("xyz");
                 let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                finite("velocity", velocity, "m/s").map_err(at)?;
                 loads.drives.push(VelocityDrive {
                     name: name.clone().unwrap_or_else(|| format!("velocity{i}")),
                     nodes,
                     velocity: Vec3::from(*velocity),
                     components,
-                    ramp: Ramp { ramp_time: *ramp_time, stop_time: *stop_time },
+                    ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
                 });
             }
             LoadSpec::Pressure { group, pressure, ramp_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                finite("pressure", &[*pressure], "Pa").map_err(at)?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
                     faces,
                     kind: SurfaceKind::Pressure(*pressure),
-                    ramp: Ramp { ramp_time: *ramp_time, stop_time: None },
+                    ramp: ramp(*ramp_time, None).map_err(at)?,
                 });
             }
             LoadSpec::Traction { group, traction, ramp_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                finite("traction", traction, "Pa").map_err(at)?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
                     faces,
                     kind: SurfaceKind::Traction(Vec3::from(*traction)),
-                    ramp: Ramp { ramp_time: *ramp_time, stop_time: None },
+                    ramp: ramp(*ramp_time, None).map_err(at)?,
                 });
             }
         }
+        // Each drive and surface load names columns of the history.
+        let names = loads.drives.iter().map(|d| &d.name).chain(loads.surfaces.iter().map(|s| &s.name));
+        let mut seen = std::collections::HashSet::new();
+        if let Some(dup) = names.into_iter().find(|n| !seen.insert(n.as_str())) {
+            return Err(at(format!(
+                "a load or platen named `{dup}` already exists (names label the history's columns; give `name` a new value)"
+            )));
+        }
     }
     Ok(loads)
+}
+
+/// Checks that every component of `key` is finite.
+fn finite(key: &str, values: &[f64], unit: &str) -> Result<(), String> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(format!("`{key}` must be finite, got {values:?} {unit}"))
+    }
+}
+
+/// A load's ramp, checked: `ramp_time` finite and ≥ 0 s, `stop_time` finite
+/// and > 0 s.
+fn ramp(ramp_time: f64, stop_time: Option<f64>) -> Result<Ramp, String> {
+    if !(ramp_time.is_finite() && ramp_time >= 0.0) {
+        return Err(format!("`ramp_time` must be finite and ≥ 0 s, got {ramp_time} s"));
+    }
+    if let Some(t) = stop_time {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(format!("`stop_time` must be finite and > 0 s, got {t} s"));
+        }
+    }
+    Ok(Ramp { ramp_time, stop_time })
 }
 
 /// Builds the model with the case's mass scaling.

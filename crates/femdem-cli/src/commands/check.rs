@@ -65,8 +65,8 @@ struct TimeStepReport {
 }
 
 /// Runs the command.
-pub fn run(path: &Path, json: bool) -> Result<()> {
-    let prepared = prepare(path)?;
+pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
+    let prepared = prepare(path, threads)?;
     let (loaded, mesh, jointed) = (&prepared.case, &prepared.mesh, &prepared.jointed);
     let s = stats(mesh);
 

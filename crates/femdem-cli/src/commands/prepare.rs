@@ -6,6 +6,10 @@ use femdem_solver::{Solver, SolverError, StableStep, StepParams, contact_omega, 
 
 use crate::case::{self, LoadedCase};
 
+/// The most steps a run may take (1e9 steps of even a 1000-tet model is
+/// days of computing: more is a unit mistake, not a plan).
+pub const MAX_STEPS: f64 = 1e9;
+
 /// Lanczos iterations allowed for the stable-step estimate.
 pub const POWER_ITERATIONS: usize = 400;
 
@@ -38,9 +42,21 @@ pub struct Runnable {
 }
 
 /// Loads the case, builds the mesh and joints, and, if the case has a
-/// `[solver]`, the model, the loads and the time step.
-pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
+/// `[solver]`, the model, the loads and the time step. `threads` (the
+/// command line's `--threads`) overrides `[solver] threads`; either is set
+/// before any parallel work, meshing included.
+pub fn prepare(path: &std::path::Path, threads: Option<usize>) -> Result<Prepared> {
     let loaded = case::load(path)?;
+    let from_case = loaded.case.solver.as_ref().and_then(|s| s.get_ref().threads.map(|n| (n, s.span())));
+    match (threads, from_case) {
+        (Some(0), _) => bail!("--threads must be ≥ 1"),
+        (None, Some((0, span))) => bail!(loaded.error_at(span, "solver: threads must be ≥ 1")),
+        (Some(n), _) | (None, Some((n, _))) => {
+            // Refused only if a pool already exists (tests calling `run` twice in one process).
+            let _ = rayon::ThreadPoolBuilder::new().num_threads(n).build_global();
+        }
+        (None, None) => {}
+    }
     let mesh = case::mesh::build_mesh(&loaded)?;
     let jointed = femdem_mesh::insert_joints(&mesh)?;
     let Some(spec) = &loaded.case.solver else {
@@ -53,13 +69,6 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
     }
     if !(s.safety > 0.0 && s.safety <= 1.0) {
         bail!(at(format!("safety must lie in (0, 1], got {}", s.safety)));
-    }
-    if let Some(n) = s.threads {
-        if n == 0 {
-            bail!(at("threads must be ≥ 1".into()));
-        }
-        // Ignored if a pool already exists (e.g. in tests); results do not depend on it.
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(n).build_global();
     }
     let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
     let loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
@@ -92,7 +101,15 @@ pub fn prepare(path: &std::path::Path) -> Result<Prepared> {
         let initial: Vec<(u32, u32)> = jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
         solver.enable_contact(settings, &initial);
     }
-    let steps = (s.end_time / dt).ceil() as u64;
+    let steps = (s.end_time / dt).ceil();
+    if steps > MAX_STEPS {
+        bail!(at(format!(
+            "end_time {:e} s at time_step {dt:e} s is {steps:e} steps, more than the {MAX_STEPS:e} a run may take; \
+             check time_step and end_time (they are in seconds)",
+            s.end_time
+        )));
+    }
+    let steps = steps as u64;
     let end_time = s.end_time;
     let check_interval = s.check_interval;
     Ok(Prepared {

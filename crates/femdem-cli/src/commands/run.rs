@@ -13,8 +13,8 @@ use super::prepare::prepare;
 use super::progress::Progress;
 
 /// Runs the command.
-pub fn run(path: &Path, out: Option<PathBuf>) -> Result<()> {
-    let prepared = prepare(path)?;
+pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<()> {
+    let prepared = prepare(path, threads)?;
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
     };

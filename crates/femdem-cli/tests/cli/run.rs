@@ -140,3 +140,23 @@ fn a_crushed_cube_is_stopped_by_the_run_guard_with_its_state_written() {
     let pvd = std::fs::read_to_string(out.join("crushed_cube.pvd")).unwrap();
     assert!(pvd.matches("file=\"").count() >= 2, "the state at the stop must be written: {pvd}");
 }
+
+/// Bad run settings found by trying the CLI as a new user would: each is
+/// refused by `femdem check` (so before any run) with the file, the line of
+/// the section and the key named.
+#[test]
+fn bad_run_settings_are_refused_with_file_line_and_key() {
+    let cases = [
+        ("tiny_step", ":64:", "is 1e296 steps, more than the 1e9"),
+        ("negative_ramp", ":55:", "`ramp_time` must be finite and ≥ 0 s"),
+        ("nan_velocity", ":55:", "`velocity` must be finite"),
+        ("duplicate_load_name", ":72:", "a load or platen named `dup` already exists"),
+    ];
+    for (name, line, message) in cases {
+        let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");
+        let o = femdem(&["check", &file]);
+        assert!(!o.status.success(), "{name} was accepted");
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert!(err.contains(&format!("{name}.toml{line}")) && err.contains(message), "{name}: {err}");
+    }
+}

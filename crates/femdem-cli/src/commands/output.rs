@@ -18,6 +18,7 @@ pub struct Output {
     series: SeriesWriter,
     fractures: SeriesWriter,
     history: HistoryWriter,
+    failures: HistoryWriter,
     fields: Vec<String>,
     /// Pre-existing fracture faces (node triples of one side).
     pre_existing: Vec<[u32; 3]>,
@@ -72,7 +73,22 @@ impl Output {
         }
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
-        Ok(Output { series, fractures, history, fields, pre_existing, load_strain })
+        let failures = HistoryWriter::create(
+            &dir.join("failures.csv"),
+            &["time", "joint", "x", "y", "z", "area", "mode"],
+        )?;
+        Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
+    }
+
+    /// Appends the joints that failed in the step of record `r` to
+    /// `failures.csv`: time (s), joint index, mid-plane centroid (m), area
+    /// (m²), mode code (1 tensile, 2 shear, 3 mixed).
+    pub fn failure_rows(&mut self, solver: &Solver, r: &StepRecord) -> Result<()> {
+        for f in &solver.failures()[r.new_failures.clone()] {
+            let c = f.centroid;
+            self.failures.row(&[f.time, f64::from(f.joint), c.x, c.y, c.z, f.area, f64::from(f.mode.code())])?;
+        }
+        Ok(())
     }
 
     /// Appends the history row of a step's record.
@@ -198,9 +214,10 @@ impl Output {
         self.fractures.pvd_path()
     }
 
-    /// Flushes the history.
+    /// Flushes the history and the failure list.
     pub fn flush(&mut self) -> Result<()> {
         self.history.flush()?;
+        self.failures.flush()?;
         Ok(())
     }
 

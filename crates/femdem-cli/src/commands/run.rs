@@ -65,7 +65,11 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
         let stopping = stop.load(Ordering::SeqCst);
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
-        let record = solver.step(Want { stress: frame_due, energy: row_due });
+        solver.step(Want { stress: frame_due, energy: row_due });
+        let record = solver.record();
+        if !record.new_failures.is_empty() {
+            output.failure_rows(solver, record)?;
+        }
         if row_due {
             output.history_row(record)?;
             next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
@@ -108,6 +112,7 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
     println!("results     {}", output.pvd().display());
     println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures().len());
     println!("history     {}", output.history_path().display());
+    println!("failures    {}", output.history_path().with_file_name("failures.csv").display());
     if interrupted {
         bail!("interrupted by Ctrl-C; the state at t = {:.6e} s was written", solver.state.time);
     }

@@ -8,7 +8,7 @@ use femdem_contact::{Nbs, tet_tet_forces};
 use femdem_core::Vec3;
 
 /// `n` spheres of radius 0.5 on a jittered cubic lattice of spacing 1.
-fn cloud(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
+fn cloud(n: usize) -> (Vec<Vec3>, Vec<f64>) {
     let side = (n as f64).cbrt().ceil() as usize;
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut rnd = || {
@@ -17,13 +17,13 @@ fn cloud(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     };
-    let centers: Vec<[f64; 3]> = (0..n)
+    let centers: Vec<Vec3> = (0..n)
         .map(|i| {
-            [
+            Vec3::new(
                 (i % side) as f64 + 0.3 * rnd(),
                 ((i / side) % side) as f64 + 0.3 * rnd(),
                 (i / side / side) as f64 + 0.3 * rnd(),
-            ]
+            )
         })
         .collect();
     (centers, vec![0.5; n])

@@ -14,9 +14,63 @@
 //! the grid and are reset by walking the lists, not by clearing: the cost is
 //! `O(N + n_x + n_y + n_z)` in time and memory, with no `log N`.
 
-use femdem_core::Real;
+use femdem_core::{Real, Vec3};
 
 const NONE: u32 = u32::MAX;
+
+/// Two distinct element indices in ascending order: [`Pair::a`] `<`
+/// [`Pair::b`]. [`Nbs::detect`] reports its candidates as pairs.
+///
+/// The order is a guarantee of the type: the fields are private and the
+/// only constructor, [`Pair::new`], sorts, so a pair names each unordered
+/// couple of elements exactly once and can serve as a map key without
+/// normalising. Pairs compare by `a`, then `b` (the order of the tuple
+/// `(a, b)`), so sorting a list of pairs gives a canonical order whatever
+/// order they were found in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Pair {
+    a: u32,
+    b: u32,
+}
+
+impl Pair {
+    /// The pair of elements `i` and `j`, smaller index first; `None` when
+    /// `i == j` (an element is never its own contact partner).
+    #[inline]
+    pub fn new(i: u32, j: u32) -> Option<Pair> {
+        (i != j).then(|| Pair { a: i.min(j), b: i.max(j) })
+    }
+
+    /// The smaller index.
+    #[inline]
+    pub fn a(self) -> u32 {
+        self.a
+    }
+
+    /// The larger index.
+    #[inline]
+    pub fn b(self) -> u32 {
+        self.b
+    }
+
+    /// `(a, b)`, with `a < b`.
+    #[inline]
+    pub fn indices(self) -> (u32, u32) {
+        (self.a, self.b)
+    }
+}
+
+impl From<Pair> for (u32, u32) {
+    fn from(p: Pair) -> (u32, u32) {
+        p.indices()
+    }
+}
+
+impl From<Pair> for [u32; 2] {
+    fn from(p: Pair) -> [u32; 2] {
+        [p.a, p.b]
+    }
+}
 
 /// Reusable buffers of the NBS search (sized on first use, reused after).
 #[derive(Clone, Debug, Default)]
@@ -37,15 +91,17 @@ impl Nbs {
         Nbs::default()
     }
 
-    /// Finds every pair `(i, j)`, `i ≠ j`, of spheres (centres `centers`,
-    /// radii `radii`) that overlap once each radius is grown by `margin`:
-    /// `|c_i − c_j| ≤ r_i + r_j + 2 margin`. Each pair is appended to `pairs`
-    /// once, as `(min, max)`. The order is deterministic (a function of the
-    /// input alone).
+    /// Finds every pair of spheres `i ≠ j` (centres `centers`, radii
+    /// `radii`, indices into both) that overlap once each radius is grown by
+    /// `margin`: `|c_i − c_j| ≤ r_i + r_j + 2 margin`. Each such pair is
+    /// appended to `pairs` exactly once, as a [`Pair`] (smaller index
+    /// first); `pairs` is not cleared. The order of the appended pairs is
+    /// deterministic (a function of the input alone) but otherwise
+    /// unspecified: sort them for a canonical order.
     ///
     /// # Panics
-    /// If `centers` and `radii` differ in length, or a value is not finite.
-    pub fn detect(&mut self, centers: &[[Real; 3]], radii: &[Real], margin: Real, pairs: &mut Vec<(u32, u32)>) {
+    /// If `centers` and `radii` differ in length, or a centre is not finite.
+    pub fn detect(&mut self, centers: &[Vec3], radii: &[Real], margin: Real, pairs: &mut Vec<Pair>) {
         assert_eq!(centers.len(), radii.len(), "one radius per centre");
         let n = centers.len();
         if n < 2 {
@@ -163,10 +219,10 @@ impl Nbs {
         &mut self,
         iy: usize,
         below: bool,
-        centers: &[[Real; 3]],
+        centers: &[Vec3],
         radii: &[Real],
         margin: Real,
-        pairs: &mut Vec<(u32, u32)>,
+        pairs: &mut Vec<Pair>,
     ) {
         let ny = self.head_y[0].len();
         // Row lists of the half neighbourhood: (layer, row) as (slot, iy).
@@ -188,12 +244,13 @@ impl Nbs {
         let mut e = self.head_y[0][iy];
         while e != NONE {
             let ix = self.cell[e as usize][0] as usize;
-            let test = |j: u32, pairs: &mut Vec<(u32, u32)>| {
+            let test = |j: u32, pairs: &mut Vec<Pair>| {
                 let (a, b) = (&centers[e as usize], &centers[j as usize]);
                 let reach = radii[e as usize] + radii[j as usize] + 2.0 * margin;
-                let d2 = (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2);
+                let d2 = (a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.z - b.z).powi(2);
                 if d2 <= reach * reach {
-                    pairs.push((e.min(j), e.max(j)));
+                    // j ≠ e: j follows e in e's cell, or lies in another cell.
+                    pairs.push(Pair { a: e.min(j), b: e.max(j) });
                 }
             };
             // Own cell: the elements after e in its list.

@@ -23,7 +23,10 @@
 //!
 //! # Conventions
 //!
-//! - SI units; tension positive.
+//! - SI units: stresses and moduli in Pa, `η` in Pa·s, density in kg/m³,
+//!   forces in N, energies in J.
+//! - Stresses are Cauchy stresses (true stress), **tension positive**: a
+//!   stretched element has `σ_xx > 0`.
 //! - Tets follow the positive orientation of [`femdem_core::tet`]:
 //!   `(X₁ − X₀) · ((X₂ − X₀) × (X₃ − X₀)) > 0` in the reference state.
 //! - Forces are the forces the element exerts **on** its nodes: a solver
@@ -38,6 +41,39 @@
 //! no meshes, no node numbering beyond the four local nodes, no time
 //! stepping, no files or I/O of any kind. It depends on `femdem-core` only,
 //! so another solver can use the laws and the kernel on their own.
+//!
+//! # Example
+//!
+//! The main entry point is [`tet_forces`]. Stretch the unit corner tet by
+//! a small uniaxial strain `ε` (with the lateral contraction `−ν ε` of
+//! uniaxial stress) and the neo-Hookean law gives Hooke's law,
+//! `σ_xx = E ε` and no lateral stress, up to terms of order `ε²` (a
+//! relative error of about `ε/3` here, checked to `ε`). The stretched tet
+//! pulls its nodes together.
+//!
+//! ```
+//! use femdem_core::{Mat3, Vec3};
+//! use femdem_material::{ElasticParams, Law, TetReference, tet_forces};
+//!
+//! let (young, poisson) = (26e9, 0.2);
+//! let material = ElasticParams { young, poisson, density: 2340.0, viscosity: 0.0 }.validate()?;
+//! let x0 = [Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()];
+//! let reference = TetReference::new(&x0).expect("a positive tet");
+//! assert!((reference.volume - 1.0 / 6.0).abs() < 1e-16);
+//!
+//! let strain = 1e-5;
+//! let f = Mat3::from_diagonal(&Vec3::new(1.0 + strain, 1.0 - poisson * strain, 1.0 - poisson * strain));
+//! let x = x0.map(|p| f * p);
+//! let at_rest = [Vec3::zeros(); 4];
+//! let out = tet_forces(Law::NeoHookean, &material, &reference, &x, &at_rest);
+//!
+//! let hooke = young * strain;
+//! assert!((out.stress[(0, 0)] / hooke - 1.0).abs() < strain);
+//! assert!(out.stress[(1, 1)].abs() < strain * hooke && out.stress[(2, 2)].abs() < strain * hooke);
+//! assert!(out.forces[1].x < 0.0 && out.forces[0].x > 0.0, "tension pulls the nodes together");
+//! assert!(out.forces.iter().sum::<Vec3>().norm() < 1e-12 * out.forces[1].norm());
+//! # Ok::<(), femdem_material::MaterialError>(())
+//! ```
 
 pub mod invariants;
 pub mod law;

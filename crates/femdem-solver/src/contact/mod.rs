@@ -66,9 +66,9 @@ pub struct Contact {
     list: Vec<u32>,
     bonded: HashSet<(u32, u32)>,
     nbs: Nbs,
-    centers: Vec<[Real; 3]>,
+    centers: Vec<Vec3>,
     radii: Vec<Real>,
-    pairs: Vec<(u32, u32)>,
+    pairs: Vec<femdem_contact::Pair>,
     /// Candidate pairs (tet indices) from the last detection.
     candidates: Vec<(u32, u32)>,
     /// Nodes of the contactable tets and their positions at the last
@@ -243,14 +243,14 @@ impl Contact {
             let p = model.tets[t as usize].map(|n| x[n as usize]);
             let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
             let r = p.iter().map(|q| (q - c).norm()).fold(0.0, Real::max);
-            self.centers.push([c.x, c.y, c.z]);
+            self.centers.push(c);
             self.radii.push(r);
         }
         self.pairs.clear();
         self.nbs.detect(&self.centers, &self.radii, 0.5 * self.settings.buffer, &mut self.pairs);
         let mut candidates = std::mem::take(&mut self.candidates);
         candidates.clear();
-        for &(i, j) in &self.pairs {
+        for (i, j) in self.pairs.iter().map(|p| p.indices()) {
             let (a, b) = (self.list[i as usize], self.list[j as usize]);
             if self.may_touch(model, a, b) {
                 candidates.push((a, b));

@@ -48,6 +48,15 @@ pub enum Coupling {
     /// the example above when the point gets there in one evaluation, but
     /// `z(0.3) f_s = 0.51 f_s` when the normal softening was reached in an
     /// earlier step.
+    ///
+    /// Energy: where a direction that has never softened crosses its peak
+    /// while the point is damaged (`D > 0` from the other direction), its
+    /// stress drops in one step from `f` to `z(D) f`. For the normal
+    /// direction that raises `f_s = c − σ tan φ` (Eq. 5) by
+    /// `(1 − z(D)) f_t tan φ`, and with it the stored shear plateau, with no
+    /// work done: the printed law is not conservative there (measured in
+    /// `tests/law_energy.rs`: 2.4 J/m² out of 495 J/m² of work to failure on
+    /// a granite joint, once per point).
     Printed,
     /// Munjiza's Y-code style: the hardening branch multiplied by `z(D)`,
     /// `σ = z(D) [2r − r²] f_t` for `0 ≤ δn ≤ δnp`, `z(D) f_t` beyond;
@@ -133,8 +142,10 @@ impl Coupling {
             Coupling::Multiplicative => {
                 if r <= 1.0 {
                     zd * f * dp * (r * r - r * r * r / 3.0)
-                } else {
+                } else if zd > 0.0 {
                     zd * f * dp * (r - 1.0 / 3.0)
+                } else {
+                    0.0 // broken: nothing stored, even at r = ∞ (0 × ∞ is NaN)
                 }
             }
         }
@@ -187,6 +198,11 @@ mod tests {
                     }
                 }
             }
+        }
+        // A broken point (z = 0) stores nothing, even slipped without bound
+        // (regression: Multiplicative gave 0 × ∞ = NaN).
+        for coupling in [Coupling::Printed, Coupling::Multiplicative, Coupling::Capped] {
+            assert_eq!(coupling.stored(f, dp, Real::INFINITY, 0.0, true), 0.0, "{coupling:?}");
         }
         // Compression: the line 2 r f, area f δp r², whatever the damage.
         for coupling in [Coupling::Printed, Coupling::Multiplicative, Coupling::Capped] {

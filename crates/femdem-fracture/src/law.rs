@@ -134,6 +134,10 @@ pub struct PointStress {
     pub stored: Real,
     /// Which directions have been past their peak, this evaluation included.
     pub softened: Softened,
+    /// The normalised softening displacements of Eq. 13 at this evaluation,
+    /// `[Dn, Ds]`, each in `[0, 1]` (`Ds = 1` when `f_s ≤ 0`): what the
+    /// failure label is made of ([`FailureMode`]).
+    pub contributions: [Real; 2],
 }
 
 /// Evaluates one integration point at opening `dn` and slip magnitude
@@ -223,7 +227,16 @@ pub fn point_stress_with(joint: &Joint, dn: Real, ds: Real, d_hist: Real, soften
     };
     let stored = coupling.stored(ft, dnp, rn, zd, now_softened.normal)
         + if fs > 0.0 { coupling.stored(fs, dsp, rs, zd, now_softened.shear) } else { 0.0 };
-    PointStress { sigma, tau, damage, broke, dissipated, stored, softened: now_softened }
+    PointStress {
+        sigma,
+        tau,
+        damage,
+        broke,
+        dissipated,
+        stored,
+        softened: now_softened,
+        contributions: [dn_soft, ds_soft],
+    }
 }
 
 /// The normal stress of a point with no slip and no history (Fig. 3, the

@@ -10,6 +10,7 @@
 //! 1. Fig. 3 curves: pure opening, pure shear, mixed mode (proptest).
 //! 2. Eq. 12: ends, flat start, monotone, area 0.386 (proptest).
 //! 3. Eq. 5: Mohr–Coulomb shear strength with the tension cut-off.
+//!
 //! Sections 4–7 (energy to failure and Gf, unloading and no healing,
 //! failure needs two points, energy along unloading and mixed paths) are in
 //! `law_energy.rs`; the restatement of the paper is in `law_reference`.

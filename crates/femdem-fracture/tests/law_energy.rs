@@ -378,7 +378,9 @@ fn ramp(from: [Vec3; 3], to: [Vec3; 3], n: usize) -> Vec<[Vec3; 3]> {
 ///
 /// The same in-plane (slip along x, openings exactly zero): Shear. And a
 /// uniform mixed displacement with `Dn = Ds = 0.8` (neither reaches δc,
-/// but `√(Dn² + Ds²) > 1`, Eq. 13): Mixed, in one step and along a ramp.
+/// but `√(Dn² + Ds²) > 1`, Eq. 13): Mixed (`Dn² = Ds²`: neither holds the
+/// ¾ of `D²` that labels a failure tensile or shear, `FailureMode`), in one
+/// step and along a ramp.
 #[test]
 fn failure_needs_two_points_at_zero_stress() {
     let p = granite(GfCalibration::Paper);

@@ -424,6 +424,33 @@ mod tests {
         assert!(again.failed.is_none() && again.forces.iter().all(|f| f.norm() == 0.0));
     }
 
+    /// A joint whose mid-plane collapses (all six nodes on one line: zero
+    /// area, no frame) fails at once as `Collapsed` (code 4), exerts
+    /// nothing, releases no stored energy (documented on `joint_update`),
+    /// keeps its damage and work, and stays failed.
+    #[test]
+    fn a_collapsed_joint_fails_as_collapsed() {
+        let j = Joint::new(params(), 1e-3);
+        let base = [Vec3::zeros(), Vec3::new(1e-3, 0.0, 0.0), Vec3::new(0.0, 1e-3, 0.0)];
+        let d = Vec3::new(0.0, 0.0, 0.5 * j.delta_np);
+        let x = [base[0], base[1], base[2], base[2] + d, base[1] + d, base[0] + d];
+        let mut h = JointHistory::default();
+        let loaded = joint_update(&j, &mut h, &x, true);
+        assert!(loaded.energy > 0.0 && h.work > 0.0);
+        let before = h;
+        let line = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0].map(|t| Vec3::new(t * 1e-4, 0.0, 0.0));
+        assert!(joint_kinematics(&line).is_none());
+        let out = joint_update(&j, &mut h, &line, true);
+        assert_eq!(out.failed, Some(FailureMode::Collapsed));
+        assert_eq!(out.failed.unwrap().code(), 4);
+        assert!(out.forces.iter().all(|f| f.norm() == 0.0) && out.energy == 0.0);
+        assert!(h.failed && h.released == 0.0);
+        assert_eq!((h.damage, h.work, h.last), (before.damage, before.work, before.last));
+        // Restoring the geometry does not revive it, nor fail it again.
+        let again = joint_update(&j, &mut h, &x, true);
+        assert!(again.failed.is_none() && again.forces.iter().all(|f| f.norm() == 0.0));
+    }
+
     /// A joint vibrating in compression (the linear branch, `σ = 2 r f_t`,
     /// no damage) stores what is done on it: after 200 random closings and
     /// reopenings `work − stored` is round-off. The rectangle rule booked

@@ -37,8 +37,9 @@ pub enum Coupling {
     /// `f_t` in tension while `δn ≤ δnp`.
     ///
     /// Unloading and reloading: a direction that has once been past its
-    /// own peak (`δn > δnp`, resp. `δs > δsp` or `f_s ≤ 0`; remembered per
-    /// point and direction in [`Softened`]) has its hardening branch capped
+    /// own peak (`δn > δnp`, resp. `δs > δsp`, or both at the Mohr–Coulomb
+    /// apex `f_s ≤ 0`; remembered per point and direction in [`Softened`])
+    /// has its hardening branch capped
     /// at `z(D) f` from then on, as [`Coupling::Capped`] does, so it never
     /// climbs above its damaged strength again; a direction that has never
     /// been past its peak follows the printed parabola. This is the only
@@ -74,15 +75,17 @@ pub enum Coupling {
     Capped,
 }
 
-/// Whether each direction of an integration point has ever been on its
-/// softening branch (`δn > δnp`; `δs > δsp`, or no shear strength left,
-/// `f_s ≤ 0`). Only [`Coupling::Printed`] reads it; it is recorded for
-/// every option.
+/// Whether each direction of an integration point has ever been past its
+/// peak: `δn > δnp`; `δs > δsp`; and both at the Mohr–Coulomb apex
+/// (`f_s = c − σ tan φ ≤ 0`, Eq. 5), where the point has no shear strength
+/// left and its tensile strength `c / tan φ ≤ f_t` is exhausted (see
+/// [`crate::JointParams::effective_tensile_strength`]). Only
+/// [`Coupling::Printed`] reads it; it is recorded for every option.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Softened {
-    /// The opening has been past `δnp`.
+    /// The opening has been past `δnp`, or the apex was reached.
     pub normal: bool,
-    /// The slip has been past `δsp` (or `f_s ≤ 0` was reached).
+    /// The slip has been past `δsp`, or the apex was reached.
     pub shear: bool,
 }
 

@@ -11,7 +11,10 @@
 //!    When `c ≤ f_t tan φ`, `f_s` reaches 0 at `σ = c / tan φ ≤ f_t`: the
 //!    point has no shear strength left and breaks (`Ds = 1`, so `D = 1`)
 //!    there, on the hardening branch — the tensile strength is
-//!    `min(f_t, c / tan φ)` ([`crate::JointParams::effective_tensile_strength`]);
+//!    `min(f_t, c / tan φ)` ([`crate::JointParams::effective_tensile_strength`]).
+//!    An opening that jumps past `δnp` in one evaluation went over the top
+//!    of the parabola on the way: if the top reached the apex, the point
+//!    broke there too (the result does not depend on the step);
 //! 2. the damage `D` of Eq. 13 from the normalised softening displacements
 //!    `Dn = (δn − δnp)/(δnc − δnp)`, `Ds = (δs − δsp)/(δsc − δsp)`: `Dn` or
 //!    `Ds` when one direction softens, `√(Dn² + Ds²)` when both do, 1 once
@@ -172,7 +175,15 @@ pub fn point_stress_with(joint: &Joint, dn: Real, ds: Real, d_hist: Real, soften
     } else {
         z(dn_soft.max(d_hist)) * ft
     };
-    let fs = p.cohesion - sigma_trial * joint.tan_phi;
+    // Weak cohesion (c ≤ f_t tan φ): an opening that passes δnp for the
+    // first time in this evaluation went over the top of the parabola, where
+    // σ was its value at r = 1; if that reached the apex c / tan φ, f_s fell
+    // to 0 on the way and the point broke there, however long the step.
+    let over_the_apex = rn > 1.0
+        && !softened.normal
+        && p.cohesion <= ft * joint.tan_phi
+        && p.cohesion - coupling.hardening_branch(ft, 1.0, z(d_hist), false) * joint.tan_phi <= 0.0;
+    let fs = if over_the_apex { 0.0 } else { p.cohesion - sigma_trial * joint.tan_phi };
     let (dsp, dsc) = if fs > 0.0 {
         let dsp = 2.0 * fs * joint.h / p.penalty;
         (dsp, p.critical_displacement(fs, dsp, p.gf_shear))
@@ -196,23 +207,26 @@ pub fn point_stress_with(joint: &Joint, dn: Real, ds: Real, d_hist: Real, soften
     };
     let damage = d_now.max(d_hist);
     let zd = z(damage);
+    let rs = if fs > 0.0 { ds / dsp } else { 0.0 };
+    // Past the peak: beyond δp, or (both directions) at the Mohr–Coulomb
+    // apex, `f_s ≤ 0`, which exhausts the tensile strength `c / tan φ` too.
+    let now_softened =
+        Softened { normal: softened.normal || rn > 1.0 || fs <= 0.0, shear: softened.shear || fs <= 0.0 || rs > 1.0 };
     // Eq. 11, with the hardening branches as `coupling` says.
     let sigma = if rn < 0.0 {
         2.0 * rn * ft
     } else if rn <= 1.0 {
-        coupling.hardening_branch(ft, rn, zd, softened.normal)
+        coupling.hardening_branch(ft, rn, zd, now_softened.normal)
     } else {
         zd * ft
     };
-    let rs = if fs > 0.0 { ds / dsp } else { 0.0 };
     let tau = if fs <= 0.0 {
         0.0
     } else if rs <= 1.0 {
-        coupling.hardening_branch(fs, rs, zd, softened.shear)
+        coupling.hardening_branch(fs, rs, zd, now_softened.shear)
     } else {
         zd * fs
     };
-    let now_softened = Softened { normal: softened.normal || rn > 1.0, shear: softened.shear || fs <= 0.0 || rs > 1.0 };
     // Labels: see `FailureMode`. `f_s ≤ 0` only at the Mohr–Coulomb apex.
     let mode = if fs <= 0.0 { FailureMode::Tensile } else { FailureMode::from_contributions(dn_soft, ds_soft) };
     let broke = (d_hist < 1.0 && damage >= 1.0).then_some(mode);

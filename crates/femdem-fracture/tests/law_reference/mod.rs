@@ -2,8 +2,8 @@
 //! restated independently of the crate's code for `law_curves.rs` and
 //! `law_energy.rs`: Eq. 12 (`z_ref`) and its area (`area_ref`, composite
 //! Simpson), Eq. 6–7 (`dp_ref`), Eq. 10 (`dc_ref`), Eq. 11 and Eq. 13
-//! (`ref_point`), the proptest parameter ranges (`case_strategy`) and the
-//! geometry of a test joint.
+//! (`ref_point`), the proptest parameter ranges (`case_strategy`), the
+//! geometry of a test joint, and a uniform walk of one (`walk`).
 //!
 //! Parameter ranges, and the two choices the paper leaves open: see the
 //! header of `law_curves.rs`.
@@ -12,7 +12,7 @@
 use std::sync::LazyLock;
 
 use femdem_core::{Real, Vec3};
-use femdem_fracture::{Coupling, GfCalibration, Joint, JointParams};
+use femdem_fracture::{Coupling, GfCalibration, Joint, JointHistory, JointParams, joint_update};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------
@@ -248,4 +248,28 @@ pub fn all_finite(ps: &femdem_fracture::PointStress) -> bool {
         && ps.damage.is_finite()
         && ps.dissipated.is_finite()
         && ps.stored.is_finite()
+}
+
+/// Work per unit area `W = ∫ t · dg` along a path of uniform side-b
+/// displacements (all three node pairs alike; t the traction on side b),
+/// with the joint's history and output after each step.
+pub fn walk(j: &Joint, l: Real, path: &[Vec3]) -> Vec<(Real, JointHistory, Real)> {
+    let area = 0.5 * l * l;
+    let mut hist = JointHistory::default();
+    let mut w = 0.0;
+    let mut prev: Option<(Vec3, Vec3)> = None;
+    let mut out_path = Vec::with_capacity(path.len());
+    for g in path {
+        let out = joint_update(j, &mut hist, &joint_nodes(l, [*g; 3]), true);
+        let t = -out.forces[3..].iter().sum::<Vec3>() / area;
+        if let Some((g0, t0)) = prev {
+            w += 0.5 * (t + t0).dot(&(g - g0));
+        }
+        prev = Some((*g, t));
+        out_path.push((w, hist, out.energy / area));
+        if hist.failed {
+            break;
+        }
+    }
+    out_path
 }

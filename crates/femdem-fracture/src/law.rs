@@ -45,7 +45,11 @@
 //! area, with `Z(D) = ∫₀ᴰ z`, `wn = Dn/D`, `ws = Ds/D` (exact for a pure mode
 //! and for a radial path in `(Dn, Ds)`; the same for every [`Coupling`]);
 //! the stored energy is the area under the curve the point would unload
-//! along at constant `D`, for its coupling option (`Coupling::stored`);
+//! along at constant `D`, for its coupling option (`Coupling::stored`),
+//! with `f_s` at its current value (Eq. 5 makes `τ` depend on `δn` while
+//! `σ` does not depend on `δs`: the law has no potential, and `Printed`'s
+//! jump of `σ` at `δnp` after shear damage raises the stored shear energy
+//! with no work done, see [`Coupling::Printed`]);
 //! when the joint fails, its stored energy is released
 //! (`JointHistory::released`). Note that the shear part of it, up to
 //! `2/3 f_s δsp = 4/3 f_s² h / p0`, is not small when `c ≫ f_t`. The work

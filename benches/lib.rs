@@ -52,6 +52,7 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
         gf_tension: 50.0,
         gf_shear: 50.0,
         calibration: femdem_fracture::GfCalibration::Paper,
+        coupling: femdem_fracture::Coupling::default(),
     });
     let model = Model::new(&jointed, &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints }], 1.0)
         .expect("model");

@@ -11,6 +11,23 @@
 //!
 //! Draws come from a ChaCha8 stream seeded by the user's seed, so the same
 //! seed gives the same strengths on any machine and thread count.
+//!
+//! # A joint whose cohesion falls below `f_t tan φ`
+//!
+//! The two factors are independent and `φ` is not scaled, so a joint can
+//! draw `c′ ≤ f′_t tan φ` even when the means satisfy `c > f_t tan φ`. Such
+//! a joint is valid ([`crate::JointParams::validate`] accepts it) and
+//! follows the weak-cohesion law (`law` module doc, Eq. 5): its tensile
+//! strength is the Mohr–Coulomb apex `c′ / tan φ < f′_t`
+//! ([`crate::JointParams::effective_tensile_strength`]); under opening its
+//! points break there, on the hardening branch, labelled tensile, with no
+//! tensile softening (its `G_ft` is not used). A caller can count or warn
+//! about such joints with [`crate::JointParams::cohesion_limits_tension`].
+//! For Weibull factors of modulus `m` the expected fraction of them is
+//! `ρᵐ / (1 + ρᵐ)`, `ρ = f_t tan φ / c` (the ratio of two independent
+//! Weibull variables of equal shape and scale has the distribution function
+//! `tᵐ / (1 + tᵐ)`): for the paper's granite (`f_t = 3` MPa, `c = 15` MPa,
+//! `φ = 30°`: `ρ = 0.115`) 2.4e-6 with `m = 6`, 1.5e-3 with `m = 3`.
 
 use femdem_core::Real;
 use rand::SeedableRng;
@@ -118,6 +135,73 @@ mod tests {
             assert!((mean - m0).abs() < 5.0 * se_mean, "{d:?}: mean {mean}");
             assert!((std - s0).abs() < 5.0 * se_std, "{d:?}: std {std} vs {s0}");
         }
+    }
+
+    /// Joints scaled as the solver scales them (`f_t` by the factors of
+    /// `seed`, `c` by those of `seed + 1`), with the means at
+    /// `c = 1.25 f_t tan φ` (`ρ = 0.8`) and Weibull `m = 4`: the fraction
+    /// with `c′ ≤ f′_t tan φ` is `ρ⁴/(1 + ρ⁴) = 0.4096/1.4096 = 0.2906`;
+    /// with n = 100,000 joints its standard error is
+    /// `√(p(1−p)/n) = 0.0014`, bound five of them. Each such joint is
+    /// accepted, its effective tensile strength is `c′ / tan φ`, and (the
+    /// first 200 of them, and of the others) a point opened in pure tension
+    /// carries at most that — it breaks, tensile, just past the opening
+    /// where the parabola reaches it, `r* = 1 − √(1 − c′/(f′_t tan φ))` of
+    /// `δnp` — while the others reach `f′_t` at `δnp`.
+    #[test]
+    fn a_joint_drawn_below_the_apex_has_tensile_strength_c_over_tan_phi() {
+        use crate::{FailureMode, GfCalibration, Joint, JointParams, point_stress};
+        let phi: Real = 35f64.to_radians();
+        let base = JointParams {
+            penalty: 1e11,
+            tensile_strength: 2e6,
+            cohesion: 1.25 * 2e6 * phi.tan(),
+            friction_angle: phi,
+            gf_tension: 50.0,
+            gf_shear: 50.0,
+            calibration: GfCalibration::Paper,
+            coupling: Default::default(),
+        };
+        assert!(!base.cohesion_limits_tension());
+        let n = 100_000;
+        let d = Distribution::Weibull { modulus: 4.0 };
+        let (ft, c) = (strength_factors(n, d, 11).unwrap(), strength_factors(n, d, 12).unwrap());
+        let scaled: Vec<JointParams> = (0..n)
+            .map(|i| JointParams {
+                tensile_strength: base.tensile_strength * ft[i],
+                cohesion: base.cohesion * c[i],
+                ..base
+            })
+            .collect();
+        let weak = scaled.iter().filter(|p| p.cohesion_limits_tension()).count();
+        let fraction = weak as Real / n as Real;
+        let expect = 0.4096 / 1.4096;
+        assert!((fraction - expect).abs() < 5.0 * 0.0014, "{fraction} vs {expect}");
+        let (mut checked_weak, mut checked_strong) = (0, 0);
+        for p in &scaled {
+            let is_weak = p.cohesion_limits_tension();
+            if (is_weak && checked_weak == 200) || (!is_weak && checked_strong == 200) {
+                continue;
+            }
+            let j = Joint::new(p.validate().unwrap(), 1e-3);
+            let strength = p.effective_tensile_strength();
+            if is_weak {
+                checked_weak += 1;
+                assert_eq!(strength, p.cohesion / phi.tan());
+                let rs = 1.0 - (1.0 - p.cohesion / (p.tensile_strength * phi.tan())).sqrt();
+                let below = point_stress(&j, rs * (1.0 - 1e-9) * j.delta_np, 0.0, 0.0);
+                let above = point_stress(&j, rs * (1.0 + 1e-9) * j.delta_np, 0.0, 0.0);
+                // The parabola's slope ≤ 2 f_t/δnp: 1e-9 of r* moves σ by ≤ 2e-9 f_t.
+                assert!(below.broke.is_none() && (below.sigma - strength).abs() <= 2e-9 * p.tensile_strength);
+                assert_eq!((above.broke, above.sigma), (Some(FailureMode::Tensile), 0.0));
+            } else {
+                checked_strong += 1;
+                assert_eq!(strength, p.tensile_strength);
+                let peak = point_stress(&j, j.delta_np, 0.0, 0.0);
+                assert!(peak.broke.is_none() && (peak.sigma - strength).abs() <= 1e-12 * strength);
+            }
+        }
+        assert_eq!((checked_weak, checked_strong), (200, 200));
     }
 
     #[test]

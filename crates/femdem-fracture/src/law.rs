@@ -7,59 +7,59 @@
 //! 1. the normal stress without shear damage gives the shear strength
 //!    `f_s = c − σ tan φ` (Eq. 5; `σ ≤ f_t` makes the tension cut-off
 //!    automatic), hence `δsp = 2 f_s h / p0` (Eq. 7) and `δsc` (Eq. 10 for
-//!    `G_fs`); `δnp = 2 f_t h / p0` (Eq. 6) and `δnc` (Eq. 10 for `G_ft`);
+//!    `G_fs`); `δnp = 2 f_t h / p0` (Eq. 6) and `δnc` (Eq. 10 for `G_ft`).
+//!    When `c ≤ f_t tan φ`, `f_s` reaches 0 at `σ = c / tan φ ≤ f_t`: the
+//!    point has no shear strength left and breaks (`Ds = 1`, so `D = 1`)
+//!    there, on the hardening branch — the tensile strength is
+//!    `min(f_t, c / tan φ)` ([`crate::JointParams::effective_tensile_strength`]).
+//!    An opening that jumps past `δnp` in one evaluation went over the top
+//!    of the parabola on the way: if the top reached the apex, the point
+//!    broke there too (the result does not depend on the step);
 //! 2. the damage `D` of Eq. 13 from the normalised softening displacements
 //!    `Dn = (δn − δnp)/(δnc − δnp)`, `Ds = (δs − δsp)/(δsc − δsp)`: `Dn` or
 //!    `Ds` when one direction softens, `√(Dn² + Ds²)` when both do, 1 once
 //!    `δn ≥ δnc` or `δs ≥ δsc`; it never decreases: `D = max(D, D_hist)`;
 //! 3. the stresses of Eq. 11: `σ = 2 (δn/δnp) f_t` in compression (not
-//!    affected by damage), `[2 δn/δnp − (δn/δnp)²] f_t` on the hardening
-//!    branch, `z(D) f_t` beyond `δnp`; `τ` likewise with `f_s`, along the
-//!    slip. A damaged point's hardening branch is capped at `z(D_hist) f`, so
-//!    unloading and reloading never exceed the damaged strength.
+//!    affected by damage), the hardening branch for `0 ≤ δn ≤ δnp` as the
+//!    joint's [`Coupling`] says — `Printed`: `[2r − r²] f_t`;
+//!    `Multiplicative`: `z(D) [2r − r²] f_t`; `Capped` (the default):
+//!    `min([2r − r²] f_t, z(D) f_t)`, `r = δn/δnp` — and `z(D) f_t` beyond
+//!    `δnp`; `τ` likewise with `f_s`, along the slip. Every option keeps a
+//!    damaged point at or below its damaged strength when it unloads and
+//!    reloads (`Printed`: once that direction has been past its peak,
+//!    remembered in [`Softened`]; see [`Coupling::Printed`]).
 //!
-//! A point with `D = 1` carries no tensile or shear stress. A joint fails
-//! when at least two of its three points do (§2.2); its failure mode is
-//! the mode that broke the last of them: tensile (`δn ≥ δnc`), shear
-//! (`δs ≥ δsc`) or mixed (the combined `D` of Eq. 13 reached 1).
+//! A point breaks when `D` reaches 1. Under `Capped` and `Multiplicative`
+//! it then carries no tensile or shear stress; under `Printed` a direction
+//! that has never been past its peak still follows its parabola (Eq. 11 as
+//! printed has no `z` there). A joint fails when at least two of its three
+//! points have broken (§2.2). Its failure mode is the label of the point
+//! that broke last: tensile if `Dn² ≥ ¾ D²` at that evaluation (or `f_s`
+//! fell to 0: the Mohr–Coulomb apex, reached only in tension), shear if
+//! `Ds² ≥ ¾ D²`, mixed between (`D² = Dn² + Ds²`; [`FailureMode`]). A joint
+//! whose mid-plane has collapsed (no frame: Eq. 3 cannot be evaluated)
+//! fails as [`FailureMode::Collapsed`].
 //!
 //! Energy: the work dissipated on the softening branch is
 //! `[f_t (δnc − δnp) wn + f_s (δsc − δsp) ws] (Z(D) − Z(D_hist))` per unit
 //! area, with `Z(D) = ∫₀ᴰ z`, `wn = Dn/D`, `ws = Ds/D` (exact for a pure mode
-//! and for a radial path in `(Dn, Ds)`); the stored energy is the area under
-//! the curve the point would unload along (see `stored`); when the joint
-//! fails, its stored energy is released (`JointHistory::released`). Note
-//! that the shear part of it, up to `2/3 f_s δsp = 4/3 f_s² h / p0`, is not
-//! small when `c ≫ f_t`. The work done on the joint (`JointHistory::work`)
-//! is tracked independently; `work − stored` is what the run books as
-//! fracture energy.
+//! and for a radial path in `(Dn, Ds)`; the same for every [`Coupling`]);
+//! the stored energy is the area under the curve the point would unload
+//! along at constant `D`, for its coupling option (`Coupling::stored`),
+//! with `f_s` at its current value (Eq. 5 makes `τ` depend on `δn` while
+//! `σ` does not depend on `δs`: the law has no potential, and `Printed`'s
+//! jump of `σ` at `δnp` after shear damage raises the stored shear energy
+//! with no work done, see [`Coupling::Printed`]);
+//! when the joint fails, its stored energy is released
+//! (`JointHistory::released`). Note that the shear part of it, up to
+//! `2/3 f_s δsp = 4/3 f_s² h / p0`, is not small when `c ≫ f_t`. The work
+//! done on the joint (`JointHistory::work`) is tracked independently;
+//! `work − stored` is what the run books as fracture energy.
 
 use femdem_core::{Real, Vec3};
 
 use crate::softening::{z, z_integral};
-use crate::{GAUSS, JointParams, joint_kinematics};
-
-/// How a joint (or an integration point) failed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FailureMode {
-    /// The opening reached `δnc`.
-    Tensile,
-    /// The slip reached `δsc`.
-    Shear,
-    /// The combined damage of Eq. 13 reached 1.
-    Mixed,
-}
-
-impl FailureMode {
-    /// A code for output: 1 tensile, 2 shear, 3 mixed.
-    pub fn code(self) -> u8 {
-        match self {
-            FailureMode::Tensile => 1,
-            FailureMode::Shear => 2,
-            FailureMode::Mixed => 3,
-        }
-    }
-}
+use crate::{Coupling, FailureMode, GAUSS, JointParams, Softened, joint_kinematics};
 
 /// A joint: parameters, its reference mean edge length `h`, and what
 /// follows from them alone (precomputed: the kernel runs for every joint at
@@ -117,6 +117,9 @@ pub struct JointHistory {
     /// Normal stress and shear stress magnitude of each point at the last
     /// evaluation, Pa (the shear along the last slip).
     pub last_stress: [[Real; 2]; 3],
+    /// Which directions of each point have been past their peak (read by
+    /// [`Coupling::Printed`] only).
+    pub softened: [Softened; 3],
     /// Whether the joint has failed (it then exerts no force).
     pub failed: bool,
 }
@@ -134,42 +137,35 @@ pub struct PointStress {
     pub broke: Option<FailureMode>,
     /// Energy dissipated per unit area by the damage increment, J/m².
     pub dissipated: Real,
-    /// Stored energy per unit area, J/m².
+    /// Stored energy per unit area, J/m² (see `Coupling::stored`).
     pub stored: Real,
-}
-
-/// Stored (recoverable) energy per unit area at ratio `r = δ/δp` for peak
-/// `f` and damage factor `zd = z(D)`: the area under the curve the point
-/// would unload along. In compression `f δp r²` (the linear branch `2 r f`);
-/// in tension the hardening branch capped at `zd f`, which it meets at
-/// `r* = 1 − √(1 − zd)`: `f δp (r² − r³/3)` up to `r*`, then
-/// `f δp (r*² − r*³/3) + zd f δp (r − r*)` (for an undamaged point `r* = 1`).
-#[inline]
-fn stored(f: Real, dp: Real, r: Real, zd: Real) -> Real {
-    if r < 0.0 {
-        return f * dp * r * r;
-    }
-    let rs = 1.0 - (1.0 - zd.clamp(0.0, 1.0)).sqrt();
-    if r <= rs {
-        f * dp * (r * r - r * r * r / 3.0)
-    } else if zd > 0.0 {
-        f * dp * (rs * rs - rs * rs * rs / 3.0 + zd * (r - rs))
-    } else {
-        0.0
-    }
-}
-
-/// The hardening branch of Eq. 11, `[2r − r²] f`, for `0 ≤ r ≤ 1`.
-#[inline]
-fn hardening(f: Real, r: Real) -> Real {
-    (2.0 * r - r * r) * f
+    /// Which directions have been past their peak, this evaluation included.
+    pub softened: Softened,
+    /// The normalised softening displacements of Eq. 13 at this evaluation,
+    /// `[Dn, Ds]`, each in `[0, 1]` (`Ds = 1` when `f_s ≤ 0`): what the
+    /// failure label is made of ([`FailureMode`]).
+    pub contributions: [Real; 2],
 }
 
 /// Evaluates one integration point at opening `dn` and slip magnitude
-/// `ds ≥ 0` with damage history `d_hist` (see the module doc).
+/// `ds ≥ 0` with damage history `d_hist` (see the module doc), for a point
+/// known by its damage alone: [`Softened::assumed`] (under
+/// [`Coupling::Printed`] a damaged point is taken to have been past its
+/// peak in both directions; the other options do not read it).
+/// [`joint_update`] keeps the full history and calls [`point_stress_with`].
 #[inline]
 pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStress {
+    point_stress_with(joint, dn, ds, d_hist, Softened::assumed(d_hist))
+}
+
+/// Evaluates one integration point at opening `dn` and slip magnitude
+/// `ds ≥ 0` with damage history `d_hist` and the directions that have been
+/// past their peak before, `softened` (see the module doc and
+/// [`Coupling`]).
+#[inline]
+pub fn point_stress_with(joint: &Joint, dn: Real, ds: Real, d_hist: Real, softened: Softened) -> PointStress {
     let p = &joint.params;
+    let coupling: Coupling = p.coupling;
     let ft = p.tensile_strength;
     let (dnp, dnc) = (joint.delta_np, joint.delta_nc);
     let rn = dn / dnp;
@@ -179,11 +175,19 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
     let sigma_trial = if rn < 0.0 {
         2.0 * rn * ft
     } else if rn <= 1.0 {
-        hardening(ft, rn).min(z(d_hist) * ft)
+        coupling.hardening_branch(ft, rn, z(d_hist), softened.normal)
     } else {
         z(dn_soft.max(d_hist)) * ft
     };
-    let fs = p.cohesion - sigma_trial * joint.tan_phi;
+    // Weak cohesion (c ≤ f_t tan φ): an opening that passes δnp for the
+    // first time in this evaluation went over the top of the parabola, where
+    // σ was its value at r = 1; if that reached the apex c / tan φ, f_s fell
+    // to 0 on the way and the point broke there, however long the step.
+    let over_the_apex = rn > 1.0
+        && !softened.normal
+        && p.cohesion <= ft * joint.tan_phi
+        && p.cohesion - coupling.hardening_branch(ft, 1.0, z(d_hist), false) * joint.tan_phi <= 0.0;
+    let fs = if over_the_apex { 0.0 } else { p.cohesion - sigma_trial * joint.tan_phi };
     let (dsp, dsc) = if fs > 0.0 {
         let dsp = 2.0 * fs * joint.h / p.penalty;
         (dsp, p.critical_displacement(fs, dsp, p.gf_shear))
@@ -207,26 +211,28 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
     };
     let damage = d_now.max(d_hist);
     let zd = z(damage);
+    let rs = if fs > 0.0 { ds / dsp } else { 0.0 };
+    // Past the peak: beyond δp, or (both directions) at the Mohr–Coulomb
+    // apex, `f_s ≤ 0`, which exhausts the tensile strength `c / tan φ` too.
+    let now_softened =
+        Softened { normal: softened.normal || rn > 1.0 || fs <= 0.0, shear: softened.shear || fs <= 0.0 || rs > 1.0 };
+    // Eq. 11, with the hardening branches as `coupling` says.
     let sigma = if rn < 0.0 {
         2.0 * rn * ft
     } else if rn <= 1.0 {
-        hardening(ft, rn).min(zd * ft)
+        coupling.hardening_branch(ft, rn, zd, now_softened.normal)
     } else {
         zd * ft
     };
     let tau = if fs <= 0.0 {
         0.0
+    } else if rs <= 1.0 {
+        coupling.hardening_branch(fs, rs, zd, now_softened.shear)
     } else {
-        let rs = ds / dsp;
-        if rs <= 1.0 { hardening(fs, rs).min(zd * fs) } else { zd * fs }
+        zd * fs
     };
-    let mode = if dn >= dnc {
-        FailureMode::Tensile
-    } else if fs <= 0.0 || ds >= dsc {
-        FailureMode::Shear
-    } else {
-        FailureMode::Mixed
-    };
+    // Labels: see `FailureMode`. `f_s ≤ 0` only at the Mohr–Coulomb apex.
+    let mode = if fs <= 0.0 { FailureMode::Tensile } else { FailureMode::from_contributions(dn_soft, ds_soft) };
     let broke = (d_hist < 1.0 && damage >= 1.0).then_some(mode);
     let dissipated = if damage > d_hist {
         // Along a radial path in (Dn, Ds), dDn = (Dn/D) dD and dDs = (Ds/D) dD.
@@ -237,8 +243,18 @@ pub fn point_stress(joint: &Joint, dn: Real, ds: Real, d_hist: Real) -> PointStr
     } else {
         0.0
     };
-    let stored = stored(ft, dnp, rn, zd) + if fs > 0.0 { stored(fs, dsp, ds / dsp, zd) } else { 0.0 };
-    PointStress { sigma, tau, damage, broke, dissipated, stored }
+    let stored = coupling.stored(ft, dnp, rn, zd, now_softened.normal)
+        + if fs > 0.0 { coupling.stored(fs, dsp, rs, zd, now_softened.shear) } else { 0.0 };
+    PointStress {
+        sigma,
+        tau,
+        damage,
+        broke,
+        dissipated,
+        stored,
+        softened: now_softened,
+        contributions: [dn_soft, ds_soft],
+    }
 }
 
 /// The normal stress of a point with no slip and no history (Fig. 3, the
@@ -266,8 +282,20 @@ pub struct JointOutput {
 /// each is integrated with weight `A/3` (mid-plane area) and shared among
 /// the face's nodes by the point's barycentric coordinates.
 ///
-/// A failed joint, or one whose mid-plane has collapsed, exerts no force.
-/// On failure the joint's stored energy is kept in `history.released`.
+/// A failed joint exerts no force. On failure the joint's stored energy is
+/// kept in `history.released`.
+///
+/// A joint whose mid-plane has collapsed (zero area: [`joint_kinematics`]
+/// finds no frame, so no opening or slip exists) fails at once as
+/// [`FailureMode::Collapsed`], with no force. Its `released` is 0: the
+/// stored energy is an integral over the mid-plane, whose area is now 0,
+/// and the last evaluation's value cannot be rebuilt (the history keeps
+/// each point's last opening, slip and stresses but not the area). Nothing
+/// is lost from the run's account for it: once a joint has failed the
+/// solver books all of `history.work` as fracture energy, the energy the
+/// joint held included. The work of this last step is not added (no
+/// traction can be evaluated); damage, `last` and `last_stress` keep their
+/// values from the last evaluation.
 #[inline]
 pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], with_energy: bool) -> JointOutput {
     let mut out = JointOutput { forces: [Vec3::zeros(); 6], energy: 0.0, normal_stress: 0.0, failed: None };
@@ -275,6 +303,9 @@ pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], wi
         return out;
     }
     let Some(k) = joint_kinematics(x) else {
+        history.failed = true;
+        history.released = 0.0;
+        out.failed = Some(FailureMode::Collapsed);
         return out;
     };
     let weight = k.frame.area / 3.0;
@@ -283,8 +314,9 @@ pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], wi
     let mut stored_total = 0.0;
     for (i, w) in GAUSS.iter().enumerate() {
         let ds = k.slip[i].norm();
-        let ps = point_stress(joint, k.opening[i], ds, history.damage[i]);
+        let ps = point_stress_with(joint, k.opening[i], ds, history.damage[i], history.softened[i]);
         history.damage[i] = ps.damage;
+        history.softened[i] = ps.softened;
         let [ln, lx, ly, lz] = history.last[i];
         let [sigma_last, tau_last] = history.last_stress[i];
         let slip_last = Vec3::new(lx, ly, lz);
@@ -345,6 +377,7 @@ mod tests {
             gf_tension: 50.0,
             gf_shear: 500.0,
             calibration: GfCalibration::Paper,
+            coupling: Coupling::default(),
         }
     }
 
@@ -406,6 +439,33 @@ mod tests {
         // Closing it again does not heal it.
         let closed = [base[0], base[1], base[2], base[2], base[1], base[0]];
         let again = joint_update(&j, &mut h, &closed, true);
+        assert!(again.failed.is_none() && again.forces.iter().all(|f| f.norm() == 0.0));
+    }
+
+    /// A joint whose mid-plane collapses (all six nodes on one line: zero
+    /// area, no frame) fails at once as `Collapsed` (code 4), exerts
+    /// nothing, releases no stored energy (documented on `joint_update`),
+    /// keeps its damage and work, and stays failed.
+    #[test]
+    fn a_collapsed_joint_fails_as_collapsed() {
+        let j = Joint::new(params(), 1e-3);
+        let base = [Vec3::zeros(), Vec3::new(1e-3, 0.0, 0.0), Vec3::new(0.0, 1e-3, 0.0)];
+        let d = Vec3::new(0.0, 0.0, 0.5 * j.delta_np);
+        let x = [base[0], base[1], base[2], base[2] + d, base[1] + d, base[0] + d];
+        let mut h = JointHistory::default();
+        let loaded = joint_update(&j, &mut h, &x, true);
+        assert!(loaded.energy > 0.0 && h.work > 0.0);
+        let before = h;
+        let line = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0].map(|t| Vec3::new(t * 1e-4, 0.0, 0.0));
+        assert!(joint_kinematics(&line).is_none());
+        let out = joint_update(&j, &mut h, &line, true);
+        assert_eq!(out.failed, Some(FailureMode::Collapsed));
+        assert_eq!(out.failed.unwrap().code(), 4);
+        assert!(out.forces.iter().all(|f| f.norm() == 0.0) && out.energy == 0.0);
+        assert!(h.failed && h.released == 0.0);
+        assert_eq!((h.damage, h.work, h.last), (before.damage, before.work, before.last));
+        // Restoring the geometry does not revive it, nor fail it again.
+        let again = joint_update(&j, &mut h, &x, true);
         assert!(again.failed.is_none() && again.forces.iter().all(|f| f.norm() == 0.0));
     }
 

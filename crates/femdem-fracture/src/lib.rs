@@ -15,12 +15,18 @@
 //! **Architecture invariant:** no mesh, no files, no time stepping: the
 //! caller passes positions and history and receives forces and history.
 
+mod coupling;
+mod failure;
 pub mod heterogeneity;
 mod kinematics;
 mod law;
 mod params;
 pub mod softening;
 
+pub use coupling::{Coupling, Softened};
+pub use failure::{DOMINANT_SHARE, FailureMode};
 pub use kinematics::{GAUSS, JointFrame, JointKinematics, joint_kinematics};
-pub use law::{FailureMode, Joint, JointHistory, JointOutput, PointStress, joint_update, normal_stress, point_stress};
+pub use law::{
+    Joint, JointHistory, JointOutput, PointStress, joint_update, normal_stress, point_stress, point_stress_with,
+};
 pub use params::{GfCalibration, JointError, JointParams};

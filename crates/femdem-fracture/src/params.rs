@@ -3,6 +3,8 @@
 use femdem_core::Real;
 use thiserror::Error;
 
+use crate::Coupling;
+
 /// A bad joint parameter.
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("invalid joint parameter `{name}` = {value}: {reason}")]
@@ -46,12 +48,20 @@ pub struct JointParams {
     pub gf_shear: Real,
     /// How δc follows from Gf.
     pub calibration: GfCalibration,
+    /// How the damage of Eq. 13 enters the hardening branches of Eq. 11
+    /// (default [`Coupling::Capped`]).
+    pub coupling: Coupling,
 }
 
 impl JointParams {
     /// Checks every parameter: `p0, f_t, c, G_ft, G_fs > 0`, `0 ≤ φ < 90°`,
-    /// all finite, and `c > f_t tan φ` (so that `f_s = c − σ tan φ` stays
-    /// positive up to `σ = f_t`: the tension cut-off of Eq. 5).
+    /// all finite.
+    ///
+    /// `c ≤ f_t tan φ` is accepted (the paper's polyaxial Test 1 has
+    /// `c = 0.5` MPa, `φ = 33.4°`, `f_t = 1` MPa): Eq. 5 with its tension
+    /// cut-off then caps the tensile strength at `c / tan φ`
+    /// ([`JointParams::effective_tensile_strength`]); callers that want to
+    /// warn can ask [`JointParams::cohesion_limits_tension`].
     ///
     /// # Errors
     /// The first parameter out of range, with the reason.
@@ -75,15 +85,27 @@ impl JointParams {
                 reason: "must lie in [0°, 90°)",
             });
         }
-        if self.cohesion <= self.tensile_strength * self.friction_angle.tan() {
-            return Err(JointError {
-                name: "cohesion",
-                value: self.cohesion,
-                reason: "must exceed tensile_strength × tan(friction_angle), or Eq. 5 gives no shear strength \
-                         before the tensile strength is reached (the paper's automatic tension cut-off needs it)",
-            });
-        }
         Ok(self)
+    }
+
+    /// The largest normal stress a joint can carry under pure opening,
+    /// `min(f_t, c / tan φ)` (`f_t` when `φ = 0`). Eq. 5 gives the shear
+    /// strength `f_s = c − σ tan φ`, which vanishes at the Mohr–Coulomb apex
+    /// `σ = c / tan φ`; when that lies below `f_t` the point loses all
+    /// strength there (Eq. 13: `D = 1`), on the hardening branch, before
+    /// reaching `f_t`.
+    pub fn effective_tensile_strength(&self) -> Real {
+        self.tensile_strength.min(self.cohesion / self.friction_angle.tan())
+    }
+
+    /// Whether the cohesion limits the tensile strength: `c ≤ f_t tan φ`,
+    /// so that [`JointParams::effective_tensile_strength`] is
+    /// `c / tan φ ≤ f_t`. Such a joint fails brittly in tension: at the apex
+    /// `f_s = 0` gives `D = 1` at once, before `δnp`, so the tensile
+    /// softening branch (and `G_ft`) is never used. Valid, but worth a
+    /// warning from a caller that has a terminal.
+    pub fn cohesion_limits_tension(&self) -> bool {
+        self.cohesion <= self.tensile_strength * self.friction_angle.tan()
     }
 
     /// Normal stiffness per unit area of the intact joint, `p0 / h`: the

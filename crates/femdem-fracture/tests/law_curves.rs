@@ -10,6 +10,7 @@
 //! 1. Fig. 3 curves: pure opening, pure shear, mixed mode (proptest).
 //! 2. Eq. 12: ends, flat start, monotone, area 0.386 (proptest).
 //! 3. Eq. 5: Mohr–Coulomb shear strength with the tension cut-off.
+//!
 //! Sections 4–7 (energy to failure and Gf, unloading and no healing,
 //! failure needs two points, energy along unloading and mixed paths) are in
 //! `law_energy.rs`; the restatement of the paper is in `law_reference`.
@@ -18,11 +19,14 @@
 //! (law.rs module doc), and said so where they are used:
 //! * Eq. 5 needs `σ`, which (Eq. 13) depends on the shear damage, which
 //!   needs `f_s`: the circle is cut by taking `σ` without shear damage.
-//! * One damage `D` per point caps both hardening branches at `z(D) f`; for
-//!   a single mode loaded monotonically this is Eq. 11 exactly (`D = 0` on
-//!   the hardening branch), and it makes `τ` continuous at `δs = δsp` when
-//!   the normal direction has softened (test 3), where the literal Eq. 11
-//!   would jump from `f_s` to `z(Dn) f_s`.
+//! * How the one damage `D` per point enters the hardening branches is the
+//!   joint's `Coupling`: `Capped` (the default) caps them at `z(D) f`,
+//!   `Multiplicative` scales them by `z(D)`, `Printed` leaves them as
+//!   printed. For a single mode loaded monotonically all three are Eq. 11
+//!   exactly (`D = 0` on the hardening branch); when the normal direction
+//!   has softened, `Capped` and `Multiplicative` make `τ` continuous at
+//!   `δs = δsp` (test 3), where `Printed` (the literal Eq. 11) jumps from
+//!   `f_s` to `z(Dn) f_s`. `ref_point` restates each.
 //!
 //! Parameter ranges (proptest): `E ∈ [1e9, 1e11]` Pa, `p0 ∈ [E, 10 E]`
 //! (Eq. 9), `f_t ∈ [1, 20]` MPa, `φ ∈ [10°, 50°]`, `c = f_t (tan φ + [0.2,
@@ -39,7 +43,9 @@ use law_reference::*;
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::softening;
-use femdem_fracture::{FailureMode, GfCalibration, Joint, JointHistory, joint_update, normal_stress, point_stress};
+use femdem_fracture::{
+    Coupling, FailureMode, GfCalibration, Joint, JointHistory, joint_update, normal_stress, point_stress,
+};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------
@@ -92,14 +98,16 @@ proptest! {
     /// `[2δ/δp − (δ/δp)²] f_t` up to the peak `f_t` at δp, `z(D) f_t` with
     /// `D = (δ − δp)/(δc − δp)` after it, 0 from δc on (tensile failure).
     /// The curve is also checked for Lipschitz continuity between random
-    /// pairs of openings (`|σ(x) − σ(y)| ≤ K |x − y|`, K as above).
+    /// pairs of openings (`|σ(x) − σ(y)| ≤ K |x − y|`, K as above). The
+    /// same for every `Coupling` (D = 0 on the hardening branch).
     #[test]
     fn pure_opening_follows_fig3(
         case in case_strategy(),
+        coupling in 0..3usize,
         xs in prop::collection::vec(-2.0..2.0f64, 32),
     ) {
-        let j = case.joint();
-        let p = &case.params;
+        let p = &with_coupling(case.params, COUPLINGS[coupling]);
+        let j = Joint::new(*p, case.h);
         let ft = p.tensile_strength;
         let dp = dp_ref(p, case.h, ft);
         let dc = dc_ref(p, ft, dp, p.gf_tension);
@@ -131,14 +139,15 @@ proptest! {
 
     /// Pure shear (δn = 0, so σ = 0 and `f_s = c`, Eq. 5): the same curve
     /// with `f_s`, `δsp = 2 c h / p0` (Eq. 7), `δsc` from `G_fs` (Eq. 10),
-    /// failing in shear; σ stays 0.
+    /// failing in shear; σ stays 0. Every `Coupling`.
     #[test]
     fn pure_shear_follows_fig3(
         case in case_strategy(),
+        coupling in 0..3usize,
         xs in prop::collection::vec(0.0..2.0f64, 32),
     ) {
-        let j = case.joint();
-        let p = &case.params;
+        let p = &with_coupling(case.params, COUPLINGS[coupling]);
+        let j = Joint::new(*p, case.h);
         let c = p.cohesion;
         let dp = dp_ref(p, case.h, c);
         let dc = dc_ref(p, c, dp, p.gf_shear);
@@ -167,15 +176,17 @@ proptest! {
 
     /// Mixed mode: random (δn, δs) with `δn ∈ [−3 δnp, 1.2 δnc]`,
     /// `δs ∈ [0, 1.2 δsc(c)]`; σ, τ and D as Eq. 5, 11 and 13 give them
-    /// (`ref_point`), to `LAW_TOL f`. Plus: everything finite for huge, zero
-    /// and negative openings and slips (|δ| up to 1e3 m, and +1e300 m).
+    /// (`ref_point`, each `Coupling`), to `LAW_TOL f`. Plus: everything
+    /// finite for huge, zero and negative openings and slips (|δ| up to 1e3
+    /// m, and +1e300 m).
     #[test]
     fn mixed_mode_follows_eq11_and_eq13(
         case in case_strategy(),
+        coupling in 0..3usize,
         pts in prop::collection::vec((-1.0..1.2f64, 0.0..1.2f64), 32),
     ) {
-        let j = case.joint();
-        let p = &case.params;
+        let p = &with_coupling(case.params, COUPLINGS[coupling]);
+        let j = Joint::new(*p, case.h);
         let (ft, c) = (p.tensile_strength, p.cohesion);
         let dnp = dp_ref(p, case.h, ft);
         let dnc = dc_ref(p, ft, dnp, p.gf_tension);
@@ -356,20 +367,34 @@ proptest! {
             prop_assert!(normal_stress(&j, dn) <= ft);
         }
         // Softened normal direction: the peak of τ still sits at
-        // δsp(f_s(σ)), is z(Dn) f_s, and τ is continuous across it.
-        for dn_frac in [0.2, 0.6] {
-            let dn = dnp + dn_frac * (dnc - dnp);
-            let sigma = z_ref(dn_frac) * ft;
-            prop_assert!((normal_stress(&j, dn) - sigma).abs() <= LAW_TOL * ft);
-            let fs = c - sigma * tan_phi;
-            let dsp = 2.0 * fs * case.h / p.penalty;
-            let tau = point_stress(&j, dn, dsp, 0.0).tau;
-            prop_assert!((tau - z_ref(dn_frac) * fs).abs() <= LAW_TOL * fs);
-            let eps = 1e-9 * dsp;
-            let jump = point_stress(&j, dn, dsp + eps, 0.0).tau - point_stress(&j, dn, dsp - eps, 0.0).tau;
-            let dsc = dc_ref(p, fs, dsp, p.gf_shear);
-            let k = fs * (2.0 / dsp).max(z_lipschitz() / (dsc - dsp));
-            prop_assert!(jump.abs() <= 2.0 * eps * k + 1e-12 * fs, "τ jumps by {jump} at δsp");
+        // δsp(f_s(σ)); it is z(Dn) f_s and τ is continuous across it under
+        // Capped and Multiplicative; under Printed it is f_s, and τ drops
+        // to z(Dn) f_s just past it (the printed Eq. 11).
+        for coupling in COUPLINGS {
+            let j = Joint::new(with_coupling(*p, coupling), case.h);
+            for dn_frac in [0.2, 0.6] {
+                let dn = dnp + dn_frac * (dnc - dnp);
+                let sigma = z_ref(dn_frac) * ft;
+                prop_assert!((normal_stress(&j, dn) - sigma).abs() <= LAW_TOL * ft);
+                let fs = c - sigma * tan_phi;
+                let dsp = 2.0 * fs * case.h / p.penalty;
+                // Just below δsp (by 1e-9: the parabola is then 1 − 1e-18 of
+                // f_s): exactly at δsp the crate's δsp may differ from this
+                // one by an ulp, and Printed is discontinuous there.
+                let tau = point_stress(&j, dn, dsp * (1.0 - 1e-9), 0.0).tau;
+                let zn = z_ref(dn_frac);
+                let peak = if coupling == Coupling::Printed { fs } else { zn * fs };
+                prop_assert!((tau - peak).abs() <= LAW_TOL * fs, "{coupling:?}: τ(δsp) {tau} vs {peak}");
+                let eps = 1e-9 * dsp;
+                let jump = point_stress(&j, dn, dsp + eps, 0.0).tau - point_stress(&j, dn, dsp - eps, 0.0).tau;
+                let dsc = dc_ref(p, fs, dsp, p.gf_shear);
+                let k = fs * (2.0 / dsp).max(z_lipschitz() / (dsc - dsp));
+                let expected = if coupling == Coupling::Printed { (zn - 1.0) * fs } else { 0.0 };
+                prop_assert!(
+                    (jump - expected).abs() <= 2.0 * eps * k + 1e-12 * fs,
+                    "{coupling:?}: τ jumps by {jump} at δsp, expected {expected}"
+                );
+            }
         }
     }
 }

@@ -8,14 +8,18 @@
 //! 5. Unloading/reloading below the damaged strength; no healing
 //!    (proptest).
 //! 6. Failure needs two Hammer points at zero stress; failure modes.
-//! 7. Energy along unloading and mixed-mode paths.
+//! 7. Energy along unloading and mixed-mode paths (mixed paths with
+//!    unloading for each coupling option: `law_energy_paths.rs`).
 
 mod law_reference;
 
 use law_reference::*;
 
 use femdem_core::{Real, Vec3};
-use femdem_fracture::{FailureMode, GfCalibration, Joint, JointHistory, joint_kinematics, joint_update, point_stress};
+use femdem_fracture::{
+    Coupling, FailureMode, GfCalibration, Joint, JointHistory, PointStress, Softened, joint_kinematics, joint_update,
+    point_stress, point_stress_with,
+};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------
@@ -83,8 +87,9 @@ fn trapezoid(o: &Opening, lo: usize, hi: usize) -> Real {
 
 /// Opening one joint monotonically to failure, in pure tension (side b
 /// translated along the normal) and in pure shear (along x′), for both
-/// calibrations, on a fine and a coarse element. All per unit mid-plane
-/// area.
+/// calibrations and every `Coupling` (in a pure mode loaded monotonically
+/// the options coincide: `D = 0` on the hardening branch), on a fine and a
+/// coarse element. All per unit mid-plane area.
 ///
 /// (a) The work done, `W = ∫₀^δc σ dδ` (trapezoid on the σ–δ curve read
 /// from the joint's nodal forces), equals what the joint reports as lost
@@ -110,11 +115,13 @@ fn trapezoid(o: &Opening, lo: usize, hi: usize) -> Real {
 fn energy_to_failure_matches_the_curve_and_gf() {
     const TOL: Real = 1e-4;
     println!(
-        "{:<6} {:<6} {:>8} {:>8} {:>11} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "{:<6} {:<6} {:>8} {:>8} {:>11} {:>9} {:>9} {:>9} {:>9} {:>9} coupling",
         "mode", "calib", "l (m)", "δp/δc", "W/(dis+rel)", "soft/Gf", "expect", "dis/Gf", "rel/Gf", "W/Gf"
     );
-    for calibration in [GfCalibration::Paper, GfCalibration::Exact] {
-        let p = granite(calibration);
+    for (coupling, calibration) in
+        COUPLINGS.into_iter().flat_map(|c| [(c, GfCalibration::Paper), (c, GfCalibration::Exact)])
+    {
+        let p = with_coupling(granite(calibration), coupling);
         // l = 1 mm: δp ≪ δc (δnp/δnc = 5e-4 with Paper); l = 0.4 m:
         // δnp/δnc ≈ 0.24 and δsp/δsc ≈ 0.52, a large δp correction.
         for l in [1e-3, 0.4] {
@@ -142,7 +149,7 @@ fn energy_to_failure_matches_the_curve_and_gf() {
                     GfCalibration::Exact => gf,
                 };
                 println!(
-                    "{name:<6} {:<6} {l:>8.1e} {:>8.4} {:>11.8} {:>9.6} {:>9.6} {:>9.6} {:>9.6} {:>9.6}",
+                    "{name:<6} {:<6} {l:>8.1e} {:>8.4} {:>11.8} {:>9.6} {:>9.6} {:>9.6} {:>9.6} {:>9.6} {coupling:?}",
                     format!("{calibration:?}"),
                     dp / dc,
                     work / lost,
@@ -152,7 +159,7 @@ fn energy_to_failure_matches_the_curve_and_gf() {
                     o.released / gf,
                     work / gf,
                 );
-                let ctx = format!("{name} {calibration:?} l {l}");
+                let ctx = format!("{name} {calibration:?} {coupling:?} l {l}");
                 // (a), and the joint's own work count (a backward
                 // rectangle rule: error ≤ 2 f Δδ, ≤ 1e-4 W here).
                 assert!((o.work - work).abs() <= 1e-3 * work, "{ctx}: history.work {} vs ∫σdδ {work}", o.work);
@@ -187,22 +194,30 @@ proptest! {
 
     /// One point driven along a random path of targets (fractions of δc,
     /// with returns below δp and into compression), in 8 sub-steps per leg,
-    /// purely normal, purely shear, or mixed. At every evaluation:
-    /// the damage never decreases (and stays ≤ 1); σ ≤ z(D) f_t and
-    /// τ ≤ z(D) f_s, D the damage reached so far, with `f_s ≤ c` for
+    /// purely normal, purely shear, or mixed, for each `Coupling`, carrying
+    /// the history as `joint_update` does (`point_stress_with`). At every
+    /// evaluation: the damage never decreases (and stays ≤ 1); σ ≤ z(D) f_t
+    /// and τ ≤ z(D) f_s, D the damage reached so far, with `f_s ≤ c` for
     /// δn ≥ 0 and `f_s = c − σ tan φ` with σ = 2(δn/δnp) f_t in compression
-    /// (round-off: 1e-12 f); in a pure mode, no damage grows while the
-    /// displacement stays at or below the largest reached before; once
-    /// D = 1, no tension and no shear ever again (compression, i.e.
-    /// interpenetration resistance, stays).
+    /// (round-off: 1e-12 f) — for `Printed` only in a direction that has
+    /// been past its peak (else the printed parabola, ≤ f); in a pure mode,
+    /// no damage grows while the displacement stays at or below the largest
+    /// reached before; once D = 1, no tension and no shear ever again
+    /// (compression, i.e. interpenetration resistance, stays) — for
+    /// `Printed`, in the directions that have been past their peak.
+    /// `Capped` and `Multiplicative` do not read the per-direction history:
+    /// `point_stress` (damage only) gives the same numbers (its flags are
+    /// assumed, not tracked).
     #[test]
     fn unloading_never_exceeds_damaged_strength(
         case in case_strategy(),
+        coupling in 0..3usize,
         mode in 0..3u8,
         targets in prop::collection::vec((-0.3..1.3f64, 0.0..1.3f64), 2..12),
     ) {
-        let j = case.joint();
-        let p = &case.params;
+        let coupling = COUPLINGS[coupling];
+        let p = &with_coupling(case.params, coupling);
+        let j = Joint::new(*p, case.h);
         let (ft, c) = (p.tensile_strength, p.cohesion);
         let tan_phi = p.friction_angle.tan();
         let dnp = dp_ref(p, case.h, ft);
@@ -214,6 +229,7 @@ proptest! {
             _ => (a * dnc, b * dsc),
         };
         let mut d_hist = 0.0;
+        let mut softened = Softened::default();
         let mut max_reached = 0.0f64;
         let mut at = (0.0, 0.0);
         for t in targets {
@@ -221,32 +237,45 @@ proptest! {
             for k in 1..=8 {
                 let s = k as Real / 8.0;
                 let (dn, ds) = (at.0 + (to.0 - at.0) * s, at.1 + (to.1 - at.1) * s);
-                let ps = point_stress(&j, dn, ds, d_hist);
+                let ps = point_stress_with(&j, dn, ds, d_hist, softened);
                 prop_assert!(all_finite(&ps));
+                if coupling != Coupling::Printed {
+                    let by_damage = point_stress(&j, dn, ds, d_hist);
+                    prop_assert_eq!(ps, PointStress { softened: ps.softened, ..by_damage });
+                }
                 prop_assert!(ps.damage >= d_hist && ps.damage <= 1.0, "D {} after {d_hist}", ps.damage);
+                let capped = |past_peak: bool| coupling != Coupling::Printed || past_peak;
                 let zd = z_ref(ps.damage);
-                prop_assert!(ps.sigma <= zd * ft + 1e-12 * ft, "σ {} > z(D) f_t = {}", ps.sigma, zd * ft);
+                let zn = if capped(ps.softened.normal) { zd } else { 1.0 };
+                let zs = if capped(ps.softened.shear) { zd } else { 1.0 };
+                prop_assert!(ps.sigma <= zn * ft + 1e-12 * ft, "σ {} > z(D) f_t = {}", ps.sigma, zd * ft);
                 let fs_bound = if dn < 0.0 { c - 2.0 * dn / dnp * ft * tan_phi } else { c };
                 prop_assert!(ps.tau >= 0.0);
-                prop_assert!(ps.tau <= zd * fs_bound * (1.0 + 1e-12) + 1e-12 * c, "τ {} > z(D) f_s", ps.tau);
+                prop_assert!(ps.tau <= zs * fs_bound * (1.0 + 1e-12) + 1e-12 * c, "τ {} > z(D) f_s", ps.tau);
                 let reached = match mode { 0 => dn, 1 => ds, _ => Real::NAN };
                 if mode < 2 && reached <= max_reached {
                     prop_assert!(ps.damage == d_hist, "damage grew on reloading below the envelope");
                 }
                 if d_hist >= 1.0 {
-                    prop_assert!(ps.sigma <= 0.0 && ps.tau == 0.0, "a broken point heals");
+                    prop_assert!(!capped(ps.softened.normal) || ps.sigma <= 0.0, "a broken point heals in tension");
+                    prop_assert!(!capped(ps.softened.shear) || ps.tau == 0.0, "a broken point heals in shear");
                     prop_assert!(ps.dissipated == 0.0);
                 }
+                prop_assert!(
+                    (ps.softened.normal || !softened.normal) && (ps.softened.shear || !softened.shear),
+                    "a direction forgot its peak"
+                );
                 if mode < 2 {
                     max_reached = max_reached.max(reached);
                 }
                 d_hist = ps.damage;
+                softened = ps.softened;
             }
             at = to;
         }
     }
 
-    /// A whole joint along a random path of node-pair displacements
+    /// A whole joint (each `Coupling`) along a random path of node-pair displacements
     /// (openings in [−0.3, 1.5] δnc, slips in ±δsc, each node pair its own,
     /// so the joint opens unevenly and rotates), 6 sub-steps per leg,
     /// through `joint_update`: the damage at each point and the dissipated
@@ -257,13 +286,14 @@ proptest! {
     #[test]
     fn a_joint_never_heals(
         case in case_strategy(),
+        coupling in 0..3usize,
         legs in prop::collection::vec(
             prop::collection::vec((-0.3..1.5f64, -1.0..1.0f64, -1.0..1.0f64), 3),
             2..10,
         ),
     ) {
-        let j = case.joint();
-        let p = &case.params;
+        let p = &with_coupling(case.params, COUPLINGS[coupling]);
+        let j = Joint::new(*p, case.h);
         let dnc = dc_ref(p, p.tensile_strength, dp_ref(p, case.h, p.tensile_strength), p.gf_tension);
         let dsc = dc_ref(p, p.cohesion, dp_ref(p, case.h, p.cohesion), p.gf_shear);
         let l = case.h * 3.0 / (2.0 + std::f64::consts::SQRT_2);
@@ -349,7 +379,9 @@ fn ramp(from: [Vec3; 3], to: [Vec3; 3], n: usize) -> Vec<[Vec3; 3]> {
 ///
 /// The same in-plane (slip along x, openings exactly zero): Shear. And a
 /// uniform mixed displacement with `Dn = Ds = 0.8` (neither reaches δc,
-/// but `√(Dn² + Ds²) > 1`, Eq. 13): Mixed, in one step and along a ramp.
+/// but `√(Dn² + Ds²) > 1`, Eq. 13): Mixed (`Dn² = Ds²`: neither holds the
+/// ¾ of `D²` that labels a failure tensile or shear, `FailureMode`), in one
+/// step and along a ramp.
 #[test]
 fn failure_needs_two_points_at_zero_stress() {
     let p = granite(GfCalibration::Paper);
@@ -423,30 +455,6 @@ fn failure_needs_two_points_at_zero_stress() {
 // rectangle rule, off by at most `max Δδ × total variation of σ ≤ 2 f Δδ`,
 // i.e. ≤ 1e-4 of W on these grids.
 
-/// Work per unit area `W = ∫ t · dg` along a path of uniform side-b
-/// displacements (all three node pairs alike; t the traction on side b),
-/// with the joint's history and output after each step.
-fn walk(j: &Joint, l: Real, path: &[Vec3]) -> Vec<(Real, JointHistory, Real)> {
-    let area = 0.5 * l * l;
-    let mut hist = JointHistory::default();
-    let mut w = 0.0;
-    let mut prev: Option<(Vec3, Vec3)> = None;
-    let mut out_path = Vec::with_capacity(path.len());
-    for g in path {
-        let out = joint_update(j, &mut hist, &joint_nodes(l, [*g; 3]), true);
-        let t = -out.forces[3..].iter().sum::<Vec3>() / area;
-        if let Some((g0, t0)) = prev {
-            w += 0.5 * (t + t0).dot(&(g - g0));
-        }
-        prev = Some((*g, t));
-        out_path.push((w, hist, out.energy / area));
-        if hist.failed {
-            break;
-        }
-    }
-    out_path
-}
-
 /// Load in pure tension (then, separately, pure shear) to `D ∈ {0.1, 0.5,
 /// 0.9}` on the softening branch, unload to zero opening and reload to the
 /// same point. The damage stays constant on the way down and back (checked),
@@ -458,57 +466,62 @@ fn walk(j: &Joint, l: Real, path: &[Vec3]) -> Vec<(Real, JointHistory, Real)> {
 /// energy (the hardening area `⅔ f δp`, whatever D) drops to 0: the
 /// difference, about `z(D) f (δ1 − δp)`, is energy that had been booked as
 /// fracture on the way up and comes back out of it.
+///
+/// For every `Coupling`: `Printed` unloads a direction that has been past
+/// its peak as `Capped` does; `Multiplicative` along `z(D) [2r − r²] f`.
 #[test]
 fn stored_energy_is_the_unloading_work() {
-    let p = granite(GfCalibration::Exact);
     let l = 1e-3;
     let area = 0.5 * l * l;
-    let j = Joint::new(p, mean_edge(l));
-    let dsp = dp_ref(&p, j.h, p.cohesion);
-    let dsc = dc_ref(&p, p.cohesion, dsp, p.gf_shear);
     let n = 20_000;
     let mut failures = Vec::new();
-    for (name, dir, dp, dc) in [("tension", Vec3::z(), j.delta_np, j.delta_nc), ("shear", Vec3::x(), dsp, dsc)] {
-        for d_frac in [0.1, 0.5, 0.9] {
-            let d1 = dp + d_frac * (dc - dp);
-            let up = (0..=n).map(|i| dir * (d1 * i as Real / n as Real));
-            let path: Vec<Vec3> = up.clone().chain(up.clone().rev()).chain(up).collect();
-            let states = walk(&j, l, &path);
-            assert_eq!(states.len(), path.len(), "no failure");
-            let (w1, h1, e1) = states[n];
-            let mut worst = (0.0, n);
-            for (k, (w, h, e)) in states.iter().enumerate() {
-                assert!((h.work / area - w).abs() <= 1e-3 * w1, "{name}: work {} vs ∫t·dg {w}", h.work / area);
-                if k < n {
-                    continue;
+    for coupling in COUPLINGS {
+        let p = with_coupling(granite(GfCalibration::Exact), coupling);
+        let j = Joint::new(p, mean_edge(l));
+        let dsp = dp_ref(&p, j.h, p.cohesion);
+        let dsc = dc_ref(&p, p.cohesion, dsp, p.gf_shear);
+        for (name, dir, dp, dc) in [("tension", Vec3::z(), j.delta_np, j.delta_nc), ("shear", Vec3::x(), dsp, dsc)] {
+            for d_frac in [0.1, 0.5, 0.9] {
+                let d1 = dp + d_frac * (dc - dp);
+                let up = (0..=n).map(|i| dir * (d1 * i as Real / n as Real));
+                let path: Vec<Vec3> = up.clone().chain(up.clone().rev()).chain(up).collect();
+                let states = walk(&j, l, &path);
+                assert_eq!(states.len(), path.len(), "no failure");
+                let (w1, h1, e1) = states[n];
+                let mut worst = (0.0, n);
+                for (k, (w, h, e)) in states.iter().enumerate() {
+                    assert!((h.work / area - w).abs() <= 1e-3 * w1, "{name}: work {} vs ∫t·dg {w}", h.work / area);
+                    if k < n {
+                        continue;
+                    }
+                    assert_eq!(h.damage, h1.damage, "damage constant while unloading");
+                    // Work given back since δ1 vs the drop of stored energy.
+                    let err = ((w1 - w) - (e1 - e)).abs() / w1;
+                    if err > worst.0 {
+                        worst = (err, k);
+                    }
                 }
-                assert_eq!(h.damage, h1.damage, "damage constant while unloading");
-                // Work given back since δ1 vs the drop of stored energy.
-                let err = ((w1 - w) - (e1 - e)).abs() / w1;
-                if err > worst.0 {
-                    worst = (err, k);
-                }
-            }
-            let (_, k) = worst;
-            let (w, h, e) = states[k];
-            println!(
-                "{name} D {d_frac}: at δ/δ1 {:.2} the joint gave back {:.4} J/m² while its stored energy fell by \
+                let (_, k) = worst;
+                let (w, h, e) = states[k];
+                println!(
+                    "{coupling:?} {name} D {d_frac}: at δ/δ1 {:.2} the joint gave back {:.4} J/m² while its stored energy fell by \
                  {:.4} J/m²; fracture energy (work − stored) {:.4} → {:.4} J/m²",
-                path[k].norm() / d1,
-                w1 - w,
-                e1 - e,
-                (h1.work / area) - e1,
-                (h.work / area) - e,
-            );
-            if worst.0 > 1e-3 {
-                failures.push(format!("{name} D {d_frac}: {:.3e} of W", worst.0));
+                    path[k].norm() / d1,
+                    w1 - w,
+                    e1 - e,
+                    (h1.work / area) - e1,
+                    (h.work / area) - e,
+                );
+                if worst.0 > 1e-3 {
+                    failures.push(format!("{coupling:?} {name} D {d_frac}: {:.3e} of W", worst.0));
+                }
             }
         }
     }
     assert!(failures.is_empty(), "work at constant damage ≠ change of stored energy: {failures:?}");
 }
 
-/// Proportional mixed loading to failure: side b moves along
+/// Proportional mixed loading to failure (each `Coupling`): side b moves along
 /// `(b δsc, 0, a δnc)` until the joint fails (Mixed). `history.work`
 /// must be the work done (to 1e-3, the rectangle rule of the joint's own
 /// count). The softening increment `[Sn wn + Ss ws] (Z(D) − Z(D_hist))`
@@ -519,8 +532,10 @@ fn stored_energy_is_the_unloading_work() {
 #[test]
 fn energy_lost_at_mixed_mode_failure_is_the_work() {
     let mut failures = Vec::new();
-    for calibration in [GfCalibration::Paper, GfCalibration::Exact] {
-        let p = granite(calibration);
+    for (coupling, calibration) in
+        COUPLINGS.into_iter().flat_map(|c| [(c, GfCalibration::Paper), (c, GfCalibration::Exact)])
+    {
+        let p = with_coupling(granite(calibration), coupling);
         let l = 1e-3;
         let area = 0.5 * l * l;
         let j = Joint::new(p, mean_edge(l));
@@ -533,10 +548,10 @@ fn energy_lost_at_mixed_mode_failure_is_the_work() {
             let (w, h, _) = *states.last().unwrap();
             assert!(h.failed, "fails by 1.5× the ray");
             let work = h.work / area;
-            assert!((work - w).abs() <= 1e-3 * w, "{calibration:?} ({a}, {b}): work {work} vs ∫t·dg {w}");
+            assert!((work - w).abs() <= 1e-3 * w, "{coupling:?} {calibration:?} ({a}, {b}): work {work} vs ∫t·dg {w}");
             let lost = (h.dissipated + h.released) / area;
             println!(
-                "{calibration:?} (a, b) = ({a}, {b}): failed at t = {:.4}: ∫t·dg {w:.4}, history.work {work:.4}, \
+                "{coupling:?} {calibration:?} (a, b) = ({a}, {b}): failed at t = {:.4}: ∫t·dg {w:.4}, history.work {work:.4}, \
                  dissipated + released {lost:.4} J/m² ({:+.1}%)",
                 1.5 * (states.len() - 1) as Real / n as Real,
                 100.0 * (lost - w) / w
@@ -551,7 +566,7 @@ fn energy_lost_at_mixed_mode_failure_is_the_work() {
             let dsp_max = 2.0 * p.cohesion * j.h / p.penalty;
             let hardening_max = 2.0 / 3.0 * (p.tensile_strength * j.delta_np + p.cohesion * dsp_max);
             if lost > 1.05 * w || lost < 0.95 * w - hardening_max {
-                failures.push(format!("{calibration:?} ({a}, {b}): {:+.3e}", (lost - w) / w));
+                failures.push(format!("{coupling:?} {calibration:?} ({a}, {b}): {:+.3e}", (lost - w) / w));
             }
         }
     }

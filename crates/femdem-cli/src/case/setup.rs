@@ -97,6 +97,7 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
                 gf_tension: gf,
                 gf_shear: s.fracture_energy_shear.unwrap_or(gf),
                 calibration,
+                coupling: femdem_fracture::Coupling::default(),
             };
             Some(params.validate().map_err(|e| at(e.to_string()))?)
         } else {

@@ -2,8 +2,8 @@
 //! restated independently of the crate's code for `law_curves.rs` and
 //! `law_energy.rs`: Eq. 12 (`z_ref`) and its area (`area_ref`, composite
 //! Simpson), Eq. 6–7 (`dp_ref`), Eq. 10 (`dc_ref`), Eq. 11 and Eq. 13
-//! (`ref_point`), the proptest parameter ranges (`case_strategy`) and the
-//! geometry of a test joint.
+//! (`ref_point`), the proptest parameter ranges (`case_strategy`), the
+//! geometry of a test joint, and a uniform walk of one (`walk`).
 //!
 //! Parameter ranges, and the two choices the paper leaves open: see the
 //! header of `law_curves.rs`.
@@ -12,7 +12,7 @@
 use std::sync::LazyLock;
 
 use femdem_core::{Real, Vec3};
-use femdem_fracture::{GfCalibration, Joint, JointParams};
+use femdem_fracture::{Coupling, GfCalibration, Joint, JointHistory, JointParams, joint_update};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------
@@ -98,7 +98,8 @@ pub fn soft(d: Real, dp: Real, dc: Real) -> Real {
 }
 
 /// The reference point law for a fresh point (no history): `(σ, τ, D, f_s)`
-/// at opening `dn` and slip magnitude `ds ≥ 0` (Eq. 5–7, 10, 11, 13).
+/// at opening `dn` and slip magnitude `ds ≥ 0` (Eq. 5–7, 10, 11, 13), for
+/// the joint's coupling option (`hardening_ref`).
 /// Assumes `f_s > 0` (true for the parameter ranges used).
 pub fn ref_point(j: &Joint, dn: Real, ds: Real) -> (Real, Real, Real, Real) {
     let p = &j.params;
@@ -132,12 +133,32 @@ pub fn ref_point(j: &Joint, dn: Real, ds: Real) -> (Real, Real, Real, Real) {
     let sigma = if dn < 0.0 {
         2.0 * dn / dnp * ft
     } else if dn <= dnp {
-        hard(ft, dn / dnp).min(zd * ft)
+        hardening_ref(p.coupling, ft, dn / dnp, zd)
     } else {
         zd * ft
     };
-    let tau = if ds <= dsp { hard(fs, ds / dsp).min(zd * fs) } else { zd * fs };
+    let tau = if ds <= dsp { hardening_ref(p.coupling, fs, ds / dsp, zd) } else { zd * fs };
     (sigma, tau, d, fs)
+}
+
+/// The hardening branch of Eq. 11 (`0 ≤ r ≤ 1`) of a fresh point (one that
+/// has never been past its peak) with damage factor `zd`, as each
+/// [`Coupling`] option defines it: as printed `[2r − r²] f`; times `z(D)`;
+/// capped at `z(D) f`.
+pub fn hardening_ref(coupling: Coupling, f: Real, r: Real, zd: Real) -> Real {
+    match coupling {
+        Coupling::Printed => hard(f, r),
+        Coupling::Multiplicative => zd * hard(f, r),
+        Coupling::Capped => hard(f, r).min(zd * f),
+    }
+}
+
+/// The three coupling options.
+pub const COUPLINGS: [Coupling; 3] = [Coupling::Printed, Coupling::Multiplicative, Coupling::Capped];
+
+/// `p` with coupling `c`.
+pub fn with_coupling(p: JointParams, c: Coupling) -> JointParams {
+    JointParams { coupling: c, ..p }
 }
 
 // ---------------------------------------------------------------------------
@@ -186,6 +207,7 @@ pub fn case_strategy() -> impl Strategy<Value = Case> {
                     gf_tension: gft,
                     gf_shear: gfs,
                     calibration: if exact { GfCalibration::Exact } else { GfCalibration::Paper },
+                    coupling: Coupling::default(),
                 },
                 h,
             }
@@ -203,6 +225,7 @@ pub fn granite(calibration: GfCalibration) -> JointParams {
         gf_tension: 50.0,
         gf_shear: 500.0,
         calibration,
+        coupling: Coupling::default(),
     }
 }
 
@@ -225,4 +248,28 @@ pub fn all_finite(ps: &femdem_fracture::PointStress) -> bool {
         && ps.damage.is_finite()
         && ps.dissipated.is_finite()
         && ps.stored.is_finite()
+}
+
+/// Work per unit area `W = ∫ t · dg` along a path of uniform side-b
+/// displacements (all three node pairs alike; t the traction on side b),
+/// with the joint's history and output after each step.
+pub fn walk(j: &Joint, l: Real, path: &[Vec3]) -> Vec<(Real, JointHistory, Real)> {
+    let area = 0.5 * l * l;
+    let mut hist = JointHistory::default();
+    let mut w = 0.0;
+    let mut prev: Option<(Vec3, Vec3)> = None;
+    let mut out_path = Vec::with_capacity(path.len());
+    for g in path {
+        let out = joint_update(j, &mut hist, &joint_nodes(l, [*g; 3]), true);
+        let t = -out.forces[3..].iter().sum::<Vec3>() / area;
+        if let Some((g0, t0)) = prev {
+            w += 0.5 * (t + t0).dot(&(g - g0));
+        }
+        prev = Some((*g, t));
+        out_path.push((w, hist, out.energy / area));
+        if hist.failed {
+            break;
+        }
+    }
+    out_path
 }

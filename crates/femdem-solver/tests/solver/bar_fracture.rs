@@ -58,6 +58,7 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
         gf_tension: GF,
         gf_shear: GF,
         calibration,
+        coupling: femdem_fracture::Coupling::default(),
     };
     let viscosity = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 0.1;
     let behaviour =

@@ -28,6 +28,7 @@ pub fn joints(penalty: f64) -> JointParams {
         gf_tension: 50.0,
         gf_shear: 50.0,
         calibration: femdem_fracture::GfCalibration::Paper,
+        coupling: femdem_fracture::Coupling::default(),
     }
 }
 

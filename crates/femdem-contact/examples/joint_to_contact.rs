@@ -22,7 +22,7 @@
 use femdem_contact::{Nbs, Pair, tet_tet_forces};
 use femdem_core::Vec3;
 use femdem_core::tet::{centroid, signed_volume};
-use femdem_fracture::{FailureMode, GfCalibration, Joint, JointHistory, JointParams, joint_update};
+use femdem_fracture::{Coupling, FailureMode, GfCalibration, Joint, JointHistory, JointParams, joint_update};
 
 /// Edge of the tets' right-angle corner, m.
 const H: f64 = 0.01;
@@ -48,6 +48,7 @@ fn joint_params() -> JointParams {
         gf_tension: 50.0,
         gf_shear: 50.0,
         calibration: GfCalibration::Paper,
+        coupling: Coupling::Capped,
     }
     .validate()
     .expect("the example's joint parameters are valid")

@@ -3,7 +3,7 @@
 
 use femdem_core::Vec3;
 use femdem_fracture::heterogeneity::Distribution;
-use femdem_fracture::{GfCalibration, JointParams};
+use femdem_fracture::{Coupling, GfCalibration, JointParams};
 use femdem_material::{ElasticParams, Law};
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
@@ -88,6 +88,14 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
                     return Err(at(format!("gf_calibration `{other}` is not `paper` or `exact`")));
                 }
             };
+            let coupling = match s.joint_coupling.as_deref() {
+                None | Some("capped") => Coupling::Capped,
+                Some("printed") => Coupling::Printed,
+                Some("multiplicative") => Coupling::Multiplicative,
+                Some(other) => {
+                    return Err(at(format!("joint_coupling `{other}` is not `capped`, `printed` or `multiplicative`")));
+                }
+            };
             let gf = need(s.fracture_energy, "fracture_energy")?;
             let params = JointParams {
                 penalty: s.penalty.unwrap_or(DEFAULT_PENALTY_FACTOR * s.young),
@@ -97,9 +105,19 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
                 gf_tension: gf,
                 gf_shear: s.fracture_energy_shear.unwrap_or(gf),
                 calibration,
-                coupling: femdem_fracture::Coupling::default(),
+                coupling,
             };
-            Some(params.validate().map_err(|e| at(e.to_string()))?)
+            let params = params.validate().map_err(|e| at(e.to_string()))?;
+            if params.cohesion_limits_tension() {
+                eprintln!(
+                    "warning: {}: cohesion {} Pa ≤ tensile_strength × tan(friction_angle): Eq. 5's tension cut-off \
+                     caps the tensile strength at c / tan φ = {:.6e} Pa",
+                    at(format!("materials, region `{}`", s.region)),
+                    params.cohesion,
+                    params.effective_tensile_strength()
+                );
+            }
+            Some(params)
         } else {
             None
         };

@@ -58,6 +58,7 @@ impl Output {
             "broken_tensile",
             "broken_shear",
             "broken_mixed",
+            "broken_collapsed",
         ]
         .iter()
         .map(|s| s.to_string())
@@ -73,16 +74,15 @@ impl Output {
         }
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
-        let failures = HistoryWriter::create(
-            &dir.join("failures.csv"),
-            &["time", "joint", "x", "y", "z", "area", "mode"],
-        )?;
+        let failures =
+            HistoryWriter::create(&dir.join("failures.csv"), &["time", "joint", "x", "y", "z", "area", "mode"])?;
         Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
     }
 
     /// Appends the joints that failed in the step of record `r` to
     /// `failures.csv`: time (s), joint index, mid-plane centroid (m), area
-    /// (m²), mode code (1 tensile, 2 shear, 3 mixed).
+    /// (m²), mode code (1 tensile, 2 shear, 3 mixed, 4 collapsed; see
+    /// `femdem_fracture::FailureMode`).
     pub fn failure_rows(&mut self, solver: &Solver, r: &StepRecord) -> Result<()> {
         for f in &solver.failures()[r.new_failures.clone()] {
             let c = f.centroid;
@@ -109,6 +109,7 @@ impl Output {
             r.failures.tensile as f64,
             r.failures.shear as f64,
             r.failures.mixed as f64,
+            r.failures.collapsed as f64,
         ];
         for (f, u) in r.drive_forces.iter().zip(&r.drive_displacements) {
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);
@@ -180,7 +181,7 @@ impl Output {
     /// Writes the fracture surface of time `t`: every failed joint's face
     /// (side `N1 N2 N3`, at positions `x_n`) and every pre-existing fracture
     /// face, as triangles with cell data `mode` (0 pre-existing, 1 tensile,
-    /// 2 shear, 3 mixed), `failure_time` (s; −1 for pre-existing) and
+    /// 2 shear, 3 mixed, 4 collapsed), `failure_time` (s; −1 for pre-existing) and
     /// `pre_existing` (1 or 0).
     pub fn fracture_frame(&mut self, solver: &Solver, t: f64) -> Result<()> {
         let at = |n: u32| -> [f64; 3] { solver.recorded_position(n as usize).into() };

@@ -10,12 +10,14 @@ use crate::state::Energies;
 /// Joint failures so far, by mode.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FailureCounts {
-    /// Failed by opening.
+    /// Failed by opening (see `femdem_fracture::FailureMode`).
     pub tensile: usize,
     /// Failed by slip.
     pub shear: usize,
-    /// Failed by the combined damage of Eq. 13.
+    /// Failed with both directions contributing (Eq. 13's combined damage).
     pub mixed: usize,
+    /// Failed because the mid-plane collapsed.
+    pub collapsed: usize,
 }
 
 impl FailureCounts {
@@ -25,12 +27,13 @@ impl FailureCounts {
             FailureMode::Tensile => self.tensile += 1,
             FailureMode::Shear => self.shear += 1,
             FailureMode::Mixed => self.mixed += 1,
+            FailureMode::Collapsed => self.collapsed += 1,
         }
     }
 
     /// All failures.
     pub fn total(&self) -> usize {
-        self.tensile + self.shear + self.mixed
+        self.tensile + self.shear + self.mixed + self.collapsed
     }
 }
 

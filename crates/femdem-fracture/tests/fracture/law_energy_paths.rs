@@ -3,9 +3,7 @@
 //! and the `walk` helper are in `law_reference`, the other energy tests in
 //! `law_energy.rs`).
 
-mod law_reference;
-
-use law_reference::*;
+use crate::law_reference::*;
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::{Coupling, GfCalibration, Joint};

@@ -37,9 +37,7 @@
 //! zone, `h ≤ 3 G_f p0 / (4 f²)`. (Where it does not, the crate clamps δc to
 //! δp: `degenerate_critical_displacement_fails_at_the_peak`.)
 
-mod law_reference;
-
-use law_reference::*;
+use crate::law_reference::*;
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::softening;

@@ -11,9 +11,7 @@
 //! 7. Energy along unloading and mixed-mode paths (mixed paths with
 //!    unloading for each coupling option: `law_energy_paths.rs`).
 
-mod law_reference;
-
-use law_reference::*;
+use crate::law_reference::*;
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::{

@@ -27,9 +27,7 @@
 //! agrees with Eq. 12 to 1e-15 (law_curves.rs); every expected value is a
 //! product of at most four such numbers: 1e-10 relative.
 
-mod law_reference;
-
-use law_reference::{COUPLINGS, joint_nodes};
+use crate::law_reference::{COUPLINGS, joint_nodes};
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::{

@@ -5,9 +5,7 @@
 //! `f64::to_bits` of every number it returns, at random openings, slips and
 //! damage histories over the proptest parameter ranges of `law_curves.rs`.
 
-mod law_reference;
-
-use law_reference::{case_strategy, dc_ref, dp_ref};
+use crate::law_reference::{case_strategy, dc_ref, dp_ref};
 
 use femdem_core::Real;
 use femdem_fracture::softening::{z, z_integral};

@@ -64,26 +64,40 @@ impl Distribution {
     }
 }
 
+/// A distribution parameter out of range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{parameter} must be {rule}, got {value}")]
+pub struct DistributionError {
+    /// The parameter, as a case file names it (`modulus`, `cov`).
+    pub parameter: &'static str,
+    /// The value given.
+    pub value: Real,
+    /// The range it must lie in.
+    pub rule: &'static str,
+}
+
 /// `n` strength factors of mean 1 drawn from `dist` with `seed`.
 ///
 /// # Errors
-/// A message when the distribution's parameter is out of range.
-pub fn strength_factors(n: usize, dist: Distribution, seed: u64) -> Result<Vec<Real>, String> {
+/// [`DistributionError`] when the distribution's parameter is out of range.
+pub fn strength_factors(n: usize, dist: Distribution, seed: u64) -> Result<Vec<Real>, DistributionError> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     match dist {
         Distribution::Weibull { modulus } => {
+            let bad = DistributionError { parameter: "modulus", value: modulus, rule: "finite and > 0" };
             if !(modulus.is_finite() && modulus > 0.0) {
-                return Err(format!("Weibull modulus must be > 0, got {modulus}"));
+                return Err(bad);
             }
             let scale = 1.0 / libm::tgamma(1.0 + 1.0 / modulus);
-            let w = Weibull::new(scale, modulus).map_err(|e| e.to_string())?;
+            let w = Weibull::new(scale, modulus).map_err(|_| bad)?;
             Ok((0..n).map(|_| w.sample(&mut rng)).collect())
         }
         Distribution::Normal { cov } => {
+            let bad = DistributionError { parameter: "cov", value: cov, rule: "finite and ≥ 0" };
             if !(cov.is_finite() && cov >= 0.0) {
-                return Err(format!("coefficient of variation must be ≥ 0, got {cov}"));
+                return Err(bad);
             }
-            let d = Normal::new(1.0, cov).map_err(|e| e.to_string())?;
+            let d = Normal::new(1.0, cov).map_err(|_| bad)?;
             Ok((0..n)
                 .map(|_| {
                     loop {

@@ -42,7 +42,7 @@ pub enum SolverError {
     UnbreakableJoint(usize),
     /// A bad strength-heterogeneity parameter.
     #[error("heterogeneity: {0}")]
-    Heterogeneity(String),
+    Heterogeneity(#[from] femdem_fracture::heterogeneity::DistributionError),
     /// A velocity component claimed by two constraints.
     #[error("node {node} component {component} is prescribed twice ({by})")]
     PrescribedTwice {

@@ -49,7 +49,7 @@ pub struct JointParams {
     /// How δc follows from Gf.
     pub calibration: GfCalibration,
     /// How the damage of Eq. 13 enters the hardening branches of Eq. 11
-    /// (default [`Coupling::Capped`]).
+    /// (default [`Coupling::Printed`], Eq. 11 as printed).
     pub coupling: Coupling,
 }
 

@@ -74,10 +74,10 @@ pub struct MaterialSpec {
     /// `"paper"` (δc = 3 Gf / f, Eq. 10; default) or `"exact"` (δc set so the
     /// softening branch dissipates exactly Gf).
     pub gf_calibration: Option<String>,
-    /// How damage acts on the hardening branches of Eq. 11: `"capped"`
-    /// (default: `min(hardening, z(D) f)`), `"printed"` (Eq. 11 as printed:
-    /// no `z` before the peak), `"multiplicative"` (`z(D) × hardening`, as in
-    /// Munjiza's Y code). See `femdem_fracture::Coupling`.
+    /// How damage acts on the hardening branches of Eq. 11: `"printed"`
+    /// (default: Eq. 11 as printed, no `z` before the peak), `"capped"`
+    /// (`min(hardening, z(D) f)`), `"multiplicative"` (`z(D) × hardening`,
+    /// as in Munjiza's Y code). See `femdem_fracture::Coupling`.
     pub joint_coupling: Option<String>,
 }
 

@@ -89,8 +89,8 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
                 }
             };
             let coupling = match s.joint_coupling.as_deref() {
-                None | Some("capped") => Coupling::Capped,
-                Some("printed") => Coupling::Printed,
+                Some("capped") => Coupling::Capped,
+                None | Some("printed") => Coupling::Printed,
                 Some("multiplicative") => Coupling::Multiplicative,
                 Some(other) => {
                     return Err(at(format!("joint_coupling `{other}` is not `capped`, `printed` or `multiplicative`")));

@@ -6,6 +6,7 @@ mod common;
 mod bar_fracture;
 mod brazilian_hondros;
 mod contact;
+mod contact_activation;
 mod contact_detection;
 mod contact_pressed;
 mod contact_step;

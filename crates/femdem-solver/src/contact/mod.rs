@@ -1,6 +1,6 @@
 //! The solver's contact pass (reference paper §2.3): which tets may touch,
 //! NBS detection among them, and the tet–tet potential forces (Eq. 17) with
-//! Coulomb friction and the Eq. 18 ramp.
+//! Coulomb friction at the contact centre and the Eq. 18 ramp.
 //!
 //! A scene pays only for what it uses: with contact off nothing here runs;
 //! with it on, only *contactable* tets are searched — the tets of rigid
@@ -46,6 +46,12 @@
 //! candidate pairs are evaluated in parallel, and their forces are summed
 //! in ascending pair order, so results depend neither on the thread count
 //! nor on the buffer.
+//!
+//! Each pair's friction acts at its contact centre, the point of the
+//! overlap where its normal force acts: the slip is the relative velocity
+//! there and the force goes to each tet's nodes by the centre's barycentric
+//! coordinates (`pair::evaluate`), so it has the right moment and slows a
+//! spinning body.
 
 mod pair;
 mod settings;
@@ -433,7 +439,7 @@ impl Contact {
                         self.touched.push(n as u32);
                     }
                     self.force[n] += r.normal[side][k];
-                    self.friction_force[n] += r.friction * (0.25 * sign);
+                    self.friction_force[n] += r.friction * (r.weights[side][k] * sign);
                 }
             }
         }

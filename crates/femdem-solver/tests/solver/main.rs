@@ -8,6 +8,7 @@ mod brazilian_hondros;
 mod contact;
 mod contact_activation;
 mod contact_detection;
+mod contact_friction;
 mod contact_pressed;
 mod contact_step;
 mod determinism;

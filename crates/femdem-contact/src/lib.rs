@@ -12,7 +12,8 @@
 //!   buffers are kept between calls.
 //! - [`tet_tet_forces`] (`potential.rs`): the normal force of the
 //!   penalty-function potential contact between two tets (Eq. 17), on their
-//!   eight nodes.
+//!   eight nodes; [`tet_tet_contact`] also returns the force-weighted
+//!   contact centre where it acts (for friction).
 //!
 //! What needs history or a mesh — which pairs are excluded (still bonded by
 //! a joint, sharing a node), the activation on fracture (Eq. 14–16), the
@@ -100,4 +101,4 @@ mod nbs;
 mod potential;
 
 pub use nbs::{Nbs, Pair};
-pub use potential::tet_tet_forces;
+pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};

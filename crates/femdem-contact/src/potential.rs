@@ -21,6 +21,13 @@
 //! coordinates in the face, and, opposite, on the other tet's four nodes by
 //! `P`'s barycentric coordinates in that tet. Both act at the same point, so
 //! linear and angular momentum are conserved exactly.
+//!
+//! The pair's *contact centre* ([`TetTetContact::centre`]) is the mean of
+//! the pieces' centroids weighted by the magnitudes of their forces,
+//! `c = Σ |F_k| P_k / Σ |F_k|`: where the normal force acts, for a solver
+//! to apply friction there. Every `P_k` lies in both tets (on one's
+//! boundary, inside the other), and so does `c`, a convex combination of
+//! points of the convex set `A ∩ B`.
 
 use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
@@ -98,8 +105,16 @@ impl Barycentric {
 }
 
 /// Adds to `fa` (on the nodes of `a`) and `fb` (on the nodes of `b`) the
-/// forces of `a`'s faces penetrating `b`'s potential.
-fn one_way(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real, fa: &mut [Vec3; 4], fb: &mut [Vec3; 4]) {
+/// forces of `a`'s faces penetrating `b`'s potential, and to `centre` the
+/// pieces' `Σ |F_k| P_k` and `Σ |F_k|`.
+fn one_way(
+    a: &[Vec3; 4],
+    b: &[Vec3; 4],
+    penalty: Real,
+    fa: &mut [Vec3; 4],
+    fb: &mut [Vec3; 4],
+    centre: &mut (Vec3, Real),
+) {
     let Some(bary) = Barycentric::new(b) else {
         return;
     };
@@ -138,7 +153,10 @@ fn one_way(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real, fa: &mut [Vec3; 4], fb: 
             }
             let lb = bary.at(&centroid);
             let phi = 4.0 * lb[i].max(0.0);
-            let force = n * (-penalty * area * phi);
+            let magnitude = penalty * area * phi;
+            let force = n * -magnitude;
+            centre.0 += centroid * magnitude;
+            centre.1 += magnitude;
             // On a's face nodes, by the centroid's coordinates in the face.
             let w1 = (centroid - p0).cross(&(p2 - p0)).dot(&cross) / (twice_area * twice_area);
             let w2 = (p1 - p0).cross(&(centroid - p0)).dot(&cross) / (twice_area * twice_area);
@@ -153,13 +171,37 @@ fn one_way(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real, fa: &mut [Vec3; 4], fb: 
     }
 }
 
+/// The contact between two tets: the forces on each one's nodes and the
+/// point where they act.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetTetContact {
+    /// Forces on `a`'s four nodes, N.
+    pub on_a: [Vec3; 4],
+    /// Forces on `b`'s four nodes, N (their sum is minus that on `a`'s).
+    pub on_b: [Vec3; 4],
+    /// The contact centre `Σ |F_k| P_k / Σ |F_k|` over the clipped pieces
+    /// (see the module documentation): a point of `A ∩ B`. `None` when no
+    /// piece carries a force (then all the forces are zero).
+    pub centre: Option<Vec3>,
+}
+
+/// The contact between tets `a` and `b` (node positions, positive
+/// orientation) for penalty `penalty` (Pa): the forces on their nodes and
+/// the contact centre. Zero forces and no centre when they do not overlap.
+pub fn tet_tet_contact(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> TetTetContact {
+    let mut fa = [Vec3::zeros(); 4];
+    let mut fb = [Vec3::zeros(); 4];
+    let mut centre = (Vec3::zeros(), 0.0);
+    one_way(a, b, penalty, &mut fa, &mut fb, &mut centre);
+    one_way(b, a, penalty, &mut fb, &mut fa, &mut centre);
+    let (moment, weight) = centre;
+    TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }
+}
+
 /// The contact forces between tets `a` and `b` (node positions, positive
 /// orientation) for penalty `penalty` (Pa): returns the forces on `a`'s and
 /// on `b`'s four nodes. Zero when they do not overlap.
 pub fn tet_tet_forces(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> ([Vec3; 4], [Vec3; 4]) {
-    let mut fa = [Vec3::zeros(); 4];
-    let mut fb = [Vec3::zeros(); 4];
-    one_way(a, b, penalty, &mut fa, &mut fb);
-    one_way(b, a, penalty, &mut fb, &mut fa);
-    (fa, fb)
+    let c = tet_tet_contact(a, b, penalty);
+    (c.on_a, c.on_b)
 }

@@ -9,8 +9,11 @@
 //!   exact up to round-off, checked to 1e-12 of the force scale);
 //! * the force does not depend on which tet is called the contactor (both
 //!   one-way passes are summed), to round-off;
+//! * the contact centre (where friction is to act) lies in both tets (its
+//!   barycentric coordinates in each are ≥ 0, to round-off) and is the same
+//!   whichever tet is the contactor; apart, there is none;
 
-use femdem_contact::tet_tet_forces;
+use femdem_contact::{tet_tet_contact, tet_tet_forces};
 use femdem_core::Vec3;
 use proptest::prelude::*;
 
@@ -38,6 +41,14 @@ fn apart_there_is_no_force() {
     let b = regular(Vec3::new(3.0, 0.0, 0.0), 1.0);
     let (fa, fb) = tet_tet_forces(&a, &b, 1e9);
     assert!(fa.iter().chain(&fb).all(|f| f.norm() == 0.0));
+    assert_eq!(tet_tet_contact(&a, &b, 1e9).centre, None);
+}
+
+/// Barycentric coordinates of `q` in tet `t`.
+fn barycentric(t: &[Vec3; 4], q: &Vec3) -> [f64; 4] {
+    let m = femdem_core::Mat3::from_columns(&[t[1] - t[0], t[2] - t[0], t[3] - t[0]]).try_inverse().unwrap();
+    let l = m * (q - t[0]);
+    [1.0 - l.x - l.y - l.z, l.x, l.y, l.z]
 }
 
 /// Two regular tets face to face: `b` is `a` reflected through its centre
@@ -92,6 +103,13 @@ proptest! {
             prop_assert!((ga[k] - fa[k]).norm() <= 1e-12 * scale);
             prop_assert!((gb[k] - fb[k]).norm() <= 1e-12 * scale);
         }
+        let centre = tet_tet_contact(&a, &b, 1e9).centre.unwrap();
+        for t in [&a, &b] {
+            let l = barycentric(t, &centre);
+            prop_assert!(l.iter().all(|&x| x >= -1e-12), "centre outside a tet: {l:?}");
+        }
+        let swapped = tet_tet_contact(&b, &a, 1e9).centre.unwrap();
+        prop_assert!((swapped - centre).norm() <= 1e-12, "centre {centre} vs {swapped}");
     }
 }
 

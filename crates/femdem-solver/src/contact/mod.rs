@@ -1,29 +1,61 @@
 //! The solver's contact pass (reference paper §2.3): which tets may touch,
 //! NBS detection among them, and the tet–tet potential forces (Eq. 17) with
-//! Coulomb friction and the Eq. 18 ramp.
+//! Coulomb friction at the contact centre and the Eq. 18 ramp.
 //!
 //! A scene pays only for what it uses: with contact off nothing here runs;
 //! with it on, only *contactable* tets are searched — the tets of rigid
 //! regions, the tets on the outer surface of each body (when surface contact
-//! is asked for), the tets on pre-existing fractures, and the two tets of
-//! every joint that fails (added as it fails, Eq. 14). Pairs still bonded by
-//! an active joint, sharing a node (neighbours in a continuous region), or
-//! sharing an original vertex while not both activated by a fracture
-//! (neighbours in an intact body, which would otherwise push on each other
-//! across their common edge; this stands in for the node groups G1–G6 of
-//! Eq. 15–16) are excluded, as are pairs of rigid tets.
+//! is asked for), and, for every failed joint or pre-existing fracture face,
+//! the node groups G1–G6 of Eq. 15: every tet that has one of the face's
+//! three original vertices (a joint's six nodes come from three vertices;
+//! "sharing a node" is sharing an original vertex, `Model::origin`). Those
+//! vertices become *cracked*.
+//!
+//! Eq. 16 searches contact within and between these groups, "excluding
+//! couples that still have active joint elements between them". Here two
+//! contactable tets may touch unless
+//!
+//! * both are rigid, or they share a node (neighbours in an unjointed
+//!   region), or an active joint joins them (face neighbours);
+//! * they share an original vertex and no shared vertex separates them:
+//!   around each vertex `v` they share, they are linked by a chain of tets
+//!   around `v` joined by active joints (or shared nodes) — see
+//!   `stars.rs` — unless they share a whole face (three vertices) whose
+//!   joint failed (the couple of Eq. 14, always a candidate).
+//!
+//! So the candidates are the paper's couples minus those still joined
+//! through active joints around every vertex they share: intact neighbours
+//! (two tets on the same side of a crack, or either side of a crack front,
+//! where the crack ends and the material ahead still links them). Their
+//! overlap is the compliance of the joints between them — measured at a
+//! crack front equal to that of intact neighbours beside it
+//! (`tests/solver/contact_activation.rs`) — and a contact force there would
+//! push apart material the joints hold together (it did, by 4e-7 N, in the
+//! broken bar of `tests/solver/contact.rs`, when any two tets on failed
+//! joints could touch). Tets the crack does separate around a shared vertex
+//! may touch even with no face on the crack: the tets diagonally across a
+//! kink push back on the fragment's corner. Pairs sharing no original
+//! vertex are candidates whenever both are contactable.
 //!
 //! Detection (NBS, O(N) in the contactable tets) keeps the pairs whose
 //! bounding spheres are less than the buffer `b` apart, and is repeated only
 //! when some contactable node has moved more than `b/2` since the last
-//! detection, or when a joint failure changed the contactable set: any two
+//! detection, or when a joint failure changed the contactable set or the
+//! exclusions (`Contact::joint_failed` marks the candidates stale): any two
 //! tets that overlap now were then within `b` of each other (below). The
 //! candidate pairs are evaluated in parallel, and their forces are summed
 //! in ascending pair order, so results depend neither on the thread count
 //! nor on the buffer.
+//!
+//! Each pair's friction acts at its contact centre, the point of the
+//! overlap where its normal force acts: the slip is the relative velocity
+//! there and the force goes to each tet's nodes by the centre's barycentric
+//! coordinates (`pair::evaluate`), so it has the right moment and slows a
+//! spinning body.
 
 mod pair;
 mod settings;
+mod stars;
 
 use std::collections::{HashMap, HashSet};
 
@@ -35,6 +67,7 @@ use crate::model::{Model, RIGID};
 use pair::{PairForce, PairInput, evaluate, spring_key};
 pub use settings::ContactSettings;
 use settings::FrictionTable;
+use stars::Stars;
 
 /// The paper's `n_total` of Eq. 18: steps over which the contact force of
 /// a joint that failed in compression rises from zero to its full value
@@ -61,8 +94,11 @@ pub struct Contact {
     pub settings: ContactSettings,
     friction: FrictionTable,
     contactable: Vec<bool>,
-    /// Tets made contactable by a fracture (failed joint or pre-existing).
-    activated: Vec<bool>,
+    /// The tets around each original vertex (Eq. 15) and their pieces.
+    stars: Stars,
+    /// Original vertices on a fracture (a node of a failed joint or of a
+    /// pre-existing fracture face).
+    cracked: Vec<bool>,
     list: Vec<u32>,
     bonded: HashSet<(u32, u32)>,
     nbs: Nbs,
@@ -116,22 +152,16 @@ impl Contact {
                 contactable[t] |= on;
             }
         }
-        let mut activated = vec![false; n_tets];
-        for &(a, b) in initial {
-            for t in [a, b] {
-                contactable[t as usize] = true;
-                activated[t as usize] = true;
-            }
-        }
         let bonded = model.joint_tets.iter().map(|&[a, b]| spring_key(a, b)).collect();
         let list = (0..n_tets as u32).filter(|&t| contactable[t as usize]).collect();
         let n_regions = model.tet_region.iter().copied().max().map_or(1, |r| r as usize + 1);
         let friction = FrictionTable::new(&settings, n_regions);
-        Contact {
+        let mut contact = Contact {
             settings,
             friction,
             contactable,
-            activated,
+            stars: Stars::new(model),
+            cracked: vec![false; model.origin.iter().copied().max().map_or(0, |v| v as usize + 1)],
             list,
             bonded,
             nbs: Nbs::new(),
@@ -156,27 +186,74 @@ impl Contact {
             stick: HashMap::new(),
             stick_next: HashMap::new(),
             ramp: HashMap::new(),
+        };
+        // A pre-existing fracture face activates its vertices as a failed
+        // joint does: its tets are those of the vertices the pair shares.
+        for &(a, b) in initial {
+            let ob = model.tets[b as usize].map(|n| model.origin[n as usize]);
+            let shared: Vec<u32> =
+                model.tets[a as usize].iter().map(|&n| model.origin[n as usize]).filter(|v| ob.contains(v)).collect();
+            contact.crack(model, &shared, &[a, b]);
         }
+        contact
     }
 
-    /// Makes the two tets of a failed joint contactable and unbonds them
-    /// (Eq. 14). A joint that failed in compression (`compressed`: its mean
-    /// opening was negative) has the contact force between its two tets
-    /// ramped in over [`ContactSettings::ramp_steps`] steps (Eq. 18), so that the joint force,
-    /// which vanishes at failure, is not replaced by a sudden contact force.
-    pub fn joint_failed(&mut self, tets: [u32; 2], compressed: bool) {
+    /// Hands failed joint `joint` of `model` to contact (Eq. 14–16): its
+    /// two tets are unbonded, its three original vertices become *cracked*
+    /// (the pieces around them are found again), and every tet around them
+    /// — the node groups G1–G6 of Eq. 15 — becomes contactable. A joint that failed in compression
+    /// (`compressed`: its mean opening was negative) has the contact force
+    /// between its two tets ramped in over [`ContactSettings::ramp_steps`]
+    /// steps (Eq. 18), so that the joint force, which vanishes at failure,
+    /// is not replaced by a sudden contact force.
+    pub fn joint_failed(&mut self, model: &Model, joint: usize, compressed: bool) {
+        let tets = model.joint_tets[joint];
         let key = spring_key(tets[0], tets[1]);
         self.bonded.remove(&key);
         if compressed && self.settings.ramp_steps > 0 {
             self.ramp.insert(key, 0);
         }
-        for t in tets {
-            self.activated[t as usize] = true;
-            if !self.contactable[t as usize] {
-                self.contactable[t as usize] = true;
-                let at = self.list.partition_point(|&x| x < t);
-                self.list.insert(at, t);
+        // N4 N5 N6 share the original vertices of N3 N2 N1.
+        let vertices = [0, 1, 2].map(|k| model.origin[model.joints[joint][k] as usize]);
+        self.crack(model, &vertices, &tets);
+    }
+
+    /// Marks `vertices` cracked, makes `tets` and every tet around those
+    /// vertices contactable, and finds the vertices' pieces again (`tets`
+    /// are no longer bonded); the candidates must be found again.
+    fn crack(&mut self, model: &Model, vertices: &[u32], tets: &[u32]) {
+        let mut added: Vec<u32> = Vec::new();
+        let mut add = |t: u32, contactable: &mut Vec<bool>| {
+            if !contactable[t as usize] {
+                contactable[t as usize] = true;
+                added.push(t);
             }
+        };
+        for &t in tets {
+            add(t, &mut self.contactable);
+        }
+        for &v in vertices {
+            self.cracked[v as usize] = true;
+            for &t in self.stars.of(v) {
+                add(t, &mut self.contactable);
+            }
+            self.stars.split(model, v, &self.bonded);
+        }
+        if !added.is_empty() {
+            added.sort_unstable();
+            let old = std::mem::take(&mut self.list);
+            let mut merged = Vec::with_capacity(old.len() + added.len());
+            let (mut i, mut j) = (0, 0);
+            while i < old.len() || j < added.len() {
+                if j == added.len() || (i < old.len() && old[i] < added[j]) {
+                    merged.push(old[i]);
+                    i += 1;
+                } else {
+                    merged.push(added[j]);
+                    j += 1;
+                }
+            }
+            self.list = merged;
         }
         self.stale = true;
     }
@@ -230,8 +307,25 @@ impl Contact {
         if ta.iter().any(|n| tb.contains(n)) {
             return false;
         }
-        let (oa, ob) = (ta.map(|n| model.origin[n as usize]), tb.map(|n| model.origin[n as usize]));
-        !(oa.iter().any(|v| ob.contains(v)) && !(self.activated[a as usize] && self.activated[b as usize]))
+        let ob = tb.map(|n| model.origin[n as usize]);
+        let mut shared = [0u32; 3];
+        let mut n_shared = 0;
+        for &n in &ta {
+            let v = model.origin[n as usize];
+            if ob.contains(&v) {
+                shared[n_shared] = v;
+                n_shared += 1;
+            }
+        }
+        match n_shared {
+            0 => true,
+            // A common face with no active joint: failed, or a pre-existing
+            // fracture (Eq. 14).
+            3 => true,
+            _ => shared[..n_shared]
+                .iter()
+                .any(|&v| self.cracked[v as usize] && self.stars.piece(v, a) != self.stars.piece(v, b)),
+        }
     }
 
     /// Runs NBS over the contactable tets at positions `x` with margin
@@ -345,7 +439,7 @@ impl Contact {
                         self.touched.push(n as u32);
                     }
                     self.force[n] += r.normal[side][k];
-                    self.friction_force[n] += r.friction * (0.25 * sign);
+                    self.friction_force[n] += r.friction * (r.weights[side][k] * sign);
                 }
             }
         }

@@ -1,8 +1,8 @@
 //! One candidate pair of the contact pass: the normal potential force
-//! (Eq. 17), the Eq. 18 ramp, and Coulomb friction.
+//! (Eq. 17), the Eq. 18 ramp, and Coulomb friction at the contact centre.
 
-use femdem_contact::tet_tet_forces;
-use femdem_core::{Real, Vec3};
+use femdem_contact::tet_tet_contact;
+use femdem_core::{Mat3, Real, Vec3};
 
 /// What one pair in contact contributes.
 #[derive(Clone, Copy, Debug)]
@@ -11,9 +11,12 @@ pub(crate) struct PairForce {
     pub tets: [u32; 2],
     /// Normal (potential) force on the nodes of each tet, N.
     pub normal: [[Vec3; 4]; 2],
-    /// Friction force on the second tet's centroid (its opposite on the
-    /// first's), N.
+    /// Friction force on the second tet at the contact centre (its opposite
+    /// on the first), N.
     pub friction: Vec3,
+    /// The barycentric coordinates of the contact centre in each tet: the
+    /// shares of the friction force on their nodes.
+    pub weights: [[Real; 4]; 2],
     /// The friction spring after this step, oriented as second tet relative
     /// to the first with the tets in index order (see [`spring_key`]).
     pub spring: Vec3,
@@ -51,27 +54,51 @@ pub(crate) struct PairInput<'a> {
     pub dt: Real,
 }
 
+/// The barycentric coordinates of `q` in the tet `p` (`None` if flat).
+fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
+    let m = Mat3::from_columns(&[p[1] - p[0], p[2] - p[0], p[3] - p[0]]).try_inverse()?;
+    let l = m * (q - p[0]);
+    Some([1.0 - l.x - l.y - l.z, l.x, l.y, l.z])
+}
+
 /// Evaluates one pair; `None` when the two tets do not overlap.
 ///
-/// Normal force: Eq. 17 (`femdem_contact::tet_tet_forces`), times the
+/// Normal force: Eq. 17 (`femdem_contact::tet_tet_contact`), times the
 /// Eq. 18 ramp factor `n_c / n_total` for a joint that failed in
-/// compression.
+/// compression; `N` its resultant on the second tet, `n̂ = N / |N|`.
 ///
-/// Friction: the pair carries a tangential spring `s`, stretched by the
-/// tangential relative velocity of the two centroids, `s += v_t Δt`, and kept
-/// in the current tangent plane (normal `n̂` along the pair's normal force
-/// `N`); the friction force is `−k_t s` with `k_t = p ℓ` (`ℓ` the smaller
-/// tet's `V^{1/3}`, so the tangential stiffness is of the order of the
-/// normal one), capped at the Coulomb limit `μ |N|`, where the spring slips
-/// (is shortened to the limit). It acts on the centroids (a quarter on each
-/// node).
+/// Friction acts at the contact centre `c` (the force-weighted centre of
+/// the clipped overlap pieces, a point of both tets), where the slip is
+/// measured and the force applied. With `λ^A`, `λ^B` the barycentric
+/// coordinates of `c` in the two tets,
+///
+/// ```text
+/// v_A(c) = Σ_k λ^A_k v_{A,k},   v_B(c) = Σ_k λ^B_k v_{B,k},
+/// v_t    = (v_B(c) − v_A(c)) − n̂ (n̂ · (v_B(c) − v_A(c))),
+/// s     ← (s − n̂ (n̂ · s)) + v_t Δt,
+/// F_t    = −k_t s,  shortened to |F_t| = μ |N| (and s = −F_t / k_t) if longer,
+/// f_{B,k} += λ^B_k F_t,   f_{A,k} −= λ^A_k F_t,
+/// ```
+///
+/// `s` the pair's tangential spring (its friction history), `k_t = p ℓ` (`ℓ`
+/// the smaller tet's `V^{1/3}`, so the tangential stiffness is of the order
+/// of the normal one), capped at the Coulomb limit `μ |N|`, where the
+/// spring slips. The nodal forces sum to `±F_t` on each tet and have the
+/// moment `c × F_t` (the weights reproduce `c`), so linear and angular
+/// momentum are conserved, and their power `Σ f · v = F_t · v_t` is the
+/// work of friction on the slip at `c` (what `Contact::book_work` books).
+/// A spinning body then feels the friction torque of its contact area, and
+/// a rotating fragment slips with the velocity of its contact, not of its
+/// centroid.
 pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let [a, b] = input.tets;
     let [pa, pb] = &input.x;
     if !boxes_overlap(pa, pb) {
         return None;
     }
-    let (mut fa, mut fb) = tet_tet_forces(pa, pb, input.penalty);
+    let contact = tet_tet_contact(pa, pb, input.penalty);
+    let centre = contact.centre?;
+    let (mut fa, mut fb) = (contact.on_a, contact.on_b);
     if input.ramp != 1.0 {
         for f in fa.iter_mut().chain(fb.iter_mut()) {
             *f *= input.ramp;
@@ -86,14 +113,15 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         tets: input.tets,
         normal: [fa, fb],
         friction: Vec3::zeros(),
+        weights: [[0.25; 4]; 2],
         spring: Vec3::zeros(),
         spring_energy: 0.0,
     };
     if input.mu > 0.0 && n_mag > 0.0 {
         let n = normal / n_mag;
-        let va: Vec3 = input.v[0].iter().sum::<Vec3>() / 4.0;
-        let vb: Vec3 = input.v[1].iter().sum::<Vec3>() / 4.0;
-        let rel = vb - va;
+        let weights = [pa, pb].map(|p| barycentric(p, &centre).unwrap_or([0.25; 4]));
+        let at = |side: usize| -> Vec3 { (0..4).map(|k| input.v[side][k] * weights[side][k]).sum() };
+        let rel = at(1) - at(0);
         let vt = rel - n * rel.dot(&n);
         // Springs are stored as (larger index) relative to (smaller index).
         let sign = if a < b { 1.0 } else { -1.0 };
@@ -108,6 +136,7 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
             spring = -ft / kt;
         }
         out.friction = ft;
+        out.weights = weights;
         out.spring = spring * sign;
         out.spring_energy = 0.5 * kt * spring.norm_squared();
     }

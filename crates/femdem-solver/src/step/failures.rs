@@ -42,8 +42,10 @@ impl Solver {
         }
     }
 
-    /// Hands failed joint `j` to contact, if contact is on: its two tets
-    /// become contactable and may touch (Eq. 14). With `ramp`, a joint that
+    /// Hands failed joint `j` to contact, if contact is on
+    /// ([`crate::Contact::joint_failed`]): its two tets may touch (Eq. 14) and
+    /// the tets around its vertices become contactable (Eq. 15–16). With
+    /// `ramp`, a joint that
     /// is closed at the current positions (mean opening < 0: it failed in
     /// compression) has its contact force ramped in over the Eq. 18 steps.
     pub(super) fn unbond(&mut self, j: usize, ramp: bool) {
@@ -54,6 +56,6 @@ impl Solver {
             let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
             joint_kinematics(&xp).map_or(0.0, |k| k.opening.iter().sum::<Real>()) < 0.0
         };
-        contact.joint_failed(self.model.joint_tets[j], compressed);
+        contact.joint_failed(&self.model, j, compressed);
     }
 }

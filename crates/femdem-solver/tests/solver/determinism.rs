@@ -34,7 +34,7 @@ fn run() -> Solver {
     };
     let mut s = solver(m, loads, 0.9);
     for n in 0..300 {
-        s.step(Want { energy: n % 10 == 0, stress: n == 299, ..Want::default() });
+        s.step(Want { energy: n % 10 == 0, stress: n == 299 });
     }
     s
 }

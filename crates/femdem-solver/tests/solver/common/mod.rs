@@ -158,3 +158,67 @@ pub fn nodes_in_box(model: &Model, lo: [f64; 3], hi: [f64; 3]) -> Vec<u32> {
         })
         .collect()
 }
+
+/// The part of triangle `tri` inside every half-space `(q − p)·n ≤ 0` of
+/// `planes` (`(p, n)`, `n` outward), by Sutherland–Hodgman.
+fn clip_triangle(tri: [Vec3; 3], planes: &[(Vec3, Vec3); 4]) -> Vec<Vec3> {
+    let mut poly = tri.to_vec();
+    for (p, n) in planes {
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (fa, fb) = (-(a - p).dot(n), -(b - p).dot(n));
+            if fa >= 0.0 {
+                out.push(a);
+            }
+            if (fa >= 0.0) != (fb >= 0.0) {
+                out.push(a + (b - a) * (fa / (fa - fb)));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            break;
+        }
+    }
+    poly
+}
+
+/// The outward face planes `(point, normal)` of a positive tet.
+fn face_planes(t: &[Vec3; 4]) -> [(Vec3, Vec3); 4] {
+    femdem_core::tet::FACES.map(|[i, j, k]| (t[i], (t[j] - t[i]).cross(&(t[k] - t[i]))))
+}
+
+/// Interpenetration of two tets (positive orientation): the volume of
+/// `A ∩ B`, by the divergence theorem `V = ⅓ ∮ x·n dS` over the parts of
+/// each tet's faces inside the other (each part a clipped polygon, on which
+/// `x·n` is constant), and the depth of the deepest node of either tet
+/// inside the other (its distance to the other's nearest face plane; 0 if
+/// none is inside).
+pub fn tet_overlap(a: &[Vec3; 4], b: &[Vec3; 4]) -> (f64, f64) {
+    let origin = a.iter().sum::<Vec3>() / 4.0;
+    let a = a.map(|p| p - origin);
+    let b = b.map(|p| p - origin);
+    let mut volume = 0.0;
+    for (s, t) in [(&a, &b), (&b, &a)] {
+        let planes = face_planes(t);
+        for [i, j, k] in femdem_core::tet::FACES {
+            let poly = clip_triangle([s[i], s[j], s[k]], &planes);
+            if poly.len() < 3 {
+                continue;
+            }
+            let n = (s[j] - s[i]).cross(&(s[k] - s[i])).normalize();
+            let area: f64 =
+                (1..poly.len() - 1).map(|m| 0.5 * (poly[m] - poly[0]).cross(&(poly[m + 1] - poly[0])).dot(&n)).sum();
+            volume += area * n.dot(&s[i]) / 3.0;
+        }
+    }
+    let mut depth: f64 = 0.0;
+    for (s, t) in [(&a, &b), (&b, &a)] {
+        let planes = face_planes(t);
+        for q in s {
+            let d = planes.iter().map(|(p, n)| -(q - p).dot(n) / n.norm()).fold(f64::INFINITY, f64::min);
+            depth = depth.max(d);
+        }
+    }
+    (volume.max(0.0), depth)
+}

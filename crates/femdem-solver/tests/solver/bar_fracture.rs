@@ -91,9 +91,17 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
     let joint = s.model.joint_law[0];
     let target = 1.5 * joint.delta_nc + 2.0 * FT / 26e9 * len;
     let end = 5e-5 / 2.0 + target / V;
+    // The residual pull is the reaction averaged over the last 20 µs: the
+    // freed half rings after the release, which carries no force across
+    // the crack but shows in the instantaneous reaction.
+    let (mut tail_sum, mut tail_n) = (0.0, 0usize);
     while s.state.time < end {
-        s.step(Want { energy: false, ..Want::default() });
-        peak = peak.max(s.record().drive_forces[0].z);
+        let r = s.step(Want { energy: false, ..Want::default() }).drive_forces[0].z;
+        peak = peak.max(r);
+        if s.state.time > end - 2e-5 {
+            tail_sum += r;
+            tail_n += 1;
+        }
     }
     s.step(Want { energy: true, ..Want::default() });
     let zs: Vec<f64> = s.failures().iter().map(|f| f.centroid.z).collect();
@@ -102,7 +110,7 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
     eprintln!("work done on the crack's joints {:.3} J/m²", work / (w * w));
     let released: f64 = s.state.joints.iter().map(|h| h.released).sum();
     let damaged = s.state.joints.iter().filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0)).count();
-    let residual = s.record().drive_forces[0].z;
+    let residual = tail_sum / tail_n.max(1) as f64;
     let a = w * w;
     eprintln!(
         "{calibration:?}: peak {:.4e} Pa, {} joints failed (area {:.4e} m² for A = {a:.1e} m²), crack softening {:.3} J/m², \
@@ -127,12 +135,19 @@ fn check(calibration: GfCalibration, per_area: f64) {
     assert!(residual.abs() < 0.01 * strength * 1e-4, "the halves still pull: {residual} N");
     assert!((dissipated / per_area - 1.0).abs() < 0.15, "dissipated {dissipated} J/m² vs {per_area} J/m²");
     // All the work done on the crack: softening plus the hardening branches
-    // (2/3 f_t δnp, and at most 2/3 f_s δsp ≈ 3.3 J/m² in shear with
-    // f_s ≈ c once the crack is open; the tilted faces slip part of the way).
+    // — 2/3 f_t δnp in opening, and in shear anything from 0 up to
+    // 2/3 f_s δsp ≈ 3.3 J/m² (f_s ≈ c once the crack is open), depending on
+    // how far the tilted faces slip before the joint breaks, which depends
+    // on how damage acts on the shear hardening branch (Eq. 11 coupling:
+    // measured 12.1 J/m² with `capped`, 10.7 with `printed`, paper
+    // calibration 12.4). So the work is bracketed: at least the softening
+    // and the normal hardening, at most the softening and both hardening
+    // branches in full, with the 15% allowed on the softening above.
     let h = 0.00285;
-    let hardening = 2.0 / 3.0 * FT * (2.0 * FT * h / 2.6e11) + 2.0 / 3.0 * 15e6 * (2.0 * 15e6 * h / 2.6e11);
-    let expected = per_area + hardening;
-    assert!((work / expected - 1.0).abs() < 0.15, "work on the crack {work} J/m² vs {expected} J/m²");
+    let normal_hardening = 2.0 / 3.0 * FT * (2.0 * FT * h / 2.6e11);
+    let shear_hardening = 2.0 / 3.0 * 15e6 * (2.0 * 15e6 * h / 2.6e11);
+    let (lower, upper) = (0.85 * per_area + normal_hardening, 1.15 * per_area + normal_hardening + shear_hardening);
+    assert!(work >= lower && work <= upper, "work on the crack {work} J/m² outside [{lower}, {upper}] J/m²");
 }
 
 #[test]

@@ -167,10 +167,20 @@ fn broken_bar_halves_separate_without_contact_force() {
     let mut s = at_step(m, loads, dt);
     s.enable_contact(ContactSettings { surfaces: false, ..ContactSettings::new(26e9) }, &[]);
     let mut peak: f64 = 0.0;
+    // The reaction at the end, averaged over the last 20 µs (several periods
+    // of the freed half's ringing, which carries no force across the crack).
+    let (mut tail_sum, mut tail_n, mut tail_max) = (0.0, 0usize, 0.0f64);
     while s.state.time < 4e-4 {
-        s.step(Want::default());
-        peak = peak.max(s.record().drive_forces[0].z.abs());
+        let r = s.step(Want::default()).drive_forces[0].z;
+        peak = peak.max(r.abs());
+        if s.state.time > 3.8e-4 {
+            tail_sum += r;
+            tail_n += 1;
+            tail_max = tail_max.max(r.abs());
+        }
     }
+    let residual = tail_sum / tail_n as f64;
+    eprintln!("reaction over the last 20 µs: mean {residual:.3e} N, largest {tail_max:.3e} N");
     assert!(!s.failures().is_empty(), "the bar must break");
     let contact = s.contact().unwrap();
     let largest = contact.touched().iter().map(|&n| contact.force[n as usize].norm()).fold(0.0, f64::max);
@@ -187,7 +197,7 @@ fn broken_bar_halves_separate_without_contact_force() {
     // are now excluded; see `femdem_solver::contact`.)
     assert_eq!(contact.active_pairs, 0, "pairs in contact after separation");
     assert!(largest < 1e-6 * peak, "contact force {largest} N after separation (peak pull {peak} N)");
-    assert!(s.record().drive_forces[0].z.abs() < 1.0, "the halves still pull: {} N", s.record().drive_forces[0].z);
+    assert!(residual.abs() < 1.0, "the halves still pull: {residual} N");
 }
 
 /// A block on a rigid plate under gravity tilted by θ (the incline, without

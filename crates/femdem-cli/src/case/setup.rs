@@ -138,12 +138,25 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
         .collect()
 }
 
+/// The node selection of a case's node selector. An empty selector (no
+/// `group`, `region` or `box`) would select every node of the mesh: it is
+/// refused by the callers (see [`selector`]).
 fn selection(spec: &NodeSpec) -> NodeSelection {
     NodeSelection {
         group: spec.group.clone(),
         region: spec.region.clone(),
         within: spec.within.map(|b| (b.min, b.max)),
     }
+}
+
+/// [`selection`], refusing a selector with no criterion under `key`.
+fn selector(spec: &NodeSpec, key: &str) -> Result<NodeSelection, String> {
+    if spec.group.is_none() && spec.region.is_none() && spec.within.is_none() {
+        return Err(format!(
+            "`{key}` has no `group`, `region` or `box`: it would select every node of the mesh; name what it selects"
+        ));
+    }
+    Ok(selection(spec))
 }
 
 fn components(s: &str) -> Option<[bool; 3]> {
@@ -185,7 +198,7 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
         let mut nodes = select_nodes(mesh, &NodeSelection { region: Some(s.region.clone()), ..Default::default() })
             .map_err(|u| at(unknown(u)))?;
         if let Some(d) = &s.drives {
-            let driven = select_nodes(mesh, &selection(d)).map_err(|u| at(unknown(u)))?;
+            let driven = select_nodes(mesh, &selector(d, "drives").map_err(at)?).map_err(|u| at(unknown(u)))?;
             if driven.is_empty() {
                 return Err(at("`drives` selects no node".into()));
             }
@@ -206,7 +219,7 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
         let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
         match l.get_ref() {
             LoadSpec::Fixed { nodes, components: c } => {
-                let nodes = select_nodes(mesh, &selection(nodes)).map_err(|u| at(unknown(u)))?;
+                let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
                 }
@@ -214,7 +227,7 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                 loads.fixed.push(Fixed { nodes, components });
             }
             LoadSpec::Velocity { name, nodes, velocity, components: c, ramp_time, stop_time } => {
-                let nodes = select_nodes(mesh, &selection(nodes)).map_err(|u| at(unknown(u)))?;
+                let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
                 }

@@ -151,6 +151,7 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("negative_ramp", ":55:", "`ramp_time` must be finite and ≥ 0 s"),
         ("nan_velocity", ":55:", "`velocity` must be finite"),
         ("duplicate_load_name", ":72:", "a load or platen named `dup` already exists"),
+        ("empty_selector", ":55:", "`nodes` has no `group`, `region` or `box`"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

@@ -38,7 +38,9 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
     let stop = Arc::new(AtomicBool::new(false));
     {
         let stop = stop.clone();
-        // A second handler cannot be installed (tests call run twice): then Ctrl-C kills as usual.
+        // SIGINT, SIGTERM (what cluster schedulers send at a time limit) and SIGHUP
+        // stop the run after writing its state. A second handler cannot be
+        // installed (tests call run twice): then the signal kills as usual.
         let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
     }
 
@@ -114,7 +116,10 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
     println!("history     {}", output.history_path().display());
     println!("failures    {}", output.history_path().with_file_name("failures.csv").display());
     if interrupted {
-        bail!("interrupted by Ctrl-C; the state at t = {:.6e} s was written", solver.state.time);
+        bail!(
+            "interrupted by a signal (Ctrl-C, SIGTERM or SIGHUP); the state at t = {:.6e} s was written",
+            solver.state.time
+        );
     }
     Ok(())
 }

@@ -64,11 +64,21 @@ fn bad_material_parameter_is_named() {
     assert!(err.contains("materials[0]") && err.contains("poisson") && err.contains(":14:1:"), "{err}");
 }
 
-/// Ctrl-C (SIGINT) stops the run cleanly: the current state is written as
-/// a last frame, the `.pvd` lists it, and the exit status says so.
+/// Ctrl-C (SIGINT) and SIGTERM (what a cluster scheduler sends at a time
+/// limit) stop the run cleanly: the current state is written as a last
+/// frame, the `.pvd` lists it, and the exit status says so.
 #[test]
 fn ctrl_c_stops_cleanly_after_writing_the_state() {
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("interrupted-run");
+    interrupt_with("-INT");
+}
+
+#[test]
+fn sigterm_stops_cleanly_after_writing_the_state() {
+    interrupt_with("-TERM");
+}
+
+fn interrupt_with(signal: &str) {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("interrupted-run{signal}"));
     let _ = std::fs::remove_dir_all(&out);
     let child = Command::new(env!("CARGO_BIN_EXE_femdem"))
         .args(["run", "cases/paper/brazilian.toml", "--out", out.to_str().unwrap()])
@@ -85,14 +95,14 @@ fn ctrl_c_stops_cleanly_after_writing_the_state() {
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
     std::thread::sleep(std::time::Duration::from_millis(500));
-    let status = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let status = Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
     assert!(status.success());
     let o = child.wait_with_output().unwrap();
     assert!(!o.status.success(), "an interrupted run must not report success");
     let stdout = String::from_utf8_lossy(&o.stdout);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(stdout.contains("interrupted after"), "{stdout}");
-    assert!(stderr.contains("interrupted by Ctrl-C"), "{stderr}");
+    assert!(stderr.contains("interrupted by a signal"), "{stderr}");
     let text = std::fs::read_to_string(&pvd).unwrap();
     let frames = text.matches("<DataSet").count();
     assert!(frames >= 2, "the state at the interruption must be written ({frames} frames)");

@@ -34,9 +34,8 @@ pub struct Case {
     pub heterogeneity: Option<Spanned<HeterogeneitySpec>>,
     /// `[solver]`: time span and the speed/accuracy knobs.
     pub solver: Option<Spanned<SolverSpec>>,
-    /// `[output]`: what is written and how often.
-    #[serde(default)]
-    pub output: OutputSpec,
+    /// `[output]`: what is written and how often (defaults when absent).
+    pub output: Option<Spanned<OutputSpec>>,
 }
 
 /// `[[materials]]`: the material of one region, SI units.

@@ -11,7 +11,7 @@ use femdem_solver::{
     ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
 };
 
-use super::format::{LoadSpec, NodeSpec};
+use super::format::{LoadSpec, NodeSpec, OutputSpec};
 use super::{CaseError, LoadedCase};
 
 /// The default joint penalty as a multiple of E (the top of Eq. 9's range).
@@ -404,7 +404,9 @@ impl LoadStrain {
 /// A located [`CaseError`] when a name is not a platen of the case, the two
 /// are the same, the length is not positive or the axis is zero.
 pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain>, CaseError> {
-    let Some(spec) = &case.case.output.load_strain else { return Ok(None) };
+    let Some(spec) = case.case.output.as_ref().and_then(|o| o.get_ref().load_strain.as_ref()) else {
+        return Ok(None);
+    };
     let s = spec.get_ref();
     let at = |msg: String| case.error_at(spec.span(), format!("output.load_strain.{msg}"));
     let find = |key: &str, name: &str| {
@@ -426,4 +428,48 @@ pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain
         return Err(at("axis must be a non-zero vector".into()));
     }
     Ok(Some(LoadStrain { upper, lower, length: s.length, axis: axis.normalize() }))
+}
+
+/// What `[output]` resolves to for a run of `end_time` seconds.
+#[derive(Debug, Clone)]
+pub struct OutputSettings {
+    /// Output directory from the case (relative to the case file), if any.
+    pub dir: Option<String>,
+    /// Simulated time between VTU frames, s.
+    pub interval: f64,
+    /// Simulated time between history rows, s.
+    pub history_interval: f64,
+    /// Fields written.
+    pub fields: Vec<String>,
+}
+
+/// Resolves and checks `[output]`: intervals finite and > 0 s (defaults
+/// `end_time / 20` and a tenth of the frame interval), fields among
+/// `fields_known`.
+///
+/// # Errors
+/// A located [`CaseError`] naming the key.
+pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result<OutputSettings, CaseError> {
+    let default = OutputSpec::default();
+    let (spec, span) = match &case.case.output {
+        Some(o) => (o.get_ref(), Some(o.span())),
+        None => (&default, None),
+    };
+    let at = |msg: String| match span.clone() {
+        Some(span) => case.error_at(span, format!("output: {msg}")),
+        None => CaseError { path: case.path.clone(), at: None, message: format!("output: {msg}") },
+    };
+    let interval = spec.interval.unwrap_or(end_time / 20.0);
+    if !(interval.is_finite() && interval > 0.0) {
+        return Err(at(format!("`interval` must be finite and > 0 s, got {interval} s")));
+    }
+    let history_interval = spec.history_interval.unwrap_or(interval / 10.0);
+    if !(history_interval.is_finite() && history_interval > 0.0) {
+        return Err(at(format!("`history_interval` must be finite and > 0 s, got {history_interval} s")));
+    }
+    let fields = spec.fields.clone().unwrap_or_else(|| fields_known.iter().map(|s| s.to_string()).collect());
+    if let Some(f) = fields.iter().find(|f| !fields_known.contains(&f.as_str())) {
+        return Err(at(format!("`fields`: `{f}` is not one of {}", fields_known.join(", "))));
+    }
+    Ok(OutputSettings { dir: spec.dir.clone(), interval, history_interval, fields })
 }

@@ -33,10 +33,10 @@ pub struct Runnable {
     pub stable: StableStep,
     /// Steps to reach `end_time`.
     pub steps: u64,
-    /// The end time, s.
-    pub end_time: f64,
     /// Steps between run-guard checks (0: none).
     pub check_interval: u64,
+    /// `[output]`, resolved and checked.
+    pub output: case::setup::OutputSettings,
     /// The load–strain columns, if asked for.
     pub load_strain: Option<case::setup::LoadStrain>,
 }
@@ -112,10 +112,11 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>) -> Result<Prepare
     let steps = steps as u64;
     let end_time = s.end_time;
     let check_interval = s.check_interval;
+    let output = case::setup::output(&loaded, end_time, &super::output::FIELDS)?;
     Ok(Prepared {
         case: loaded,
         mesh,
         jointed,
-        run: Some(Runnable { solver, stable, steps, end_time, check_interval, load_strain }),
+        run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain }),
     })
 }

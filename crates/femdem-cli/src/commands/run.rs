@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use anyhow::{Context, Result, bail};
 use femdem_solver::Want;
 
-use super::output::{FIELDS, Output};
+use super::output::Output;
 use super::prepare::prepare;
 use super::progress::Progress;
 
@@ -18,17 +18,12 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
     };
-    let spec = &prepared.case.case.output;
+    let spec = run.output.clone();
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let dir = out
         .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
         .unwrap_or_else(|| Path::new("out").join(&stem));
-    let interval = spec.interval.unwrap_or(run.end_time / 20.0);
-    let history_interval = spec.history_interval.unwrap_or(interval / 10.0);
-    if !(interval > 0.0 && history_interval > 0.0) {
-        bail!("{}: output.interval and output.history_interval must be > 0 s", path.display());
-    }
-    let fields = spec.fields.clone().unwrap_or_else(|| FIELDS.iter().map(|s| s.to_string()).collect());
+    let (interval, history_interval, fields) = (spec.interval, spec.history_interval, spec.fields);
     let solver = &mut run.solver;
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();

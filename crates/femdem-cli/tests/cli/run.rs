@@ -162,6 +162,8 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("nan_velocity", ":55:", "`velocity` must be finite"),
         ("duplicate_load_name", ":72:", "a load or platen named `dup` already exists"),
         ("empty_selector", ":55:", "`nodes` has no `group`, `region` or `box`"),
+        ("zero_output_interval", ":68:", "output: `interval` must be finite and > 0 s"),
+        ("unknown_output_field", ":68:", "output: `fields`: `strain` is not one of"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

@@ -108,6 +108,8 @@ struct Reader<'a> {
     /// Surface entity → physical tags.
     surfaces: HashMap<i32, Vec<i32>>,
     coords: Vec<[f64; 3]>,
+    /// Line of each node's coordinates.
+    coord_lines: Vec<usize>,
     tags: Option<TagMap>,
     /// Tets in file node indices, with the physical tag of their volume.
     tets: Vec<[u32; 4]>,
@@ -127,6 +129,7 @@ impl<'a> Reader<'a> {
             volumes: None,
             surfaces: HashMap::new(),
             coords: Vec::new(),
+            coord_lines: Vec::new(),
             tags: None,
             tets: Vec::new(),
             tet_phys: Vec::new(),
@@ -370,6 +373,7 @@ impl<'a> Reader<'a> {
                 }
                 f.end("the node coordinates")?;
                 self.coords.push([x, y, z]);
+                self.coord_lines.push(self.lines.line);
             }
         }
         if self.coords.len() != n_nodes {
@@ -552,6 +556,29 @@ impl<'a> Reader<'a> {
             }
         }
         self.report.dropped_nodes = self.coords.len() - coords.len();
+        // Two used nodes at one point would split the tets that use them
+        // with no joint between them: a hidden crack that nothing holds and
+        // contact does not see. Refuse it, naming both lines.
+        let mut order: Vec<usize> = (0..self.coords.len()).filter(|&i| used[i]).collect();
+        let key = |i: &usize| self.coords[*i];
+        order.sort_by(|a, b| {
+            let (p, q) = (key(a), key(b));
+            p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1])).then(p[2].total_cmp(&q[2])).then(a.cmp(b))
+        });
+        if let Some(w) = order.windows(2).find(|w| self.coords[w[0]] == self.coords[w[1]]) {
+            let (first, second) = (w[0].min(w[1]), w[0].max(w[1]));
+            let c = self.coords[second];
+            return Err(err_at(
+                self.coord_lines[second],
+                format!(
+                    "the node at ({}, {}, {}) coincides with the node on line {}: two nodes at one point would \
+                     split the tets that use them with no joint between them (a hidden crack that nothing holds \
+                     and contact does not see); merge them (in Gmsh, `Coherence;`) or model the fracture \
+                     another way",
+                    c[0], c[1], c[2], self.coord_lines[first]
+                ),
+            ));
+        }
         let mut mesh = TetMesh { coords, ..Default::default() };
         mesh.tets = self.tets.iter().map(|t| t.map(|v| new_index[v as usize])).collect();
         for t in 0..mesh.tets.len() {

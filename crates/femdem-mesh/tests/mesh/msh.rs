@@ -599,3 +599,20 @@ proptest! {
         }
     }
 }
+
+/// Two nodes at one point (node 60 duplicates node 20, and the second tet
+/// uses it instead of 20) would split the two tets with no joint between
+/// them: a hidden crack. It is refused on the duplicate's coordinate line,
+/// naming the line of the first.
+#[test]
+fn coincident_nodes_are_refused_with_both_lines() {
+    let text = SMALL
+        .replace("3 6 10 99\n", "3 7 10 99\n")
+        .replace("3 2 1 1\n50\n1 1 1 0.1 0.2 0.3\n", "3 2 1 2\n50\n60\n1 1 1 0.1 0.2 0.3\n1 0 0 0.1 0.2 0.3\n")
+        .replace("5 30 20 40 50\n", "5 30 60 40 50\n");
+    let first = line_of(&text, "1 0 0");
+    let second = line_of(&text, "1 0 0 0.1 0.2 0.3");
+    let (line, message) = msh_error(&text);
+    assert_eq!(line, second, "{message}");
+    assert!(message.contains(&format!("coincides with the node on line {first}")), "{message}");
+}

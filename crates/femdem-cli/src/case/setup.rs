@@ -71,7 +71,12 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
                 return Err(at("give `viscosity` or `damping_ratio`, not both".into()));
             }
             (Some(v), None) => v,
-            (None, Some(xi)) => xi * femdem_material::critical_viscosity(mean_edge, s.young, s.density),
+            (None, Some(xi)) => {
+                if !(xi.is_finite() && xi >= 0.0) {
+                    return Err(at(format!("`damping_ratio` must be finite and ≥ 0, got {xi}")));
+                }
+                xi * femdem_material::critical_viscosity(mean_edge, s.young, s.density)
+            }
             (None, None) => 0.0,
         };
         let material = ElasticParams { young: s.young, poisson: s.poisson, density: s.density, viscosity }
@@ -97,6 +102,17 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
                 }
             };
             let gf = need(s.fracture_energy, "fracture_energy")?;
+            // Checked here in the case's own keys and units (the library's
+            // checks name its fields, in radians).
+            let phi = need(s.friction_angle, "friction_angle")?;
+            if !(phi.is_finite() && (0.0..90.0).contains(&phi)) {
+                return Err(at(format!("`friction_angle` must lie in [0°, 90°), got {phi}°")));
+            }
+            for (key, value) in [("fracture_energy", Some(gf)), ("fracture_energy_shear", s.fracture_energy_shear)] {
+                if let Some(v) = value.filter(|v| !(v.is_finite() && *v > 0.0)) {
+                    return Err(at(format!("`{key}` must be finite and > 0 J/m², got {v} J/m²")));
+                }
+            }
             let params = JointParams {
                 penalty: s.penalty.unwrap_or(DEFAULT_PENALTY_FACTOR * s.young),
                 tensile_strength: need(s.tensile_strength, "tensile_strength")?,

@@ -153,7 +153,7 @@ fn print_text(r: &CheckReport) {
     if let Some(t) = &r.time_stepping {
         println!(
             "time step {:.4e} s (critical {:.4e} s from ω_max = {:.4e} rad/s, contact ω_c = {:.4e} rad/s, \
-             damping ratio {:.3}; element transit {:.4e} s)",
+             top-mode damping β_max/(2 ω_max) = {:.3}; element transit {:.4e} s)",
             t.time_step, t.critical_time_step, t.omega_max, t.contact_omega, t.damping_ratio, t.element_transit_time
         );
         println!("steps     {} ({:.3e} tet-steps)", t.steps, t.steps as f64 * t.deformable_tets as f64);

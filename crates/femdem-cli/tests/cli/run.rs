@@ -164,6 +164,9 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("empty_selector", ":55:", "`nodes` has no `group`, `region` or `box`"),
         ("zero_output_interval", ":68:", "output: `interval` must be finite and > 0 s"),
         ("unknown_output_field", ":68:", "output: `fields`: `strain` is not one of"),
+        ("negative_damping_ratio", ":23:", "`damping_ratio` must be finite and ≥ 0, got -0.5"),
+        ("friction_angle_95", ":23:", "`friction_angle` must lie in [0°, 90°), got 95°"),
+        ("zero_fracture_energy", ":23:", "`fracture_energy` must be finite and > 0 J/m², got 0 J/m²"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

@@ -350,8 +350,21 @@ impl<'a> Reader<'a> {
             if n > n_nodes - base {
                 return Err(f.err(format!("blocks hold more nodes than the {n_nodes} announced by the $Nodes header")));
             }
+            let header_line = self.lines.line;
+            // A wrong count in the block header shows as a record of the
+            // wrong shape: say so, rather than what the misread field is.
+            let miscount = |f: &super::lex::Fields<'_>, expected: &str, found: usize| {
+                f.err(format!(
+                    "{found} number(s) where {expected} was expected: does the block header on line {header_line} \
+                     announce the right number of nodes ({n})?"
+                ))
+            };
             for i in 0..n {
                 let mut f = self.lines.record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
+                let fields = f.raw.split_ascii_whitespace().count();
+                if fields != 1 {
+                    return Err(miscount(&f, &format!("the tag of node {} of block {}", i + 1, b + 1), fields));
+                }
                 let tag = f.node_tag("node tag")?;
                 f.end("the node tag")?;
                 if !(min..=max).contains(&tag) {
@@ -365,6 +378,11 @@ impl<'a> Reader<'a> {
             let extra = if parametric == 1 { dim as usize } else { 0 };
             for i in 0..n {
                 let mut f = self.lines.record(S, || format!("coordinates of node {} of block {}", i + 1, b + 1))?;
+                let fields = f.raw.split_ascii_whitespace().count();
+                if fields < 3 {
+                    let what = format!("the coordinates of node {} of block {}", i + 1, b + 1);
+                    return Err(miscount(&f, &what, fields));
+                }
                 let x = f.real("x coordinate")?;
                 let y = f.real("y coordinate")?;
                 let z = f.real("z coordinate")?;

@@ -616,3 +616,17 @@ fn coincident_nodes_are_refused_with_both_lines() {
     assert_eq!(line, second, "{message}");
     assert!(message.contains(&format!("coincides with the node on line {first}")), "{message}");
 }
+
+/// A wrong node count in an entity block's header shows as a record of the
+/// wrong shape; the message says so and names the header's line (it used
+/// to report the misread field: "bad node tag `0`", "missing y coordinate").
+#[test]
+fn a_wrong_block_node_count_is_reported_as_such() {
+    let header = line_of(SMALL, "3 1 0 4");
+    for (count, found) in [("5", "3 number(s) where the tag of node 5"), ("3", "1 number(s) where the coordinates")] {
+        let (text, _) = small_with("3 1 0 4", Some(&format!("3 1 0 {count}")));
+        let (_, message) = msh_error(&text);
+        assert!(message.contains(found), "{message}");
+        assert!(message.contains(&format!("the block header on line {header}")), "{message}");
+    }
+}

@@ -242,6 +242,31 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
         Some(n) => n,
         None => ((thickness / h).round() as usize).max(1),
     };
+    // Estimate before triangulating (a tiny element size would exhaust
+    // memory in the 2D mesher first): the outline's area over the area of
+    // an equilateral triangle of edge h, three tets per prism per layer.
+    let area = match &spec.outline {
+        Outline::Circle { radius, .. } => std::f64::consts::PI * radius * radius,
+        Outline::Polygon(p) => {
+            0.5 * (0..p.len())
+                .map(|i| {
+                    let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                    a[0] * b[1] - b[0] * a[1]
+                })
+                .sum::<f64>()
+                .abs()
+        }
+    };
+    let estimate = area / (3f64.sqrt() / 4.0 * h * h) * layers as f64 * 3.0;
+    if estimate > MAX_CELLS {
+        return Err(MeshError::InvalidParameter {
+            name: "element_size",
+            reason: format!(
+                "{h} m over an outline of {area:.4e} m² and {layers} layers would make about {estimate:.3e} tets; \
+                 refuse above {MAX_CELLS:e}"
+            ),
+        });
+    }
     let planar = triangulate(spec, h)?;
     if (planar.triangles.len() * layers * 3) as f64 > MAX_CELLS {
         return Err(MeshError::InvalidParameter {

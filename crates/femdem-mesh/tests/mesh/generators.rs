@@ -184,3 +184,26 @@ fn extruded_mean_edge_is_close_to_the_element_size() {
         assert!(rel(mean, h) < 0.15, "r = {r}, h = {h}: mean in-plane edge {mean}");
     }
 }
+
+/// A tiny element size is refused from an estimate made before the 2D
+/// triangulation (which would otherwise exhaust memory first): the paper's
+/// disc at 1 µm would be about 8.7e10 tets.
+#[test]
+fn a_tiny_extrusion_element_size_is_refused_before_meshing() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Circle { center: [0.0, 0.0], radius: 0.02 },
+        traces: vec![],
+        z0: 0.0,
+        thickness: 0.015,
+        element_size: 1e-6,
+        layers: Some(10),
+        region: region(),
+    };
+    // "about" is the wording of the estimate made before triangulating.
+    match generate_extrusion(&spec) {
+        Err(femdem_mesh::MeshError::InvalidParameter { name: "element_size", reason }) => {
+            assert!(reason.contains("would make about 8.7"), "{reason}");
+        }
+        other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
+    }
+}

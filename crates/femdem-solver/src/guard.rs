@@ -99,7 +99,7 @@ fn step_factor(model: &Model, x: &[Vec3], t: usize) -> (Real, Real, Real) {
     let tet = model.tets[t];
     let p = tet.map(|n| x[n as usize]);
     let p0 = tet.map(|n| model.x0[n as usize]);
-    let (v, v0) = (signed_volume(&p), signed_volume(&p0));
+    let (v, v0) = (signed_volume(&p), model.tet_ref[t].volume);
     let j = v / v0;
     if j <= 0.0 {
         return (0.0, j, 0.0);

@@ -5,7 +5,7 @@
 use femdem_core::{Real, Vec3};
 
 use super::StepRecord;
-use super::prescribed::{FREE, Prescribed, prescribed};
+use super::prescribed::{Prescribed, held, prescribed};
 use crate::SolverError;
 use crate::loads::{Loads, surface_forces};
 use crate::model::Model;
@@ -48,7 +48,7 @@ impl External {
     }
 
     pub fn held_nodes(&self) -> Vec<bool> {
-        self.prescribed.iter().map(|p| p.iter().all(|&c| c != FREE)).collect()
+        held(&self.prescribed)
     }
 
     /// Evaluates the surface loads at `t_n = state.time` and the drives'

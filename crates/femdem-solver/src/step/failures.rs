@@ -19,9 +19,10 @@ impl Solver {
             };
             let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
             let centroid = xp.iter().sum::<Vec3>() / 6.0;
-            let area = joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
+            let k = joint_kinematics(&xp);
+            let area = k.as_ref().map_or(0.0, |k| k.frame.area);
             self.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
-            self.unbond(j, true);
+            self.unbond(j, closed(k.as_ref()));
         }
     }
 
@@ -37,25 +38,26 @@ impl Solver {
             let history = &mut self.state.joints[j as usize];
             if !history.failed {
                 history.failed = true;
-                self.unbond(j as usize, true);
+                let xp = self.model.joints[j as usize].map(|n| self.state.x[n as usize]);
+                self.unbond(j as usize, closed(joint_kinematics(&xp).as_ref()));
             }
         }
     }
 
     /// Hands failed joint `j` to contact, if contact is on
     /// ([`crate::Contact::joint_failed`]): its two tets may touch (Eq. 14) and
-    /// the tets around its vertices become contactable (Eq. 15–16). With
-    /// `ramp`, a joint that
-    /// is closed at the current positions (mean opening < 0: it failed in
-    /// compression) has its contact force ramped in over the Eq. 18 steps.
-    pub(super) fn unbond(&mut self, j: usize, ramp: bool) {
-        let Some(contact) = &mut self.contact else {
-            return;
-        };
-        let compressed = ramp && {
-            let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
-            joint_kinematics(&xp).map_or(0.0, |k| k.opening.iter().sum::<Real>()) < 0.0
-        };
-        contact.joint_failed(&self.model, j, compressed);
+    /// the tets around its vertices become contactable (Eq. 15–16). A joint
+    /// that failed `compressed` (see [`closed`]) has its contact force ramped
+    /// in over the Eq. 18 steps.
+    pub(super) fn unbond(&mut self, j: usize, compressed: bool) {
+        if let Some(contact) = &mut self.contact {
+            contact.joint_failed(&self.model, j, compressed);
+        }
     }
+}
+
+/// Whether a joint is closed at its current positions (mean opening < 0:
+/// failing now, it failed in compression); a collapsed joint is not.
+fn closed(k: Option<&femdem_fracture::JointKinematics>) -> bool {
+    k.is_some_and(|k| k.opening.iter().sum::<Real>() < 0.0)
 }

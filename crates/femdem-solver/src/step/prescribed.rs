@@ -64,5 +64,10 @@ pub(crate) fn prescribed(model: &Model, loads: &Loads) -> Result<Prescribed, Sol
 /// # Errors
 /// As for [`crate::Solver::new`]: an inconsistent set of constraints.
 pub fn held_nodes(model: &Model, loads: &Loads) -> Result<Vec<bool>, SolverError> {
-    Ok(prescribed(model, loads)?.iter().map(|p| p.iter().all(|&c| c != FREE)).collect())
+    Ok(held(&prescribed(model, loads)?))
+}
+
+/// The nodes of `table` with all three components prescribed.
+pub(crate) fn held(table: &Prescribed) -> Vec<bool> {
+    table.iter().map(|p| p.iter().all(|&c| c != FREE)).collect()
 }

@@ -307,6 +307,10 @@ pub struct LoadStrainSpec {
     /// `[0, 1, 0]`; normalised).
     #[serde(default = "y_axis")]
     pub axis: [f64; 3],
+    /// Ends the run once a joint has failed and the load has fallen below
+    /// this fraction of its largest value so far (post-peak), in (0, 1);
+    /// default: run to `end_time`.
+    pub stop_below_peak: Option<f64>,
 }
 
 fn y_axis() -> [f64; 3] {

@@ -398,6 +398,9 @@ pub struct LoadStrain {
     pub length: f64,
     /// Unit loading axis.
     pub axis: Vec3,
+    /// `stop_below_peak`: the fraction of the peak load below which a run
+    /// with failed joints ends.
+    pub stop_below_peak: Option<f64>,
 }
 
 impl LoadStrain {
@@ -443,7 +446,12 @@ pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain
     if !(axis.norm().is_finite() && axis.norm() > 0.0) {
         return Err(at("axis must be a non-zero vector".into()));
     }
-    Ok(Some(LoadStrain { upper, lower, length: s.length, axis: axis.normalize() }))
+    if let Some(f) = s.stop_below_peak
+        && !(f > 0.0 && f < 1.0)
+    {
+        return Err(at(format!("stop_below_peak must be a fraction in (0, 1), got {f}")));
+    }
+    Ok(Some(LoadStrain { upper, lower, length: s.length, axis: axis.normalize(), stop_below_peak: s.stop_below_peak }))
 }
 
 /// What `[output]` resolves to for a run of `end_time` seconds.

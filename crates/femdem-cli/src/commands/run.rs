@@ -9,6 +9,7 @@ use anyhow::{Context, Result, bail};
 use femdem_solver::Want;
 
 use super::output::Output;
+use crate::case::setup::LoadStrain;
 use super::prepare::prepare;
 use super::progress::Progress;
 
@@ -56,9 +57,11 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
     let mut next_frame = 0.0;
     let mut next_row = 0.0;
     let mut interrupted = false;
+    let mut past_peak = run.load_strain.and_then(PeakWatch::new);
+    let mut ended_past_peak = false;
     for n in 0..run.steps {
         let t = solver.state.time;
-        let last = n + 1 == run.steps;
+        let last = n + 1 == run.steps || ended_past_peak;
         let stopping = stop.load(Ordering::SeqCst);
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
@@ -90,6 +93,12 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
             );
         }
         progress.update(n + 1, solver.state.time);
+        if ended_past_peak {
+            break;
+        }
+        // Past the peak, one more step writes the final row and frame with
+        // their energies and stresses, as the last step does.
+        ended_past_peak = past_peak.as_mut().is_some_and(|w| w.ended(solver));
         if stopping {
             interrupted = true;
             break;
@@ -104,6 +113,12 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
         if interrupted { "interrupted" } else { "finished" },
         solver.state.time
     );
+    if let (true, Some(w)) = (ended_past_peak, &past_peak) {
+        println!(
+            "ended       past the peak: load {:.6e} N below {} of its peak {:.6e} N",
+            w.last, w.fraction, w.peak
+        );
+    }
     println!("wall time   {wall:.2} s");
     println!("throughput  {:.3e} tet-steps/s ({} threads)", progress.throughput(steps), rayon::current_num_threads());
     println!("results     {}", output.pvd().display());
@@ -117,4 +132,30 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
         );
     }
     Ok(())
+}
+
+/// `[output.load_strain] stop_below_peak`: watches the load `F` of Eq. 21
+/// step by step and says when a run is over, i.e. once a joint has failed
+/// and `F` has fallen below `fraction` of its largest value so far.
+struct PeakWatch {
+    ls: LoadStrain,
+    fraction: f64,
+    peak: f64,
+    last: f64,
+}
+
+impl PeakWatch {
+    fn new(ls: LoadStrain) -> Option<Self> {
+        ls.stop_below_peak.map(|fraction| PeakWatch { ls, fraction, peak: 0.0, last: 0.0 })
+    }
+
+    /// Updates the watch with the solver's last record; true once the run
+    /// is over.
+    fn ended(&mut self, solver: &femdem_solver::Solver) -> bool {
+        let r = solver.record();
+        let (load, _) = self.ls.evaluate(&r.drive_forces, &r.drive_displacements);
+        self.last = load;
+        self.peak = self.peak.max(load);
+        !solver.failures().is_empty() && self.peak > 0.0 && load < self.fraction * self.peak
+    }
 }

@@ -176,3 +176,32 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         assert!(err.contains(&format!("{name}.toml{line}")) && err.contains(message), "{name}: {err}");
     }
 }
+
+#[test]
+fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("small-brazilian-run");
+    let _ = std::fs::remove_dir_all(&out);
+    let o = femdem(&["run", "crates/femdem-cli/tests/cases/small_brazilian.toml", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8(o.stdout).unwrap();
+    assert!(stdout.contains("ended       past the peak"), "{stdout}");
+
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let peak = rows.iter().map(|r| r[col("load")]).fold(f64::MIN, f64::max);
+    let last = rows.last().unwrap();
+    assert!(last[col("load")] < 0.5 * peak, "last load {} vs peak {peak}", last[col("load")]);
+    assert!(last[col("time")] < 1.9e-4, "ended at the end time {}", last[col("time")]);
+    // Joints failed before the end, and the last row carries the energies
+    // of its step: the account still closes.
+    let broken: f64 = ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"].iter().map(|c| last[col(c)]).sum();
+    assert!(broken > 0.0);
+    assert!(last[col("balance")].abs() < 0.02 * last[col("external_work")], "balance {}", last[col("balance")]);
+    // The final frame is the last row's time.
+    let pvd = std::fs::read_to_string(out.join("small_brazilian.pvd")).unwrap();
+    let t: f64 = pvd.split("timestep=\"").last().unwrap().split('"').next().unwrap().parse().unwrap();
+    assert_eq!(t, last[col("time")]);
+}

@@ -1,11 +1,15 @@
 //! `cargo xtask <task>`: project automation that needs nothing but cargo.
 //!
+//! - `validate [--profile quick|paper] [--case NAME] [--out DIR]`: runs the
+//!   reference paper's examples and reports against its numbers
+//!   (`docs/validation.md`).
 //! - `bench [--memory] [criterion args…]`: the criterion benchmarks, or with
 //!   `--memory` only the peak-memory run of joint insertion on 10⁶ tets.
 //! - `fixtures`: regenerates the Gmsh test fixture (needs `pip install gmsh`).
 
 mod bench;
 mod fixtures;
+mod validate;
 
 use anyhow::{Result, bail};
 
@@ -16,8 +20,9 @@ fn main() -> Result<()> {
     match task.as_deref() {
         Some("bench") => bench::run(&rest),
         Some("fixtures") => fixtures::run(),
-        Some(other) => bail!("unknown task `{other}`; tasks: bench, fixtures"),
-        None => bail!("usage: cargo xtask <bench|fixtures>"),
+        Some("validate") => validate::run(&rest),
+        Some(other) => bail!("unknown task `{other}`; tasks: validate, bench, fixtures"),
+        None => bail!("usage: cargo xtask <validate|bench|fixtures>"),
     }
 }
 

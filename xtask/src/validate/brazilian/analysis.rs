@@ -1,0 +1,156 @@
+//! What one Brazilian run measured: the load–strain curve and its peak
+//! (Eq. 21–23), the energy account, and where and how joints failed.
+
+use anyhow::Result;
+
+use super::case::Disc;
+use crate::validate::history::Table;
+use crate::validate::runner::RunOutput;
+
+/// Half-width of the band around the loaded diameter that counts as "on
+/// the diameter" (the issue's 5 mm), m.
+pub const BAND: f64 = 5.0e-3;
+
+/// One row of `failures.csv`.
+#[derive(Debug, Clone, Copy)]
+pub struct Failure {
+    /// Start of the step that broke the joint, s.
+    pub time: f64,
+    /// Centroid of the joint's mid-plane, m.
+    pub at: [f64; 3],
+    /// Mode code: 1 tensile, 2 shear, 3 mixed, 4 collapsed.
+    pub mode: u8,
+}
+
+/// Counts of failures by mode.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Modes {
+    /// Tensile, shear, mixed, collapsed.
+    pub counts: [usize; 4],
+}
+
+impl Modes {
+    fn of<'a>(f: impl Iterator<Item = &'a Failure>) -> Modes {
+        let mut m = Modes::default();
+        for x in f {
+            if (1..=4).contains(&x.mode) {
+                m.counts[usize::from(x.mode) - 1] += 1;
+            }
+        }
+        m
+    }
+
+    /// All counted failures.
+    pub fn total(&self) -> usize {
+        self.counts.iter().sum()
+    }
+
+    /// Share of mode `code` (1–4).
+    pub fn share(&self, code: usize) -> f64 {
+        self.counts[code - 1] as f64 / self.total().max(1) as f64
+    }
+
+    /// `T/S/M/C` counts as text.
+    pub fn text(&self) -> String {
+        let [t, s, m, c] = self.counts;
+        format!("T {t} / S {s} / M {m} / C {c}")
+    }
+}
+
+/// The measured outcome of one run.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The run's files.
+    pub run: RunOutput,
+    /// Time of every history row, s.
+    pub time: Vec<f64>,
+    /// `(ε_yy, F)` of every history row (Eq. 22, Eq. 21).
+    pub curve: Vec<(f64, f64)>,
+    /// Peak load F, N.
+    pub peak: f64,
+    /// Time of the peak, s.
+    pub peak_time: f64,
+    /// Indirect tensile strength of Eq. 23 at the peak, Pa.
+    pub f_bt: f64,
+    /// Whether the load fell below 90% of the peak afterwards (the peak was
+    /// passed, not cut off by the end time).
+    pub passed_peak: bool,
+    /// Largest |balance| / external work once the work reached 10% of its
+    /// final value.
+    pub energy_error: f64,
+    /// Every joint failure.
+    pub failures: Vec<Failure>,
+    /// Steps taken.
+    pub steps: f64,
+}
+
+impl Outcome {
+    /// Reads a finished run.
+    pub fn read(run: RunOutput, disc: Disc) -> Result<Outcome> {
+        let h = Table::read(&run.dir.join("history.csv"))?;
+        let (time, load, strain) = (h.col("time")?, h.col("load")?, h.col("strain")?);
+        let (work, balance) = (h.col("external_work")?, h.col("balance")?);
+        let curve: Vec<(f64, f64)> = strain.iter().copied().zip(load.iter().copied()).collect();
+        let (ipk, peak) =
+            load.iter().copied().enumerate().fold((0, f64::NEG_INFINITY), |a, (i, f)| if f > a.1 { (i, f) } else { a });
+        let passed_peak = load[ipk..].iter().any(|&f| f < 0.9 * peak);
+        let w_end = work.last().copied().unwrap_or(0.0);
+        let energy_error = work
+            .iter()
+            .zip(&balance)
+            .filter(|(w, _)| **w >= 0.1 * w_end && **w > 0.0)
+            .map(|(w, b)| b.abs() / w)
+            .fold(0.0, f64::max);
+        let f = Table::read(&run.dir.join("failures.csv"))?;
+        let (ft, fx, fy, fz, fm) = (f.col("time")?, f.col("x")?, f.col("y")?, f.col("z")?, f.col("mode")?);
+        let failures =
+            (0..f.len()).map(|i| Failure { time: ft[i], at: [fx[i], fy[i], fz[i]], mode: fm[i] as u8 }).collect();
+        Ok(Outcome {
+            run,
+            peak_time: time[ipk],
+            time,
+            curve,
+            peak,
+            f_bt: 2.0 * peak / (std::f64::consts::PI * disc.diameter * disc.thickness),
+            passed_peak,
+            energy_error,
+            failures,
+            steps: h.col("step")?.last().copied().unwrap_or(0.0),
+        })
+    }
+
+    /// The load F at the history row nearest time `t`, N.
+    pub fn load_at(&self, t: f64) -> f64 {
+        let i =
+            self.time.iter().enumerate().min_by(|a, b| (a.1 - t).abs().total_cmp(&(b.1 - t).abs())).map_or(0, |x| x.0);
+        self.curve.get(i).map_or(0.0, |c| c.1)
+    }
+
+    /// The first failure, if any.
+    pub fn first_failure(&self) -> Option<&Failure> {
+        self.failures.iter().min_by(|a, b| a.time.total_cmp(&b.time))
+    }
+
+    /// Share of failures within [`BAND`] of the loaded diameter (x = 0).
+    pub fn on_diameter(&self) -> f64 {
+        let n = self.failures.iter().filter(|f| f.at[0].abs() < BAND).count();
+        n as f64 / self.failures.len().max(1) as f64
+    }
+
+    /// Modes of the central fracture: on the diameter band and within half
+    /// the radius of the centre along it.
+    pub fn central(&self, disc: Disc) -> Modes {
+        Modes::of(self.failures.iter().filter(|f| f.at[0].abs() < BAND && f.at[1].abs() < 0.25 * disc.diameter))
+    }
+
+    /// Modes within [`BAND`] of the top (`+1`) or bottom (`−1`) contact.
+    pub fn at_contact(&self, disc: Disc, side: f64) -> Modes {
+        let r = 0.5 * disc.diameter;
+        Modes::of(self.failures.iter().filter(|f| f.at[1] * side > r - BAND))
+    }
+
+    /// All failures by mode.
+    pub fn modes(&self) -> Modes {
+        Modes::of(self.failures.iter())
+    }
+}

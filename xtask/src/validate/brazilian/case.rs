@@ -1,0 +1,151 @@
+//! The Brazilian-disc cases the validation runs, made from the bundled
+//! paper case `cases/paper/brazilian-to-failure.toml` (Guo et al. §3.1) by
+//! changing only what a profile or a sensitivity variant names.
+
+use anyhow::{Context, Result};
+use toml::{Table, Value};
+
+/// The bundled case every run starts from.
+pub const BASE: &str = "cases/paper/brazilian-to-failure.toml";
+
+/// Largest strain ε_yy (Eq. 22) a run may reach; the runs end earlier,
+/// once the load has dropped to half its peak (`stop_below_peak`).
+const MAX_STRAIN: f64 = 0.005;
+/// Strain between frames and between history rows.
+const FRAME_STRAIN: f64 = 1.0e-4;
+const ROW_STRAIN: f64 = 2.0e-6;
+
+/// The mesh of a profile.
+#[derive(Debug, Clone, Copy)]
+pub struct Mesh {
+    /// Target triangle edge in the disc plane, m.
+    pub element_size: f64,
+    /// Layers of prisms through the thickness.
+    pub layers: i64,
+    /// Element size of the rigid platens, m.
+    pub platen_size: f64,
+}
+
+/// The disc's geometry, read from the base case.
+#[derive(Debug, Clone, Copy)]
+pub struct Disc {
+    /// Diameter d, m.
+    pub diameter: f64,
+    /// Thickness t, m.
+    pub thickness: f64,
+    /// Input tensile strength f_t, Pa.
+    pub tensile_strength: f64,
+    /// Young's modulus E, Pa.
+    pub young: f64,
+}
+
+/// The base case, parsed.
+#[derive(Debug, Clone)]
+pub struct Base {
+    table: Table,
+    /// Its disc.
+    pub disc: Disc,
+}
+
+fn get<'a>(t: &'a Table, path: &[&str]) -> Result<&'a Value> {
+    let mut v: Option<&Value> = None;
+    let mut table = t;
+    for (i, key) in path.iter().enumerate() {
+        let next = if let Ok(k) = key.parse::<usize>() {
+            v.and_then(Value::as_array).and_then(|a| a.get(k))
+        } else {
+            table.get(*key)
+        }
+        .with_context(|| format!("{BASE}: no `{}`", path[..=i].join(".")))?;
+        v = Some(next);
+        if let Some(t) = next.as_table() {
+            table = t;
+        }
+    }
+    v.context("empty path")
+}
+
+fn num(t: &Table, path: &[&str]) -> Result<f64> {
+    let v = get(t, path)?;
+    v.as_float()
+        .or_else(|| v.as_integer().map(|i| i as f64))
+        .with_context(|| format!("{BASE}: `{}` is not a number", path.join(".")))
+}
+
+impl Base {
+    /// Reads the base case from the workspace.
+    pub fn load() -> Result<Base> {
+        let text = std::fs::read_to_string(crate::root().join(BASE)).with_context(|| format!("reading {BASE}"))?;
+        let table: Table = text.parse().with_context(|| format!("parsing {BASE}"))?;
+        let disc = Disc {
+            diameter: 2.0 * num(&table, &["mesh", "parts", "0", "circle", "radius"])?,
+            thickness: num(&table, &["mesh", "parts", "0", "thickness"])?,
+            tensile_strength: num(&table, &["materials", "0", "tensile_strength"])?,
+            young: num(&table, &["materials", "0", "young"])?,
+        };
+        Ok(Base { table, disc })
+    }
+
+    /// The case at platen speed `velocity` (m/s) on `mesh`, after `tweak`
+    /// (a sensitivity variant's change), as TOML text.
+    pub fn case(&self, title: &str, mesh: Mesh, velocity: f64, tweak: &dyn Fn(&mut Table)) -> Result<String> {
+        let mut t = self.table.clone();
+        t.insert("title".into(), title.into());
+        let parts = t["mesh"]["parts"].as_array().context("mesh.parts")?.len();
+        for p in 0..parts {
+            let part = t.get_mut("mesh").and_then(|m| m.get_mut("parts")).and_then(|a| a.get_mut(p)).context("part")?;
+            let part = part.as_table_mut().context("part")?;
+            if part.get("kind").and_then(Value::as_str) == Some("extrusion") {
+                part.insert("element_size".into(), mesh.element_size.into());
+                part.insert("layers".into(), mesh.layers.into());
+            } else {
+                part.insert("element_size".into(), mesh.platen_size.into());
+            }
+        }
+        let platens = t.get_mut("platens").and_then(Value::as_array_mut).context("platens")?;
+        for p in platens.iter_mut() {
+            let p = p.as_table_mut().context("platen")?;
+            let sign = p["velocity"][1].as_float().context("platen velocity")?.signum();
+            p.insert("velocity".into(), Value::Array(vec![0.0.into(), (sign * velocity).into(), 0.0.into()]));
+        }
+        // Strain rate of Eq. 22: both platens approach at `velocity`.
+        let per_strain = self.disc.diameter / (2.0 * velocity);
+        let ramp = t["platens"][0].get("ramp_time").and_then(Value::as_float).unwrap_or(0.0);
+        let solver = t.get_mut("solver").and_then(Value::as_table_mut).context("solver")?;
+        solver.insert("end_time".into(), (ramp + MAX_STRAIN * per_strain).into());
+        let output = t.get_mut("output").and_then(Value::as_table_mut).context("output")?;
+        output.insert("interval".into(), (FRAME_STRAIN * per_strain).into());
+        output.insert("history_interval".into(), (ROW_STRAIN * per_strain).into());
+        output.insert("fields".into(), Value::Array(vec!["displacement".into(), "stress".into(), "region".into()]));
+        let ls = output.get_mut("load_strain").and_then(Value::as_table_mut).context("output.load_strain")?;
+        ls.insert("stop_below_peak".into(), 0.5.into());
+        tweak(&mut t);
+        Ok(format!(
+            "# Generated by `cargo xtask validate` from {BASE}; run it with\n# `femdem run` to reproduce this validation run.\n{}",
+            toml::to_string(&t)?
+        ))
+    }
+}
+
+/// Sets `materials[0].key` to `value`.
+pub fn set_material(t: &mut Table, key: &str, value: Value) {
+    if let Some(m) = t.get_mut("materials").and_then(|m| m.get_mut(0)).and_then(Value::as_table_mut) {
+        m.insert(key.into(), value);
+    }
+}
+
+/// Sets `[contact] key` to `value`.
+pub fn set_contact(t: &mut Table, key: &str, value: Value) {
+    if let Some(c) = t.get_mut("contact").and_then(Value::as_table_mut) {
+        c.insert(key.into(), value);
+    }
+}
+
+/// Sets the friction of every `[[contact.pairs]]` entry (disc–platen).
+pub fn set_platen_friction(t: &mut Table, mu: f64) {
+    if let Some(pairs) = t.get_mut("contact").and_then(|c| c.get_mut("pairs")).and_then(Value::as_array_mut) {
+        for p in pairs.iter_mut().filter_map(Value::as_table_mut) {
+            p.insert("friction".into(), mu.into());
+        }
+    }
+}

@@ -1,0 +1,237 @@
+//! The Brazilian disc test of the paper (Guo et al. §3.1, Fig. 6–8, Eq.
+//! 21–23): four loading rates, the paper's checks, the figures, and the
+//! sensitivity runs that measure what moves the tensile strength.
+
+mod analysis;
+mod case;
+mod figures;
+mod hondros;
+mod sensitivity;
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{Context, Result};
+
+use self::analysis::{BAND, Outcome};
+use self::case::{Base, Mesh};
+use super::Profile;
+use super::report::{Kind, Report};
+use super::runner::Femdem;
+use super::vtu::{self, Grid};
+
+/// The paper's loading rates V_y, m/s, fastest first.
+const RATES: [f64; 4] = [0.1, 0.05, 0.02, 0.01];
+/// The paper's peak load at 0.01 m/s (Fig. 6), N, and its f_bt, Pa.
+const PAPER_PEAK: f64 = 1844.76;
+const PAPER_FBT: f64 = 1.96e6;
+
+/// The mesh a profile runs.
+fn mesh(profile: Profile) -> Mesh {
+    match profile {
+        // Ten 4 mm triangles across the diameter: minutes per rate.
+        Profile::Quick => Mesh { element_size: 4.0e-3, layers: 4, platen_size: 4.0e-3 },
+        // The bundled case: the paper's ~1.2 mm (§3.1).
+        Profile::Paper => Mesh { element_size: 1.2e-3, layers: 10, platen_size: 2.0e-3 },
+    }
+}
+
+/// Runs the case in `profile`, adding its checks and sections to `report`.
+pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Report) -> Result<()> {
+    let base = Base::load()?;
+    let disc = base.disc;
+    let mesh = mesh(profile);
+    let dir = out.join("brazilian");
+    let mut runs = Vec::new();
+    for v in RATES {
+        let title = format!("Brazilian disc, V_y = {v} m/s, {} profile (cargo xtask validate)", profile.name());
+        let case = base.case(&title, mesh, v, &|_| {})?;
+        let run = femdem.run(&dir.join(format!("v{v}")), "brazilian", &case)?;
+        runs.push((v, Outcome::read(run, disc)?));
+    }
+    let gate_paper = if profile == Profile::Paper { Kind::Gate } else { Kind::Info };
+    let c = "brazilian";
+    let mut md = format!("## Brazilian disc ({} profile)\n\n", profile.name());
+    let _ = writeln!(
+        md,
+        "Mesh: {} mm triangles, {} layers (platens {} mm). Runs end once the load has fallen to half its peak.\n",
+        1e3 * mesh.element_size,
+        mesh.layers,
+        1e3 * mesh.platen_size
+    );
+    md.push_str("| V_y (m/s) | peak F (N) | f_bt (MPa) | f_bt / f_t | ε at peak (‰) | failures T/S/M/C | steps | wall (s) |\n|---|---|---|---|---|---|---|---|\n");
+    for (v, o) in &runs {
+        let eps = o.curve.iter().find(|p| p.1 == o.peak).map_or(0.0, |p| p.0);
+        let _ = writeln!(
+            md,
+            "| {v} | {:.1} | {:.3} | {:.2} | {:.3} | {} | {} | {:.0}{} |",
+            o.peak,
+            1e-6 * o.f_bt,
+            o.f_bt / disc.tensile_strength,
+            1e3 * eps,
+            o.modes().text(),
+            o.steps,
+            o.run.wall,
+            if o.run.reused { " (reused)" } else { "" }
+        );
+        report.check(
+            c,
+            &format!("peak passed at V = {v} m/s"),
+            "load falls below 90% of the peak".into(),
+            if o.passed_peak { "yes" } else { "no" }.into(),
+            "—",
+            o.passed_peak,
+            Kind::Gate,
+        );
+        report.check(
+            c,
+            &format!("energy balance at V = {v} m/s (|balance| / work)"),
+            "0".into(),
+            format!("{:.2}%", 100.0 * o.energy_error),
+            "< 2%",
+            o.energy_error < 0.02,
+            Kind::Gate,
+        );
+    }
+    let peak = |i: usize| runs[i].1.peak;
+    let falls = peak(0) > peak(1) && peak(1) > peak(2);
+    report.check(
+        c,
+        "peak F falls with the rate (0.1 > 0.05 > 0.02 m/s)",
+        "falls (Fig. 6)".into(),
+        format!("{:.0} / {:.0} / {:.0} N", peak(0), peak(1), peak(2)),
+        "strict",
+        falls,
+        Kind::Gate,
+    );
+    let quasi = (peak(2) - peak(3)).abs() / peak(3);
+    report.check(
+        c,
+        "peaks at 0.02 and 0.01 m/s agree (quasi-static)",
+        "almost equal (Fig. 6)".into(),
+        format!("{:.0} vs {:.0} N ({:.1}%)", peak(2), peak(3), 100.0 * quasi),
+        "≤ 5%",
+        quasi <= 0.05,
+        Kind::Gate,
+    );
+    let slow = &runs[3].1;
+    let fbt_err = (slow.f_bt - PAPER_FBT).abs() / PAPER_FBT;
+    report.check(
+        c,
+        "f_bt at 0.01 m/s (Eq. 23)",
+        format!("{:.2} MPa (F = {PAPER_PEAK} N)", 1e-6 * PAPER_FBT),
+        format!("{:.2} MPa (F = {:.0} N)", 1e-6 * slow.f_bt, slow.peak),
+        "≤ 15%",
+        fbt_err <= 0.15,
+        gate_paper,
+    );
+    for (v, o) in runs.iter().filter(|(v, _)| *v == 0.01 || *v == 0.05) {
+        let share = o.on_diameter();
+        report.check(
+            c,
+            &format!("failures within {} mm of the loaded diameter, V = {v} m/s", 1e3 * BAND),
+            "splitting along it (Fig. 8)".into(),
+            format!("{:.0}% of {}", 100.0 * share, o.failures.len()),
+            "≥ 80%",
+            share >= 0.8,
+            Kind::Gate,
+        );
+        let central = o.central(disc);
+        report.check(
+            c,
+            &format!("central fracture mode, V = {v} m/s (|y| < d/4)"),
+            "tensile (Fig. 7-8)".into(),
+            format!("{:.0}% tensile ({})", 100.0 * central.share(1), central.text()),
+            "> 50% tensile",
+            central.share(1) > 0.5,
+            gate_paper,
+        );
+    }
+    let (top, bottom) = (slow.at_contact(disc, 1.0), slow.at_contact(disc, -1.0));
+    let crushed = top.counts[1] > 0 && bottom.counts[1] > 0;
+    report.check(
+        c,
+        &format!("shear failures within {} mm of both contacts, 0.01 m/s", 1e3 * BAND),
+        "crushing at both ends (Fig. 7b, 8)".into(),
+        format!("top {}, bottom {}", top.text(), bottom.text()),
+        "≥ 1 shear at each",
+        crushed,
+        Kind::Gate,
+    );
+    if let Some(f) = slow.first_failure() {
+        let at_contact = f.at[1].abs() > 0.5 * disc.diameter - BAND;
+        report.check(
+            c,
+            "first failure at 0.01 m/s",
+            "shear, at a platen (Fig. 7b)".into(),
+            format!("mode {} at y = {:.1} mm, F = {:.0} N", f.mode, 1e3 * f.at[1], slow.load_at(f.time)),
+            "same place and mode",
+            at_contact && f.mode == 2,
+            Kind::Info,
+        );
+    }
+    // Hondros' centre stresses in the last frame before the first failure.
+    let pvd = slow.run.dir.join(format!("{}.pvd", slow.run.stem));
+    let first = slow.first_failure().map_or(slow.peak_time, |f| f.time);
+    let frames = vtu::series(&pvd)?;
+    let (t_frame, file) =
+        frames.iter().rfind(|(t, _)| *t < first && *t > 0.0).context("no frame before the first failure")?;
+    let grid = Grid::read(file)?;
+    let load = slow.load_at(*t_frame);
+    let centre = hondros::centre(&grid, disc, load)?;
+    let (ex, ey) = (centre.sx / centre.sx_exact - 1.0, centre.sy / centre.sy_exact - 1.0);
+    let zone = format!(
+        "{} tets within {} R of the centre, t = {:.3e} s, F = {:.0} N",
+        centre.tets,
+        hondros::ZONE,
+        t_frame,
+        load
+    );
+    report.check(
+        c,
+        &format!("σx at the centre before failure ({zone})"),
+        format!("{:.3} MPa (2P/πDt)", 1e-6 * centre.sx_exact),
+        format!("{:.3} MPa ({:+.1}%)", 1e-6 * centre.sx, 100.0 * ex),
+        "≤ 5%",
+        ex.abs() <= 0.05,
+        Kind::Gate,
+    );
+    report.check(
+        c,
+        "σy at the centre before failure (same tets)",
+        format!("{:.3} MPa (−6P/πDt)", 1e-6 * centre.sy_exact),
+        format!("{:.3} MPa ({:+.1}%)", 1e-6 * centre.sy, 100.0 * ey),
+        "≤ 5%",
+        ey.abs() <= 0.05,
+        Kind::Gate,
+    );
+    // Figures.
+    let figs = out.join("figures");
+    std::fs::create_dir_all(&figs)?;
+    let curves: Vec<(f64, &Outcome)> = runs.iter().map(|(v, o)| (*v, o)).collect();
+    figures::load_strain(&figs.join("brazilian_load_strain.png"), &curves)?;
+    let s0 = 2.0 * load / (std::f64::consts::PI * disc.diameter * disc.thickness);
+    let layer = disc.thickness / mesh.layers as f64;
+    figures::mid_plane_sigma_x(
+        &figs.join("brazilian_sigma_x.png"),
+        &grid,
+        disc,
+        layer,
+        s0,
+        &format!("σx on the mid-plane, V = 0.01 m/s, F = {load:.0} N"),
+    )?;
+    md.push_str("\n![load–strain](figures/brazilian_load_strain.png)\n\n![σx](figures/brazilian_sigma_x.png)\n");
+    for (v, o) in runs.iter().filter(|(v, _)| *v == 0.01 || *v == 0.05) {
+        let fpvd = o.run.dir.join(format!("{}_fractures.pvd", o.run.stem));
+        let last = vtu::series(&fpvd)?.pop().context("no fracture frame")?;
+        let fr = Grid::read(&last.1)?;
+        let (z, d3) = (format!("brazilian_fractures_z_v{v}.png"), format!("brazilian_fractures_3d_v{v}.png"));
+        figures::fracture_pattern(&figs.join(&z), &figs.join(&d3), &fr, disc, &format!("V = {v} m/s"))?;
+        let _ = writeln!(md, "\n![fractures along z, V = {v}](figures/{z}) ![fractures 3D, V = {v}](figures/{d3})");
+    }
+    if profile == Profile::Quick {
+        md.push_str(&sensitivity::run(femdem, &base, mesh, &dir, &runs[0].1)?);
+    }
+    report.sections.push(md);
+    Ok(())
+}

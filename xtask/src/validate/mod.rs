@@ -1,0 +1,111 @@
+//! `cargo xtask validate [--profile quick|paper] [--case NAME] [--out DIR]`:
+//! runs the reference paper's examples through `femdem run`, as a user
+//! would, checks the results against the paper and closed forms, and writes
+//! `report.md`, `checks.csv`, the runs' data and PNG figures to DIR
+//! (default `target/validation`). Exits non-zero when a gating check fails.
+//!
+//! A run that finished before with the same case text is reused, so an
+//! interrupted validation resumes at the first unfinished run.
+
+mod brazilian;
+mod history;
+mod plot;
+mod report;
+mod runner;
+mod vtu;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{Result, bail};
+
+use self::report::Report;
+use self::runner::Femdem;
+
+/// How much a validation runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Profile {
+    /// Coarse meshes, minutes on two cores; paper comparisons reported but
+    /// not gated (the meshes are not the paper's).
+    Quick,
+    /// The paper's mesh sizes and rates: hours on two cores; the paper's
+    /// numbers are gated too.
+    Paper,
+}
+
+impl Profile {
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Profile::Quick => "quick",
+            Profile::Paper => "paper",
+        }
+    }
+}
+
+/// The cases, in the paper's order, and whether they are built yet.
+const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", false), ("multilayer", false)];
+
+/// Runs the task.
+pub fn run(args: &[String]) -> Result<()> {
+    let mut profile = Profile::Quick;
+    let mut only: Option<String> = None;
+    let mut out = crate::root().join("target").join("validation");
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = || it.next().cloned().ok_or_else(|| anyhow::anyhow!("{a} needs a value"));
+        match a.as_str() {
+            "--profile" => {
+                profile = match value()?.as_str() {
+                    "quick" => Profile::Quick,
+                    "paper" => Profile::Paper,
+                    p => bail!("unknown profile `{p}`; profiles: quick, paper"),
+                }
+            }
+            "--case" => only = Some(value()?),
+            "--out" => out = PathBuf::from(value()?),
+            other => bail!(
+                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--out DIR]"
+            ),
+        }
+    }
+    if let Some(name) = &only
+        && !CASES.iter().any(|(c, _)| c == name)
+    {
+        bail!("unknown case `{name}`; cases: brazilian, polyaxial, multilayer");
+    }
+    std::fs::create_dir_all(&out)?;
+    let start = Instant::now();
+    let femdem = Femdem::build()?;
+    let mut report = Report::default();
+    for (name, built) in CASES {
+        if only.as_ref().is_some_and(|o| o != name) {
+            continue;
+        }
+        if !built {
+            report.sections.push(format!("## {name}\n\nNot reproduced yet: no runs, no checks.\n"));
+            continue;
+        }
+        match name {
+            "brazilian" => brazilian::validate(&femdem, profile, &out, &mut report)?,
+            _ => unreachable!("every built case is dispatched"),
+        }
+    }
+    let wall = start.elapsed().as_secs_f64();
+    report.sections.push(format!(
+        "Total wall time {wall:.0} s on {} cores (`cargo xtask validate --profile {}`).",
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
+        profile.name()
+    ));
+    report.write(&out, &format!("femdem validation against Guo et al. ({} profile)", profile.name()))?;
+    let failed: Vec<String> = report.failures().map(|c| format!("{}: {} = {}", c.case, c.metric, c.value)).collect();
+    println!("report: {}", out.join("report.md").display());
+    if !failed.is_empty() {
+        bail!("{} check(s) failed:\n  {}", failed.len(), failed.join("\n  "));
+    }
+    println!(
+        "all {} gating checks passed ({wall:.0} s)",
+        report.checks.iter().filter(|c| c.kind == report::Kind::Gate).count()
+    );
+    Ok(())
+}

@@ -156,7 +156,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         format!("top {}, bottom {}", top.text(), bottom.text()),
         "≥ 1 shear at each",
         crushed,
-        Kind::Gate,
+        gate_paper,
     );
     if let Some(f) = slow.first_failure() {
         let at_contact = f.at[1].abs() > 0.5 * disc.diameter - BAND;

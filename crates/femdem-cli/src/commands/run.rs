@@ -9,9 +9,9 @@ use anyhow::{Context, Result, bail};
 use femdem_solver::Want;
 
 use super::output::Output;
-use crate::case::setup::LoadStrain;
 use super::prepare::prepare;
 use super::progress::Progress;
+use crate::case::setup::LoadStrain;
 
 /// Runs the command.
 pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<()> {
@@ -114,10 +114,7 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
         solver.state.time
     );
     if let (true, Some(w)) = (ended_past_peak, &past_peak) {
-        println!(
-            "ended       past the peak: load {:.6e} N below {} of its peak {:.6e} N",
-            w.last, w.fraction, w.peak
-        );
+        println!("ended       past the peak: load {:.6e} N below {} of its peak {:.6e} N", w.last, w.fraction, w.peak);
     }
     println!("wall time   {wall:.2} s");
     println!("throughput  {:.3e} tet-steps/s ({} threads)", progress.throughput(steps), rayon::current_num_threads());

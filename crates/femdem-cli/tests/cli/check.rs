@@ -105,7 +105,11 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("undeclared_physical_volume.toml", ":7:1:", "physical volume `inclusion`"),
         ("contact_pair_unknown_region.toml", ":24:1:", "contact.pairs[0]: `steel` is not a region"),
         ("load_strain_unknown_platen.toml", ":23:1:", "output.load_strain.upper: `platen_top` is not a platen"),
-        ("stop_below_peak_above_one.toml", ":55:1:", "output.load_strain.stop_below_peak must be a fraction in (0, 1), got 1.5"),
+        (
+            "stop_below_peak_above_one.toml",
+            ":55:1:",
+            "output.load_strain.stop_below_peak must be a fraction in (0, 1), got 1.5",
+        ),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");

@@ -197,7 +197,8 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
     assert!(last[col("time")] < 1.9e-4, "ended at the end time {}", last[col("time")]);
     // Joints failed before the end, and the last row carries the energies
     // of its step: the account still closes.
-    let broken: f64 = ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"].iter().map(|c| last[col(c)]).sum();
+    let broken: f64 =
+        ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"].iter().map(|c| last[col(c)]).sum();
     assert!(broken > 0.0);
     assert!(last[col("balance")].abs() < 0.02 * last[col("external_work")], "balance {}", last[col("balance")]);
     // The final frame is the last row's time.

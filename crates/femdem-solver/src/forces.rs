@@ -9,7 +9,7 @@
 //! chunk order, for the same reason.
 
 use femdem_core::{Mat3, Real, Vec3};
-use femdem_fracture::{FailureMode, JointHistory, joint_update};
+use femdem_fracture::{FailureMode, JointHistory, KernelConsts, LANES, joint_update_fast, joint_update_lanes};
 use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
@@ -184,7 +184,11 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
 }
 
 /// The joints `first..first + slots.len()` (one chunk of the joint pass;
-/// not inlined, so that profiles name it).
+/// not inlined, so that profiles name it): four at a time in SIMD lanes
+/// where all four are intact and stay elastic ([`joint_update_lanes`]),
+/// the others one by one ([`joint_update_fast`]); both give the law's
+/// results bit for bit, so which one runs changes nothing. A step that asks
+/// for energies runs the scalar kernel throughout (the lanes compute none).
 #[inline(never)]
 fn joint_chunk(
     model: &Model,
@@ -195,37 +199,56 @@ fn joint_chunk(
     failed: &mut [Option<FailureMode>],
     want: Want,
 ) -> ForceSums {
+    let consts = KernelConsts::new();
     let mut sums = ForceSums::default();
-    for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
-        let j = first + k;
-        *f = None;
-        if h.failed {
-            // Left the force loop when it failed (naturally, or by
-            // `Solver::break_joints`): no force, all its work lost.
-            *slot = [Vec3::zeros(); 6];
-            if want.energy {
-                sums.fracture += h.work;
+    let groups = slots.chunks_mut(LANES).zip(hist.chunks_mut(LANES)).zip(failed.chunks_mut(LANES));
+    for (g, ((slots, hist), failed)) in groups.enumerate() {
+        let j0 = first + g * LANES;
+        if !want.energy && slots.len() == LANES {
+            let (group_slots, group_hist) = (
+                <&mut [[Vec3; 6]; LANES]>::try_from(&mut *slots).expect("a full group"),
+                <&mut [JointHistory; LANES]>::try_from(&mut *hist).expect("a full group"),
+            );
+            let law = |l: usize| &model.joint_law[j0 + l];
+            let xp = std::array::from_fn(|l| model.joints[j0 + l].map(|n| x[n as usize]));
+            if joint_update_lanes(&consts, [law(0), law(1), law(2), law(3)], group_hist, &xp, group_slots) {
+                failed.fill(None);
+                continue;
             }
-            continue;
         }
-        let xp = model.joints[j].map(|n| x[n as usize]);
-        let out = joint_update(&model.joint_law[j], h, &xp, want.energy);
-        *slot = out.forces;
-        if out.failed.is_some() {
-            *f = out.failed;
-            sums.newly_failed += 1;
-        }
-        if want.energy {
-            sums.joint_energy += out.energy;
-            sums.fracture += if h.failed { h.work } else { h.work - out.energy };
+        for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
+            let j = j0 + k;
+            *f = None;
+            if h.failed {
+                // Left the force loop when it failed (naturally, or by
+                // `Solver::break_joints`): no force, all its work lost.
+                *slot = [Vec3::zeros(); 6];
+                if want.energy {
+                    sums.fracture += h.work;
+                }
+                continue;
+            }
+            let xp = model.joints[j].map(|n| x[n as usize]);
+            let out = joint_update_fast(&consts, &model.joint_law[j], h, &xp, want.energy);
+            *slot = out.forces;
+            if out.failed.is_some() {
+                *f = out.failed;
+                sums.newly_failed += 1;
+            }
+            if want.energy {
+                sums.joint_energy += out.energy;
+                sums.fracture += if h.failed { h.work } else { h.work - out.energy };
+            }
         }
     }
     sums
 }
 
 fn gather(model: &Model, ws: &mut Workspace) {
-    let tet_slots = &ws.tet_slots;
-    let joint_slots = &ws.joint_slots;
+    // Slot `s` of a gather table is `element * nodes_per_element + local`:
+    // its index in the flattened slots, with no division.
+    let tet_slots = ws.tet_slots.as_flattened();
+    let joint_slots = ws.joint_slots.as_flattened();
     ws.internal
         .par_chunks_mut(CHUNK)
         .enumerate()
@@ -233,17 +256,20 @@ fn gather(model: &Model, ws: &mut Workspace) {
 }
 
 /// The nodes `first..first + out.len()` (one chunk of the gather; not
-/// inlined, so that profiles name it).
+/// inlined, so that profiles name it): each node's tet slots, then its
+/// joint slots, in increasing slot order.
 #[inline(never)]
-fn gather_chunk(model: &Model, tet_slots: &[[Vec3; 4]], joint_slots: &[[Vec3; 6]], first: usize, out: &mut [Vec3]) {
-    for (k, f) in out.iter_mut().enumerate() {
-        let i = first + k;
+fn gather_chunk(model: &Model, tet_slots: &[Vec3], joint_slots: &[Vec3], first: usize, out: &mut [Vec3]) {
+    let (tg, jg) = (&model.tet_gather, &model.joint_gather);
+    let tet_rows = tg.offsets[first..=first + out.len()].windows(2);
+    let joint_rows = jg.offsets[first..=first + out.len()].windows(2);
+    for ((f, t), j) in out.iter_mut().zip(tet_rows).zip(joint_rows) {
         let mut sum = Vec3::zeros();
-        for &s in model.tet_gather.of(i) {
-            sum += tet_slots[(s / 4) as usize][(s % 4) as usize];
+        for &s in &tg.slots[t[0] as usize..t[1] as usize] {
+            sum += tet_slots[s as usize];
         }
-        for &s in model.joint_gather.of(i) {
-            sum += joint_slots[(s / 6) as usize][(s % 6) as usize];
+        for &s in &jg.slots[j[0] as usize..j[1] as usize] {
+            sum += joint_slots[s as usize];
         }
         *f = sum;
     }

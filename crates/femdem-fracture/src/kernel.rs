@@ -18,7 +18,8 @@
 //! - sums the stored energy (`Coupling::stored`, Eq. 11 integrated) only
 //!   when it is asked for or the joint fails (then it is
 //!   `JointHistory::released`);
-//! - computes each slip's magnitude once.
+//! - computes the shear traction `τ δs/|δs|` once for the work and the
+//!   force.
 //!
 //! Since every value that is computed is computed as in `law.rs`, a
 //! comparison of the two paths can demand bit equality

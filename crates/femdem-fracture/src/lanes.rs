@@ -137,9 +137,10 @@ pub fn joint_update_lanes(
     let two = V::splat(2.0);
     let mut work = V::from([history[0].work, history[1].work, history[2].work, history[3].work]);
     let mut out = [V3::zero(); 6];
-    let mut last = [[V::ZERO; 4]; 3];
-    let mut last_stress = [[V::ZERO; 2]; 3];
-    for (i, w) in GAUSS.iter().enumerate() {
+    // Each point in turn (`from_fn` calls in index order), returning what
+    // its history will keep: `[δn, δs]` and `[σ, τ]`.
+    let points: [([V; 4], [V; 2]); 3] = std::array::from_fn(|i| {
+        let w = &GAUSS[i];
         let (w0, w1, w2) = (V::splat(w[0]), V::splat(w[1]), V::splat(w[2]));
         let pa = n[0].scale(w0).add(n[1].scale(w1)).add(n[2].scale(w2));
         let pb = n[5].scale(w0).add(n[4].scale(w1)).add(n[3].scale(w2));
@@ -167,8 +168,6 @@ pub fn joint_update_lanes(
         let traction = V3::select(ds_last.simd_gt(V::ZERO), shear.add(slip_last.scale(tau_last / ds_last)), shear);
         let normal_work = half * (sigma_last + sigma) * (dn - ln);
         work += weight * (normal_work + half * traction.dot(d_slip));
-        last[i] = [dn, slip.x, slip.y, slip.z];
-        last_stress[i] = [sigma, tau];
         // Forces: the traction on side a, its opposite on side b.
         let t = z.scale(sigma);
         let t = V3::select(slipping, t.add(shear), t);
@@ -177,16 +176,17 @@ pub fn joint_update_lanes(
             out[node_a] = out[node_a].add(f.scale(xi));
             out[node_b] = out[node_b].sub(f.scale(xi));
         }
-    }
+        ([dn, slip.x, slip.y, slip.z], [sigma, tau])
+    });
     if !ok.all() {
         return false;
     }
     let weight = weight.as_array();
     for (l, hist) in history.iter_mut().enumerate() {
-        for i in 0..3 {
+        for (i, (last, stress)) in points.iter().enumerate() {
             hist.damage[i] = 0.0f64.max(hist.damage[i]);
-            hist.last[i] = last[i].map(|v| v.as_array()[l]);
-            hist.last_stress[i] = last_stress[i].map(|v| v.as_array()[l]);
+            hist.last[i] = last.map(|v| v.as_array()[l]);
+            hist.last_stress[i] = stress.map(|v| v.as_array()[l]);
             hist.dissipated += weight[l] * 0.0;
         }
         hist.work = work.as_array()[l];

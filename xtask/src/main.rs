@@ -3,8 +3,10 @@
 //! - `validate [--profile quick|paper] [--case NAME] [--out DIR]`: runs the
 //!   reference paper's examples and reports against its numbers
 //!   (`docs/validation.md`).
-//! - `bench [--memory] [criterion args…]`: the criterion benchmarks, or with
-//!   `--memory` only the peak-memory run of joint insertion on 10⁶ tets.
+//! - `bench [--memory | --callgrind] [criterion args…]`: the criterion
+//!   benchmarks; with `--memory` only the peak-memory run of joint insertion
+//!   on 10⁶ tets; with `--callgrind` the instructions per tet-step of each
+//!   kernel of the step (needs valgrind; `docs/performance.md`).
 //! - `fixtures`: regenerates the Gmsh test fixture (needs `pip install gmsh`).
 
 mod bench;

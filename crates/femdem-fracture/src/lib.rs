@@ -23,6 +23,11 @@
 //!   Eq. 11 branches, Eq. 13 damage with its irreversible history
 //!   ([`JointHistory`]), nodal forces, work and stored energy, failure when
 //!   two of three points carry no stress.
+//! - [`joint_update_fast`] (`kernel.rs`): the same, bit for bit, for the
+//!   force pass: `z` only where the damage is not zero and changed, the
+//!   stored energy only when asked for or released.
+//! - [`joint_update_lanes`] (`lanes.rs`): four intact joints in SIMD lanes
+//!   (`wide::f64x4`), bit for bit the same, for the elastic regime.
 //! - [`Coupling`] (`coupling.rs`): how damage acts on the hardening branches
 //!   of Eq. 11 (capped, as printed, multiplicative).
 //! - [`FailureMode`] (`failure.rs`): the label of a failure, from the shares
@@ -84,14 +89,18 @@
 mod coupling;
 mod failure;
 pub mod heterogeneity;
+mod kernel;
 mod kinematics;
+mod lanes;
 mod law;
 mod params;
 pub mod softening;
 
 pub use coupling::{Coupling, Softened};
 pub use failure::{DOMINANT_SHARE, FailureMode};
+pub use kernel::{KernelConsts, joint_update_fast};
 pub use kinematics::{GAUSS, JointFrame, JointKinematics, joint_kinematics};
+pub use lanes::{LANES, joint_update_lanes};
 pub use law::{
     Joint, JointHistory, JointOutput, PointStress, joint_update, normal_stress, point_stress, point_stress_with,
 };

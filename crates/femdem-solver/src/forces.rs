@@ -9,7 +9,7 @@
 //! chunk order, for the same reason.
 
 use femdem_core::{Mat3, Real, Vec3};
-use femdem_fracture::{FailureMode, JointHistory, joint_update};
+use femdem_fracture::{FailureMode, JointHistory, KernelConsts, LANES, joint_update_fast, joint_update_lanes};
 use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
@@ -118,40 +118,57 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
         .zip(ws.tet_partials.par_iter_mut())
         .enumerate()
         .for_each(|(c, ((slots, stresses), partial))| {
-            let mut sums = ForceSums::default();
-            for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
-                let t = c * CHUNK + k;
-                let mat = model.tet_material[t];
-                if mat == RIGID {
-                    *slot = [Vec3::zeros(); 4];
-                    continue;
-                }
-                let (law, material) = &model.materials[mat as usize];
-                let tet = model.tets[t];
-                let xp = tet.map(|n| x[n as usize]);
-                let vp = tet.map(|n| v[n as usize]);
-                let reference = &model.tet_ref[t];
-                let out = tet_forces(*law, material, reference, &xp, &vp);
-                *slot = out.forces;
-                if want.stress {
-                    *stress_slot = out.stress;
-                }
-                if want.energy {
-                    sums.tet_energy += out.energy;
-                }
-                if dissipation && material.viscosity() > 0.0 {
-                    // Rate of viscous work −Σ f_visc·v = ∫ η D:D dv.
-                    let l = velocity_gradient(&xp, &vp);
-                    let d = (l + l.transpose()) * 0.5;
-                    let j = deformation_gradient(reference, &xp).determinant();
-                    let rate = material.viscosity() * d.dot(&d) * reference.volume * j;
-                    if rate.is_finite() {
-                        sums.dissipation_rate += rate;
-                    }
-                }
-            }
-            *partial = sums;
+            *partial = tet_chunk(model, x, v, c * CHUNK, slots, stresses, want, dissipation);
         });
+}
+
+/// The tets `first..first + slots.len()` (one chunk of the tet pass; not
+/// inlined, so that profiles name it).
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn tet_chunk(
+    model: &Model,
+    x: &[Vec3],
+    v: &[Vec3],
+    first: usize,
+    slots: &mut [[Vec3; 4]],
+    stresses: &mut [Mat3],
+    want: Want,
+    dissipation: bool,
+) -> ForceSums {
+    let mut sums = ForceSums::default();
+    for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
+        let t = first + k;
+        let mat = model.tet_material[t];
+        if mat == RIGID {
+            *slot = [Vec3::zeros(); 4];
+            continue;
+        }
+        let (law, material) = &model.materials[mat as usize];
+        let tet = model.tets[t];
+        let xp = tet.map(|n| x[n as usize]);
+        let vp = tet.map(|n| v[n as usize]);
+        let reference = &model.tet_ref[t];
+        let out = tet_forces(*law, material, reference, &xp, &vp);
+        *slot = out.forces;
+        if want.stress {
+            *stress_slot = out.stress;
+        }
+        if want.energy {
+            sums.tet_energy += out.energy;
+        }
+        if dissipation && material.viscosity() > 0.0 {
+            // Rate of viscous work −Σ f_visc·v = ∫ η D:D dv.
+            let l = velocity_gradient(&xp, &vp);
+            let d = (l + l.transpose()) * 0.5;
+            let j = deformation_gradient(reference, &xp).determinant();
+            let rate = material.viscosity() * d.dot(&d) * reference.volume * j;
+            if rate.is_finite() {
+                sums.dissipation_rate += rate;
+            }
+        }
+    }
+    sums
 }
 
 fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut Workspace, want: Want) {
@@ -162,49 +179,98 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
         .zip(ws.joint_partials.par_iter_mut())
         .enumerate()
         .for_each(|(c, (((slots, hist), failed), partial))| {
-            let mut sums = ForceSums::default();
-            for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
-                let j = c * CHUNK + k;
-                *f = None;
-                if h.failed {
-                    // Left the force loop when it failed (naturally, or by
-                    // `Solver::break_joints`): no force, all its work lost.
-                    *slot = [Vec3::zeros(); 6];
-                    if want.energy {
-                        sums.fracture += h.work;
-                    }
-                    continue;
-                }
-                let xp = model.joints[j].map(|n| x[n as usize]);
-                let out = joint_update(&model.joint_law[j], h, &xp, want.energy);
-                *slot = out.forces;
-                if out.failed.is_some() {
-                    *f = out.failed;
-                    sums.newly_failed += 1;
-                }
-                if want.energy {
-                    sums.joint_energy += out.energy;
-                    sums.fracture += if h.failed { h.work } else { h.work - out.energy };
-                }
-            }
-            *partial = sums;
+            *partial = joint_chunk(model, x, c * CHUNK, slots, hist, failed, want);
         });
 }
 
-fn gather(model: &Model, ws: &mut Workspace) {
-    let tet_slots = &ws.tet_slots;
-    let joint_slots = &ws.joint_slots;
-    ws.internal.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-        for (k, f) in out.iter_mut().enumerate() {
-            let i = c * CHUNK + k;
-            let mut sum = Vec3::zeros();
-            for &s in model.tet_gather.of(i) {
-                sum += tet_slots[(s / 4) as usize][(s % 4) as usize];
+/// The joints `first..first + slots.len()` (one chunk of the joint pass;
+/// not inlined, so that profiles name it): four at a time in SIMD lanes
+/// where all four are intact and stay elastic ([`joint_update_lanes`]),
+/// the others one by one ([`joint_update_fast`]); both give the law's
+/// results bit for bit, so which one runs changes nothing. A step that asks
+/// for energies runs the scalar kernel throughout (the lanes compute none).
+#[inline(never)]
+fn joint_chunk(
+    model: &Model,
+    x: &[Vec3],
+    first: usize,
+    slots: &mut [[Vec3; 6]],
+    hist: &mut [JointHistory],
+    failed: &mut [Option<FailureMode>],
+    want: Want,
+) -> ForceSums {
+    let consts = KernelConsts::new();
+    let mut sums = ForceSums::default();
+    let groups = slots.chunks_mut(LANES).zip(hist.chunks_mut(LANES)).zip(failed.chunks_mut(LANES));
+    for (g, ((slots, hist), failed)) in groups.enumerate() {
+        let j0 = first + g * LANES;
+        if !want.energy && slots.len() == LANES {
+            let (group_slots, group_hist) = (
+                <&mut [[Vec3; 6]; LANES]>::try_from(&mut *slots).expect("a full group"),
+                <&mut [JointHistory; LANES]>::try_from(&mut *hist).expect("a full group"),
+            );
+            let law = |l: usize| &model.joint_law[j0 + l];
+            let xp = std::array::from_fn(|l| model.joints[j0 + l].map(|n| x[n as usize]));
+            if joint_update_lanes(&consts, [law(0), law(1), law(2), law(3)], group_hist, &xp, group_slots) {
+                failed.fill(None);
+                continue;
             }
-            for &s in model.joint_gather.of(i) {
-                sum += joint_slots[(s / 6) as usize][(s % 6) as usize];
-            }
-            *f = sum;
         }
-    });
+        for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
+            let j = j0 + k;
+            *f = None;
+            if h.failed {
+                // Left the force loop when it failed (naturally, or by
+                // `Solver::break_joints`): no force, all its work lost.
+                *slot = [Vec3::zeros(); 6];
+                if want.energy {
+                    sums.fracture += h.work;
+                }
+                continue;
+            }
+            let xp = model.joints[j].map(|n| x[n as usize]);
+            let out = joint_update_fast(&consts, &model.joint_law[j], h, &xp, want.energy);
+            *slot = out.forces;
+            if out.failed.is_some() {
+                *f = out.failed;
+                sums.newly_failed += 1;
+            }
+            if want.energy {
+                sums.joint_energy += out.energy;
+                sums.fracture += if h.failed { h.work } else { h.work - out.energy };
+            }
+        }
+    }
+    sums
+}
+
+fn gather(model: &Model, ws: &mut Workspace) {
+    // Slot `s` of a gather table is `element * nodes_per_element + local`:
+    // its index in the flattened slots, with no division.
+    let tet_slots = ws.tet_slots.as_flattened();
+    let joint_slots = ws.joint_slots.as_flattened();
+    ws.internal
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .for_each(|(c, out)| gather_chunk(model, tet_slots, joint_slots, c * CHUNK, out));
+}
+
+/// The nodes `first..first + out.len()` (one chunk of the gather; not
+/// inlined, so that profiles name it): each node's tet slots, then its
+/// joint slots, in increasing slot order.
+#[inline(never)]
+fn gather_chunk(model: &Model, tet_slots: &[Vec3], joint_slots: &[Vec3], first: usize, out: &mut [Vec3]) {
+    let (tg, jg) = (&model.tet_gather, &model.joint_gather);
+    let tet_rows = tg.offsets[first..=first + out.len()].windows(2);
+    let joint_rows = jg.offsets[first..=first + out.len()].windows(2);
+    for ((f, t), j) in out.iter_mut().zip(tet_rows).zip(joint_rows) {
+        let mut sum = Vec3::zeros();
+        for &s in &tg.slots[t[0] as usize..t[1] as usize] {
+            sum += tet_slots[s as usize];
+        }
+        for &s in &jg.slots[j[0] as usize..j[1] as usize] {
+            sum += joint_slots[s as usize];
+        }
+        *f = sum;
+    }
 }

@@ -3,6 +3,7 @@
 
 mod law_reference;
 
+mod kernel_matches_law;
 mod law_capped_legacy;
 mod law_coupling;
 mod law_curves;

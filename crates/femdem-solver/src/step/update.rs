@@ -38,7 +38,6 @@ impl Update {
         dt: Real,
         want_kinetic: bool,
     ) -> (Real, Real) {
-        let (prescribed, f_surface, targets) = (&external.prescribed, &external.f_surface, &external.targets);
         state
             .x
             .par_chunks_mut(CHUNK)
@@ -46,35 +45,56 @@ impl Update {
             .zip(self.partials.par_iter_mut())
             .enumerate()
             .for_each(|(c, ((xs, vs), partial))| {
-                let mut power = 0.0;
-                let mut kinetic = 0.0;
-                for (k, (x, v)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
-                    let i = c * CHUNK + k;
-                    let m = model.mass[i];
-                    let f_ext = f_surface[i] + weight(model, loads, i);
-                    let f_in = match contact {
-                        Some(f) => internal[i] + f[i],
-                        None => internal[i],
-                    };
-                    let old = *v;
-                    let mut new = if m > 0.0 { old + (f_in + f_ext) * (dt / m) } else { old };
-                    for comp in 0..3 {
-                        match prescribed[i][comp] {
-                            FREE => {}
-                            FIXED => new[comp] = 0.0,
-                            d => new[comp] = targets[d as usize][comp],
-                        }
-                    }
-                    let v_n = (old + new) * 0.5;
-                    power += f_ext.dot(&v_n);
-                    if want_kinetic {
-                        kinetic += 0.5 * m * v_n.norm_squared();
-                    }
-                    *v = new;
-                    *x += new * dt;
-                }
-                *partial = [power, kinetic];
+                *partial =
+                    advance_chunk(model, loads, external, internal, contact, c * CHUNK, xs, vs, dt, want_kinetic);
             });
         self.partials.iter().fold((0.0, 0.0), |(p, k), q| (p + q[0], k + q[1]))
     }
+}
+
+/// The nodes `first..first + xs.len()` (one chunk of the update; not
+/// inlined, so that profiles name it): returns `[power, kinetic]`.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn advance_chunk(
+    model: &Model,
+    loads: &Loads,
+    external: &External,
+    internal: &[Vec3],
+    contact: Option<&[Vec3]>,
+    first: usize,
+    xs: &mut [Vec3],
+    vs: &mut [Vec3],
+    dt: Real,
+    want_kinetic: bool,
+) -> [Real; 2] {
+    let (prescribed, f_surface, targets) = (&external.prescribed, &external.f_surface, &external.targets);
+    let mut power = 0.0;
+    let mut kinetic = 0.0;
+    for (k, (x, v)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
+        let i = first + k;
+        let m = model.mass[i];
+        let f_ext = f_surface[i] + weight(model, loads, i);
+        let f_in = match contact {
+            Some(f) => internal[i] + f[i],
+            None => internal[i],
+        };
+        let old = *v;
+        let mut new = if m > 0.0 { old + (f_in + f_ext) * (dt / m) } else { old };
+        for comp in 0..3 {
+            match prescribed[i][comp] {
+                FREE => {}
+                FIXED => new[comp] = 0.0,
+                d => new[comp] = targets[d as usize][comp],
+            }
+        }
+        let v_n = (old + new) * 0.5;
+        power += f_ext.dot(&v_n);
+        if want_kinetic {
+            kinetic += 0.5 * m * v_n.norm_squared();
+        }
+        *v = new;
+        *x += new * dt;
+    }
+    [power, kinetic]
 }

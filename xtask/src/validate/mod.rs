@@ -8,8 +8,10 @@
 //! interrupted validation resumes at the first unfinished run.
 
 mod brazilian;
+mod failures;
 mod history;
 mod plot;
+mod polyaxial;
 mod report;
 mod runner;
 mod vtu;
@@ -44,7 +46,7 @@ impl Profile {
 }
 
 /// The cases, in the paper's order, and whether they are built yet.
-const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", false), ("multilayer", false)];
+const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", true), ("multilayer", false)];
 
 /// Runs the task.
 pub fn run(args: &[String]) -> Result<()> {
@@ -88,6 +90,7 @@ pub fn run(args: &[String]) -> Result<()> {
         }
         match name {
             "brazilian" => brazilian::validate(&femdem, profile, &out, &mut report)?,
+            "polyaxial" => polyaxial::validate(&femdem, profile, &out, &mut report)?,
             _ => unreachable!("every built case is dispatched"),
         }
     }

@@ -4,58 +4,13 @@
 use anyhow::Result;
 
 use super::case::Disc;
+use crate::validate::failures::{Failure, Modes};
 use crate::validate::history::Table;
 use crate::validate::runner::RunOutput;
 
 /// Half-width of the band around the loaded diameter that counts as "on
 /// the diameter" (the issue's 5 mm), m.
 pub const BAND: f64 = 5.0e-3;
-
-/// One row of `failures.csv`.
-#[derive(Debug, Clone, Copy)]
-pub struct Failure {
-    /// Start of the step that broke the joint, s.
-    pub time: f64,
-    /// Centroid of the joint's mid-plane, m.
-    pub at: [f64; 3],
-    /// Mode code: 1 tensile, 2 shear, 3 mixed, 4 collapsed.
-    pub mode: u8,
-}
-
-/// Counts of failures by mode.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Modes {
-    /// Tensile, shear, mixed, collapsed.
-    pub counts: [usize; 4],
-}
-
-impl Modes {
-    fn of<'a>(f: impl Iterator<Item = &'a Failure>) -> Modes {
-        let mut m = Modes::default();
-        for x in f {
-            if (1..=4).contains(&x.mode) {
-                m.counts[usize::from(x.mode) - 1] += 1;
-            }
-        }
-        m
-    }
-
-    /// All counted failures.
-    pub fn total(&self) -> usize {
-        self.counts.iter().sum()
-    }
-
-    /// Share of mode `code` (1–4).
-    pub fn share(&self, code: usize) -> f64 {
-        self.counts[code - 1] as f64 / self.total().max(1) as f64
-    }
-
-    /// `T/S/M/C` counts as text.
-    pub fn text(&self) -> String {
-        let [t, s, m, c] = self.counts;
-        format!("T {t} / S {s} / M {m} / C {c}")
-    }
-}
 
 /// The measured outcome of one run.
 #[derive(Debug, Clone)]
@@ -101,10 +56,7 @@ impl Outcome {
             .filter(|(w, _)| **w >= 0.1 * w_end && **w > 0.0)
             .map(|(w, b)| b.abs() / w)
             .fold(0.0, f64::max);
-        let f = Table::read(&run.dir.join("failures.csv"))?;
-        let (ft, fx, fy, fz, fm) = (f.col("time")?, f.col("x")?, f.col("y")?, f.col("z")?, f.col("mode")?);
-        let failures =
-            (0..f.len()).map(|i| Failure { time: ft[i], at: [fx[i], fy[i], fz[i]], mode: fm[i] as u8 }).collect();
+        let failures = Failure::read_all(&run.dir)?;
         Ok(Outcome {
             run,
             peak_time: time[ipk],

@@ -12,27 +12,9 @@ use super::analysis::Outcome;
 /// A triangle seen in a plane, with its colour.
 type Flat = ([(f64, f64); 3], RGBColor);
 use super::case::Disc;
+use crate::validate::failures::{mode_colour, mode_legend};
 use crate::validate::plot;
 use crate::validate::vtu::Grid;
-
-/// Colour of failure mode `code` (0 pre-existing … 4 collapsed).
-fn mode_colour(code: f64) -> RGBColor {
-    match code as i64 {
-        1 => RGBColor(214, 39, 40),
-        2 => RGBColor(31, 119, 180),
-        3 => RGBColor(255, 127, 14),
-        4 => RGBColor(127, 127, 127),
-        _ => RGBColor(0, 0, 0),
-    }
-}
-
-fn mode_legend() -> Vec<(String, RGBColor)> {
-    ["tensile", "shear", "mixed", "collapsed"]
-        .iter()
-        .zip(1..)
-        .map(|(n, c)| ((*n).to_owned(), mode_colour(f64::from(c))))
-        .collect()
-}
 
 /// Fig. 6: F (kN) against ε_yy (‰) for every rate.
 pub fn load_strain(path: &Path, runs: &[(f64, &Outcome)]) -> Result<()> {

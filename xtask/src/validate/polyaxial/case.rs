@@ -1,0 +1,129 @@
+//! The polyaxial cases the validation runs, made from the bundled paper
+//! case `cases/paper/polyaxial.toml` (Guo et al. §3.2, Test 1) by changing
+//! only the material's strength (Tests 2 and 3) and the mesh.
+
+use anyhow::{Context, Result, bail};
+use toml::{Table, Value};
+
+use super::mohr::Stresses;
+
+/// The bundled case every run starts from.
+pub const BASE: &str = "cases/paper/polyaxial.toml";
+
+/// One of the paper's three materials (Table 2): only c and φ differ.
+#[derive(Debug, Clone, Copy)]
+pub struct Test {
+    /// 1, 2 or 3.
+    pub number: u8,
+    /// Cohesion c, Pa.
+    pub cohesion: f64,
+    /// Internal friction angle φ, degrees.
+    pub friction_angle: f64,
+}
+
+/// Table 2's three tests.
+pub const TESTS: [Test; 3] = [
+    Test { number: 1, cohesion: 0.5e6, friction_angle: 33.4 },
+    Test { number: 2, cohesion: 2.0e6, friction_angle: 23.8 },
+    Test { number: 3, cohesion: 3.8e6, friction_angle: 12.4 },
+];
+
+/// The mesh of a run.
+#[derive(Debug, Clone)]
+pub enum Mesh {
+    /// An unstructured Gmsh mesh in `cases/paper/meshes/`, by file name.
+    Gmsh(&'static str),
+    /// The built-in jittered Freudenthal lattice of this cell edge, m.
+    Lattice(f64),
+}
+
+impl Mesh {
+    /// A short label for tables and file names.
+    pub fn label(&self) -> String {
+        match self {
+            Mesh::Gmsh(f) => format!("unstructured {}", f.trim_end_matches(".msh")),
+            Mesh::Lattice(h) => format!("lattice {:.0} mm", 1e3 * h),
+        }
+    }
+}
+
+/// The base case, parsed.
+#[derive(Debug, Clone)]
+pub struct Base {
+    table: Table,
+    /// The applied stresses, read from its pressure loads.
+    pub stresses: Stresses,
+}
+
+/// The pressure (Pa) of the base case's load on `group`.
+fn pressure(t: &Table, group: &str) -> Result<f64> {
+    let loads = t.get("loads").and_then(Value::as_array).with_context(|| format!("{BASE}: no [[loads]]"))?;
+    let load = loads
+        .iter()
+        .find(|l| l.get("group").and_then(Value::as_str) == Some(group))
+        .with_context(|| format!("{BASE}: no load on `{group}`"))?;
+    load.get("pressure").and_then(Value::as_float).with_context(|| format!("{BASE}: the load on `{group}` has no pressure"))
+}
+
+impl Base {
+    /// Reads the base case from the workspace; its faces must carry the
+    /// same pressure in pairs (the stress state is then uniform).
+    pub fn load() -> Result<Base> {
+        let text = std::fs::read_to_string(crate::root().join(BASE)).with_context(|| format!("reading {BASE}"))?;
+        let table: Table = text.parse().with_context(|| format!("parsing {BASE}"))?;
+        let mut p = [0.0; 3];
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            let (lo, hi) = (pressure(&table, &format!("cube.{axis}min"))?, pressure(&table, &format!("cube.{axis}max"))?);
+            if lo != hi {
+                bail!("{BASE}: the pressures on cube.{axis}min and cube.{axis}max differ ({lo} and {hi} Pa)");
+            }
+            p[k] = lo;
+        }
+        let stresses = Stresses { least: p[0], most: p[1], intermediate: p[2] };
+        if !(stresses.least < stresses.intermediate && stresses.intermediate < stresses.most) {
+            bail!("{BASE}: the checks expect the least compressive stress along x, the most along y ({p:?} Pa)");
+        }
+        Ok(Base { table, stresses })
+    }
+
+    /// The case for `test` on `mesh`, ending at `end_time` (s), as TOML
+    /// text.
+    pub fn case(&self, title: &str, test: Test, mesh: &Mesh, end_time: f64) -> Result<String> {
+        let mut t = self.table.clone();
+        t.insert("title".into(), title.into());
+        t.get_mut("solver").and_then(Value::as_table_mut).context("[solver]")?.insert("end_time".into(), end_time.into());
+        let m = t
+            .get_mut("materials")
+            .and_then(|m| m.get_mut(0))
+            .and_then(Value::as_table_mut)
+            .context("materials[0]")?;
+        m.insert("cohesion".into(), test.cohesion.into());
+        m.insert("friction_angle".into(), test.friction_angle.into());
+        let part = t
+            .get_mut("mesh")
+            .and_then(|m| m.get_mut("parts"))
+            .and_then(|p| p.get_mut(0))
+            .and_then(Value::as_table_mut)
+            .context("mesh.parts[0]")?;
+        match mesh {
+            Mesh::Gmsh(file) => {
+                let path = crate::root().join("cases/paper/meshes").join(file);
+                part.insert("path".into(), path.to_string_lossy().into_owned().into());
+            }
+            Mesh::Lattice(h) => {
+                part.clear();
+                part.insert("kind".into(), "box".into());
+                part.insert("name".into(), "cube".into());
+                part.insert("region".into(), "cube".into());
+                part.insert("min".into(), Value::Array(vec![0.0.into(); 3]));
+                part.insert("max".into(), Value::Array(vec![0.5.into(); 3]));
+                part.insert("element_size".into(), (*h).into());
+                part.insert("jitter".into(), 0.12.into());
+            }
+        }
+        Ok(format!(
+            "# Generated by `cargo xtask validate` from {BASE}; run it with\n# `femdem run` to reproduce this validation run.\n{}",
+            toml::to_string(&t)?
+        ))
+    }
+}

@@ -1,11 +1,14 @@
-//! `cargo xtask fixtures`: regenerates the Gmsh-written test fixture with
-//! Gmsh's Python API. Tests never need Gmsh: they read the committed file.
+//! `cargo xtask fixtures`: regenerates the Gmsh-written test fixture and the
+//! paper cases' unstructured meshes with Gmsh's Python API. Tests and cases
+//! never need Gmsh: they read the committed files.
 
 use std::process::Command;
 
 use anyhow::Result;
 
-/// Runs `crates/femdem-mesh/tests/data/regenerate.py`.
+/// Runs `crates/femdem-mesh/tests/data/regenerate.py` and
+/// `cases/paper/meshes/regenerate.py`.
 pub fn run() -> Result<()> {
-    crate::run_in_root(Command::new("python3").arg("crates/femdem-mesh/tests/data/regenerate.py"))
+    crate::run_in_root(Command::new("python3").arg("crates/femdem-mesh/tests/data/regenerate.py"))?;
+    crate::run_in_root(Command::new("python3").arg("cases/paper/meshes/regenerate.py"))
 }

@@ -7,7 +7,8 @@
 //!   benchmarks; with `--memory` only the peak-memory run of joint insertion
 //!   on 10⁶ tets; with `--callgrind` the instructions per tet-step of each
 //!   kernel of the step (needs valgrind; `docs/performance.md`).
-//! - `fixtures`: regenerates the Gmsh test fixture (needs `pip install gmsh`).
+//! - `fixtures`: regenerates the Gmsh test fixture and the paper cases' meshes
+//!   (needs `pip install gmsh`).
 
 mod bench;
 mod fixtures;

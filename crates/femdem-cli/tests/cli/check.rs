@@ -57,9 +57,18 @@ fn polyaxial_cube_fills_half_a_metre_cubed() {
     let r = check_json("cases/paper/polyaxial.toml");
     assert!((r["volume"].as_f64().unwrap() - 0.125).abs() < 1e-12);
     assert_eq!(r["joints"], r["interior_faces"]);
-    // Each tet has four faces: 4T = 2·interior + boundary, boundary = 6 sides × 20² cells × 2.
+    // The count Gmsh 4.15.2 wrote (cases/paper/meshes/regenerate.py).
     let tets = r["tets"].as_u64().unwrap();
-    assert_eq!(4 * tets, 2 * r["interior_faces"].as_u64().unwrap() + 6 * 400 * 2);
+    assert_eq!(tets, 50_972);
+    // Each tet has four faces: 4T = 2·interior + boundary, and the boundary
+    // is the six loaded faces of the cube, each its own group.
+    let groups = r["boundary_groups"].as_array().unwrap();
+    let sides: Vec<&str> = groups.iter().map(|g| g["name"].as_str().unwrap()).collect();
+    for side in ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"] {
+        assert!(sides.contains(&format!("cube.{side}").as_str()), "no group cube.{side} in {sides:?}");
+    }
+    let boundary: u64 = groups.iter().map(|g| g["faces"].as_u64().unwrap()).sum();
+    assert_eq!(4 * tets, 2 * r["interior_faces"].as_u64().unwrap() + boundary);
     assert_eq!(r["nodes"].as_u64().unwrap(), 4 * tets);
 }
 

@@ -79,8 +79,8 @@ impl Encoder {
         self.raw(&x.to_le_bytes());
     }
 
-    /// A length or an index, as a `u64`.
-    pub fn len(&mut self, x: usize) {
+    /// A count (a length or an index), as a `u64`.
+    pub fn count(&mut self, x: usize) {
         self.u64(x as u64);
     }
 
@@ -98,31 +98,31 @@ impl Encoder {
 
     /// A length-prefixed byte string.
     pub fn bytes(&mut self, b: &[u8]) {
-        self.len(b.len());
+        self.count(b.len());
         self.raw(b);
     }
 
     /// A length-prefixed list of `f64`.
     pub fn f64s(&mut self, xs: &[f64]) {
-        self.len(xs.len());
+        self.count(xs.len());
         xs.iter().for_each(|&x| self.f64(x));
     }
 
     /// A length-prefixed list of vectors.
     pub fn vec3s(&mut self, vs: &[Vec3]) {
-        self.len(vs.len());
+        self.count(vs.len());
         vs.iter().for_each(|v| self.vec3(v));
     }
 
     /// A length-prefixed list of `u32`.
     pub fn u32s(&mut self, xs: &[u32]) {
-        self.len(xs.len());
+        self.count(xs.len());
         xs.iter().for_each(|&x| self.u32(x));
     }
 
     /// A length-prefixed list of `bool`.
     pub fn bools(&mut self, xs: &[bool]) {
-        self.len(xs.len());
+        self.count(xs.len());
         xs.iter().for_each(|&x| self.bool(x));
     }
 }
@@ -188,10 +188,10 @@ impl<'a> Decoder<'a> {
         Ok(u64::from_le_bytes(self.array()?))
     }
 
-    /// A length or an index; a length larger than the bytes left (each
+    /// A count (a length or an index); one larger than the bytes left (each
     /// element takes at least one byte) is refused before anything is
     /// allocated for it.
-    pub fn len(&mut self) -> Result<usize, SolverError> {
+    pub fn count(&mut self) -> Result<usize, SolverError> {
         let n = self.u64()?;
         if n > self.remaining() as u64 {
             return Err(snapshot_error(format!("a length of {n} at byte {} exceeds the data", self.at - 8)));
@@ -211,31 +211,31 @@ impl<'a> Decoder<'a> {
 
     /// A length-prefixed byte string.
     pub fn bytes(&mut self) -> Result<&'a [u8], SolverError> {
-        let n = self.len()?;
+        let n = self.count()?;
         self.raw(n)
     }
 
     /// A length-prefixed list of `f64`.
     pub fn f64s(&mut self) -> Result<Vec<f64>, SolverError> {
-        let n = self.len()?;
+        let n = self.count()?;
         (0..n).map(|_| self.f64()).collect()
     }
 
     /// A length-prefixed list of vectors.
     pub fn vec3s(&mut self) -> Result<Vec<Vec3>, SolverError> {
-        let n = self.len()?;
+        let n = self.count()?;
         (0..n).map(|_| self.vec3()).collect()
     }
 
     /// A length-prefixed list of `u32`.
     pub fn u32s(&mut self) -> Result<Vec<u32>, SolverError> {
-        let n = self.len()?;
+        let n = self.count()?;
         (0..n).map(|_| self.u32()).collect()
     }
 
     /// A length-prefixed list of `bool`.
     pub fn bools(&mut self) -> Result<Vec<bool>, SolverError> {
-        let n = self.len()?;
+        let n = self.count()?;
         (0..n).map(|_| self.bool()).collect()
     }
 
@@ -328,13 +328,13 @@ fn put_record(e: &mut Encoder, r: &StepRecord) {
     e.vec3s(&r.drive_forces);
     e.vec3s(&r.drive_displacements);
     e.vec3s(&r.surface_forces);
-    e.len(r.new_failures.start);
-    e.len(r.new_failures.end);
+    e.count(r.new_failures.start);
+    e.count(r.new_failures.end);
     let c = &r.failures;
-    [c.tensile, c.shear, c.mixed, c.collapsed].into_iter().for_each(|n| e.len(n));
+    [c.tensile, c.shear, c.mixed, c.collapsed].into_iter().for_each(|n| e.count(n));
     put_energies(e, &r.energies);
     e.bool(r.energies_current);
-    e.len(r.contact_pairs);
+    e.count(r.contact_pairs);
 }
 
 fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, SolverError> {
@@ -346,8 +346,9 @@ fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, Solv
     expect_count("drives", drive_forces.len(), like.drive_forces.len())?;
     expect_count("drive displacements", drive_displacements.len(), like.drive_displacements.len())?;
     expect_count("surface loads", surface_forces.len(), like.surface_forces.len())?;
-    let new_failures = d.len()?..d.len()?;
-    let failures = crate::FailureCounts { tensile: d.len()?, shear: d.len()?, mixed: d.len()?, collapsed: d.len()? };
+    let new_failures = d.count()?..d.count()?;
+    let failures =
+        crate::FailureCounts { tensile: d.count()?, shear: d.count()?, mixed: d.count()?, collapsed: d.count()? };
     Ok(StepRecord {
         step,
         time,
@@ -358,7 +359,7 @@ fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, Solv
         failures,
         energies: get_energies(d)?,
         energies_current: d.bool()?,
-        contact_pairs: d.len()?,
+        contact_pairs: d.count()?,
     })
 }
 
@@ -376,10 +377,10 @@ impl Solver {
         e.vec3s(&s.v);
         e.f64(s.time);
         e.u64(s.step);
-        e.len(s.joints.len());
+        e.count(s.joints.len());
         s.joints.iter().for_each(|h| put_joint(&mut e, h));
         put_energies(&mut e, self.energies());
-        e.len(self.failures().len());
+        e.count(self.failures().len());
         for f in self.failures() {
             e.u32(f.joint);
             e.f64(f.time);
@@ -427,11 +428,11 @@ impl Solver {
         expect_count("velocities", v.len(), n)?;
         let time = d.f64()?;
         let step = d.u64()?;
-        let n_joints = d.len()?;
+        let n_joints = d.count()?;
         expect_count("joints", n_joints, self.model.joints.len())?;
         let joints = (0..n_joints).map(|_| get_joint(&mut d)).collect::<Result<Vec<_>, _>>()?;
         let energies = get_energies(&mut d)?;
-        let n_failures = d.len()?;
+        let n_failures = d.count()?;
         let mut failures = Vec::with_capacity(n_failures);
         for _ in 0..n_failures {
             let joint = d.u32()?;

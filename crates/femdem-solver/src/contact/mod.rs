@@ -490,12 +490,12 @@ impl Contact {
         e.vec3s(&self.v_before);
         let en = &self.energy;
         [en.contact, en.friction, en.friction_absorbed, en.spring_booked].into_iter().for_each(|x| e.f64(x));
-        e.len(self.active_pairs);
+        e.count(self.active_pairs);
         e.u64(self.detections);
         e.f64(self.spring_energy);
         let mut stick: Vec<_> = self.stick.iter().map(|(&k, &s)| (k, s)).collect();
         stick.sort_unstable_by_key(|&(k, _)| k);
-        e.len(stick.len());
+        e.count(stick.len());
         for ((a, b), s) in stick {
             e.u32(a);
             e.u32(b);
@@ -503,7 +503,7 @@ impl Contact {
         }
         let mut ramp: Vec<_> = self.ramp.iter().map(|(&k, &n)| (k, n)).collect();
         ramp.sort_unstable();
-        e.len(ramp.len());
+        e.count(ramp.len());
         for ((a, b), n) in ramp {
             e.u32(a);
             e.u32(b);
@@ -557,17 +557,17 @@ impl Contact {
             friction_absorbed: d.f64()?,
             spring_booked: d.f64()?,
         };
-        c.active_pairs = d.len()?;
+        c.active_pairs = d.count()?;
         c.detections = d.u64()?;
         c.spring_energy = d.f64()?;
         c.stick.clear();
-        for _ in 0..d.len()? {
+        for _ in 0..d.count()? {
             let key = (tet(d.u32()?)?, tet(d.u32()?)?);
             c.stick.insert(key, d.vec3()?);
         }
         c.stick_next.clear();
         c.ramp.clear();
-        for _ in 0..d.len()? {
+        for _ in 0..d.count()? {
             let key = (tet(d.u32()?)?, tet(d.u32()?)?);
             c.ramp.insert(key, d.u32()?);
         }
@@ -577,7 +577,7 @@ impl Contact {
 
 /// A length-prefixed list of tet pairs.
 fn put_pairs(e: &mut Encoder, pairs: &[(u32, u32)]) {
-    e.len(pairs.len());
+    e.count(pairs.len());
     for &(a, b) in pairs {
         e.u32(a);
         e.u32(b);
@@ -589,6 +589,6 @@ fn get_pairs(
     d: &mut Decoder<'_>,
     tet: &impl Fn(u32) -> Result<u32, SolverError>,
 ) -> Result<Vec<(u32, u32)>, SolverError> {
-    let n = d.len()?;
+    let n = d.count()?;
     (0..n).map(|_| Ok((tet(d.u32()?)?, tet(d.u32()?)?))).collect()
 }

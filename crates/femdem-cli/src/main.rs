@@ -45,6 +45,16 @@ enum Command {
         /// cores). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
+        /// Continue from the latest complete checkpoint in DIR (default:
+        /// the output directory), after a signal or a crash; the results
+        /// are those of an uninterrupted run. The case must be the one
+        /// that wrote it.
+        #[arg(long, value_name = "DIR", num_args = 0..=1)]
+        resume: Option<Option<PathBuf>>,
+        /// For tests: stop as SIGTERM would once N steps are done (a
+        /// checkpoint, the last frame, a non-zero exit status).
+        #[arg(long, value_name = "N", hide = true)]
+        stop_after_steps: Option<u64>,
     },
 }
 
@@ -52,7 +62,9 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads } => commands::check::run(&case, json, threads),
-        Command::Run { case, out, threads } => commands::run::run(&case, out, threads),
+        Command::Run { case, out, threads, resume, stop_after_steps } => {
+            commands::run::run(&case, commands::run::RunOptions { out, threads, resume, stop_after_steps })
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -75,4 +75,8 @@ pub enum SolverError {
         /// The node.
         node: u32,
     },
+    /// A snapshot that cannot be restored into this solver (see
+    /// [`crate::Solver::restore`]).
+    #[error("snapshot: {0}")]
+    Snapshot(String),
 }

@@ -16,6 +16,9 @@
 //!   which runs the stages of one step — internal forces (`forces.rs`),
 //!   failures, contact (`contact/`), external forces, update, energy — and
 //!   returns a [`StepRecord`] of step `n`.
+//! - [`Solver::snapshot`] / [`Solver::restore`] (`snapshot.rs`): the
+//!   evolving state as bytes, for checkpoints; a restored solver continues
+//!   bit for bit.
 //!
 //! # Conventions
 //!
@@ -68,6 +71,7 @@ mod guard;
 pub mod loads;
 mod model;
 pub mod select;
+pub mod snapshot;
 mod state;
 mod step;
 mod timestep;

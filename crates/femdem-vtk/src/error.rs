@@ -22,6 +22,15 @@ pub enum VtkError {
         #[source]
         source: std::io::Error,
     },
+    /// Output of an earlier run cannot be continued (see
+    /// `HistoryWriter::resume`, `SeriesWriter::resume`).
+    #[error("cannot continue {}: {reason}", path.display())]
+    Resume {
+        /// The file concerned.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
     /// The VTK encoder (vtkio) failed to encode or serialise a frame.
     #[error("could not encode VTK file {}: {message}", path.display())]
     Encode {

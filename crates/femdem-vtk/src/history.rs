@@ -1,7 +1,7 @@
 //! Run histories (energies, loads, counts per step) as CSV.
 
-use std::fs::{self, File};
-use std::io::{BufWriter, Write};
+use std::fs::{self, File, OpenOptions};
+use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use crate::VtkError;
@@ -22,6 +22,8 @@ pub struct HistoryWriter {
     out: BufWriter<File>,
     columns: usize,
     line: String,
+    /// Bytes written so far (header included).
+    written: u64,
 }
 
 impl HistoryWriter {
@@ -32,34 +34,7 @@ impl HistoryWriter {
     /// no line break. Names with a comma or a double quote are quoted as in
     /// RFC 4180.
     pub fn create(path: &Path, columns: &[&str]) -> Result<Self, VtkError> {
-        if columns.is_empty() {
-            return Err(VtkError::InvalidColumn { name: String::new(), reason: "a history needs at least one column" });
-        }
-        let mut header = String::new();
-        for (i, &name) in columns.iter().enumerate() {
-            let reason = if name.is_empty() {
-                Some("empty")
-            } else if name.contains(['\n', '\r']) {
-                Some("contains a line break")
-            } else {
-                None
-            };
-            if let Some(reason) = reason {
-                return Err(VtkError::InvalidColumn { name: name.to_owned(), reason });
-            }
-            if i > 0 {
-                header.push(',');
-            }
-            if name.contains([',', '"']) || name.trim() != name {
-                header.push('"');
-                header.push_str(&name.replace('"', "\"\""));
-                header.push('"');
-            } else {
-                header.push_str(name);
-            }
-        }
-        header.push('\n');
-
+        let header = header_line(columns)?;
         if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
             fs::create_dir_all(parent).map_err(|e| VtkError::io(parent, e))?;
         }
@@ -69,9 +44,66 @@ impl HistoryWriter {
             out: BufWriter::new(file),
             columns: columns.len(),
             line: String::with_capacity(32 * columns.len()),
+            written: 0,
         };
         writer.write_line(&header)?;
         Ok(writer)
+    }
+
+    /// Reopens a history that an earlier writer of the same `columns` wrote
+    /// to `path`, cut back to its first `len` bytes (a
+    /// [`len`](HistoryWriter::len) taken then), to append rows after them:
+    /// the rows written after that point are dropped.
+    ///
+    /// # Errors
+    /// [`VtkError::Resume`] if the file is shorter than `len` or does not
+    /// start with the header of `columns`; [`VtkError::Io`] if it cannot be
+    /// opened or cut.
+    pub fn resume(path: &Path, columns: &[&str], len: u64) -> Result<Self, VtkError> {
+        let header = header_line(columns)?;
+        let resume_error = |reason: String| VtkError::Resume { path: path.to_owned(), reason };
+        let mut file = OpenOptions::new().read(true).write(true).open(path).map_err(|e| VtkError::io(path, e))?;
+        let on_disk = file.metadata().map_err(|e| VtkError::io(path, e))?.len();
+        if on_disk < len {
+            return Err(resume_error(format!("{on_disk} bytes on disk, {len} expected")));
+        }
+        if len < header.len() as u64 {
+            return Err(resume_error(format!("{len} bytes is shorter than the header")));
+        }
+        let mut start = vec![0; header.len()];
+        file.read_exact(&mut start).map_err(|e| VtkError::io(path, e))?;
+        if start != header.as_bytes() {
+            return Err(resume_error("its header is not that of this run's columns".into()));
+        }
+        file.set_len(len).map_err(|e| VtkError::io(path, e))?;
+        file.seek(SeekFrom::Start(len)).map_err(|e| VtkError::io(path, e))?;
+        Ok(HistoryWriter {
+            path: path.to_owned(),
+            out: BufWriter::new(file),
+            columns: columns.len(),
+            line: String::with_capacity(32 * columns.len()),
+            written: len,
+        })
+    }
+
+    /// Bytes written so far, header included (buffered ones too: after
+    /// [`flush`](HistoryWriter::flush) the file has this length).
+    pub fn len(&self) -> u64 {
+        self.written
+    }
+
+    /// Whether nothing has been written, not even the header (never true
+    /// for a writer made by [`create`](HistoryWriter::create)).
+    pub fn is_empty(&self) -> bool {
+        self.written == 0
+    }
+
+    /// Flushes the buffered rows and asks the operating system to put the
+    /// file's data on disk (`fsync`), so that [`len`](HistoryWriter::len)
+    /// bytes survive a crash.
+    pub fn sync(&mut self) -> Result<(), VtkError> {
+        self.flush()?;
+        self.out.get_ref().sync_data().map_err(|e| VtkError::io(&self.path, e))
     }
 
     /// Appends one row; `values` must have one value per column.
@@ -104,8 +136,42 @@ impl HistoryWriter {
     }
 
     fn write_line(&mut self, line: &str) -> Result<(), VtkError> {
-        self.out.write_all(line.as_bytes()).map_err(|e| VtkError::io(&self.path, e))
+        self.out.write_all(line.as_bytes()).map_err(|e| VtkError::io(&self.path, e))?;
+        self.written += line.len() as u64;
+        Ok(())
     }
+}
+
+/// The header line of `columns`, checked (see [`HistoryWriter::create`]).
+fn header_line(columns: &[&str]) -> Result<String, VtkError> {
+    if columns.is_empty() {
+        return Err(VtkError::InvalidColumn { name: String::new(), reason: "a history needs at least one column" });
+    }
+    let mut header = String::new();
+    for (i, &name) in columns.iter().enumerate() {
+        let reason = if name.is_empty() {
+            Some("empty")
+        } else if name.contains(['\n', '\r']) {
+            Some("contains a line break")
+        } else {
+            None
+        };
+        if let Some(reason) = reason {
+            return Err(VtkError::InvalidColumn { name: name.to_owned(), reason });
+        }
+        if i > 0 {
+            header.push(',');
+        }
+        if name.contains([',', '"']) || name.trim() != name {
+            header.push('"');
+            header.push_str(&name.replace('"', "\"\""));
+            header.push('"');
+        } else {
+            header.push_str(name);
+        }
+    }
+    header.push('\n');
+    Ok(header)
 }
 
 impl Drop for HistoryWriter {
@@ -136,6 +202,31 @@ mod tests {
         let header = lines.next().unwrap().split(',').map(str::to_owned).collect();
         let rows = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
         (header, rows)
+    }
+
+    #[test]
+    fn a_resumed_history_drops_the_rows_after_its_length_and_continues() {
+        let path = temp_path("resume.csv");
+        let columns = ["time", "x"];
+        let mut h = HistoryWriter::create(&path, &columns).unwrap();
+        h.row(&[0.0, 1.0]).unwrap();
+        let at = h.len();
+        h.row(&[1.0, 2.0]).unwrap();
+        h.sync().unwrap();
+        drop(h);
+        let mut h = HistoryWriter::resume(&path, &columns, at).unwrap();
+        assert_eq!(h.len(), at);
+        h.row(&[1.5, 3.0]).unwrap();
+        h.flush().unwrap();
+        assert_eq!(fs::read_to_string(&path).unwrap(), "time,x\n0,1\n1.5,3\n");
+        assert_eq!(h.len(), fs::metadata(&path).unwrap().len());
+        drop(h);
+        for (cols, len) in [(&["time", "y"][..], at), (&columns[..], 1000), (&columns[..], 3)] {
+            let err = HistoryWriter::resume(&path, cols, len).unwrap_err();
+            assert!(matches!(err, VtkError::Resume { .. }), "{err}");
+            assert!(err.to_string().contains("resume.csv"), "{err}");
+        }
+        clean(&path);
     }
 
     #[test]

@@ -46,6 +46,39 @@ impl SeriesWriter {
         })
     }
 
+    /// A writer that continues a series an earlier writer of `dir` and
+    /// `stem` wrote, after its first `times.len()` steps (at `times`, as
+    /// [`times`](SeriesWriter::times) gave them then): the `.pvd` is
+    /// rewritten at once to list those steps only, and the next step
+    /// written gets the index `times.len()` (later `.vtu` files of the
+    /// earlier run are overwritten as the series reaches them).
+    ///
+    /// # Errors
+    /// [`VtkError::Resume`] if a `.vtu` file of those steps is missing or
+    /// the times do not increase; [`VtkError::Io`] if the `.pvd` cannot be
+    /// written.
+    pub fn resume(dir: &Path, stem: &str, times: &[f64]) -> Result<Self, VtkError> {
+        let mut writer = SeriesWriter::new(dir, stem)?;
+        for (k, &time) in times.iter().enumerate() {
+            let name = format!("{stem}_{k:06}.vtu");
+            let path = dir.join(&name);
+            if !path.is_file() {
+                return Err(VtkError::Resume { path, reason: "the frame is missing".into() });
+            }
+            if !time.is_finite() || writer.steps.last().is_some_and(|&(t, _)| time <= t) {
+                return Err(VtkError::Resume { path, reason: format!("its time {time} does not follow the last") });
+            }
+            writer.steps.push((time, name));
+        }
+        writer.write_pvd()?;
+        Ok(writer)
+    }
+
+    /// The times of the steps written so far, in order.
+    pub fn times(&self) -> Vec<f64> {
+        self.steps.iter().map(|&(t, _)| t).collect()
+    }
+
     /// The same writer with these `.vtu` options (default: LZ4 compression).
     pub fn with_options(self, options: VtuOptions) -> Self {
         SeriesWriter { options, ..self }
@@ -196,6 +229,29 @@ mod tests {
         assert_eq!(series.len(), 3);
         assert!(!crate::file::temp_path(&series.pvd_path()).exists());
         fs::remove_dir_all(temp_dir("series")).unwrap();
+    }
+
+    #[test]
+    fn a_resumed_series_lists_the_steps_kept_and_continues_after_them() {
+        let dir = temp_dir("series-resume");
+        let frame = Frame::new(&POINTS, &TETS);
+        let mut series = SeriesWriter::new(&dir, "s").unwrap();
+        for t in [0.0, 1.0, 2.0] {
+            series.write(t, &frame).unwrap();
+        }
+        assert_eq!(series.times(), [0.0, 1.0, 2.0]);
+        let mut resumed = SeriesWriter::resume(&dir, "s", &[0.0, 1.0]).unwrap();
+        let pvd = fs::read_to_string(resumed.pvd_path()).unwrap();
+        assert_eq!(datasets(&pvd).len(), 2, "{pvd}");
+        let path = resumed.write(1.5, &frame).unwrap();
+        assert!(path.ends_with("s_000002.vtu"));
+        let sets = datasets(&fs::read_to_string(resumed.pvd_path()).unwrap());
+        assert_eq!(sets[2], ("1.5".to_string(), "s_000002.vtu".to_string()));
+        let err = SeriesWriter::resume(&dir, "s", &[0.0, 1.0, 2.0, 3.0]).unwrap_err();
+        assert!(matches!(err, VtkError::Resume { .. }) && err.to_string().contains("s_000003.vtu"), "{err}");
+        let err = SeriesWriter::resume(&dir, "s", &[1.0, 0.0]).unwrap_err();
+        assert!(matches!(err, VtkError::Resume { .. }), "{err}");
+        fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

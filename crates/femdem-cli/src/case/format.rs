@@ -290,6 +290,21 @@ pub struct OutputSpec {
     /// `[output.load_strain]`: the load–strain curve of a specimen between
     /// two platens, as history columns `load` and `strain`.
     pub load_strain: Option<Spanned<LoadStrainSpec>>,
+    /// `[output.checkpoint]`: how often the run's state is saved for
+    /// `femdem run --resume`.
+    pub checkpoint: Option<Spanned<CheckpointSpec>>,
+}
+
+/// `[output.checkpoint]`: a checkpoint is written when either interval has
+/// passed since the last one (and always when a signal stops the run).
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct CheckpointSpec {
+    /// Steps between checkpoints (default 0: none by step count).
+    pub interval_steps: Option<u64>,
+    /// Wall-clock time between checkpoints, s (default 1800; 0: none by
+    /// wall time).
+    pub interval_wall: Option<f64>,
 }
 
 /// `[output.load_strain]`: the paper's load `F = ½ (F_upper + F_lower)`

@@ -465,7 +465,23 @@ pub struct OutputSettings {
     pub history_interval: f64,
     /// Fields written.
     pub fields: Vec<String>,
+    /// When checkpoints are written.
+    pub checkpoint: CheckpointSettings,
 }
+
+/// `[output.checkpoint]`, resolved.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CheckpointSettings {
+    /// Steps between checkpoints (0: none by step count).
+    pub interval_steps: u64,
+    /// Wall-clock time between checkpoints, s (0: none by wall time).
+    pub interval_wall: f64,
+}
+
+/// The default wall-clock interval between checkpoints, s: half an hour
+/// bounds the work a crash loses on a long run, and a run shorter than
+/// that writes none (but the one a signal asks for).
+pub const CHECKPOINT_WALL_DEFAULT: f64 = 1800.0;
 
 /// Resolves and checks `[output]`: intervals finite and > 0 s (defaults
 /// `end_time / 20` and a tenth of the frame interval), fields among
@@ -495,5 +511,19 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
     if let Some(f) = fields.iter().find(|f| !fields_known.contains(&f.as_str())) {
         return Err(at(format!("`fields`: `{f}` is not one of {}", fields_known.join(", "))));
     }
-    Ok(OutputSettings { dir: spec.dir.clone(), interval, history_interval, fields })
+    let default_checkpoint = crate::case::format::CheckpointSpec::default();
+    let (cp, cp_span) = match &spec.checkpoint {
+        Some(c) => (c.get_ref(), Some(c.span())),
+        None => (&default_checkpoint, None),
+    };
+    let interval_wall = cp.interval_wall.unwrap_or(CHECKPOINT_WALL_DEFAULT);
+    if !(interval_wall.is_finite() && interval_wall >= 0.0) {
+        let message = format!("output.checkpoint: `interval_wall` must be finite and ≥ 0 s, got {interval_wall} s");
+        return Err(match cp_span {
+            Some(span) => case.error_at(span, message),
+            None => CaseError { path: case.path.clone(), at: None, message },
+        });
+    }
+    let checkpoint = CheckpointSettings { interval_steps: cp.interval_steps.unwrap_or(0), interval_wall };
+    Ok(OutputSettings { dir: spec.dir.clone(), interval, history_interval, fields, checkpoint })
 }

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod check;
+mod checkpoint;
 mod output;
 mod prepare;
 mod progress;

@@ -8,10 +8,58 @@ use femdem_material::{principal_stresses, von_mises};
 use femdem_solver::{Solver, StepRecord};
 use femdem_vtk::{Field, Frame, HistoryWriter, SeriesWriter};
 
+use super::checkpoint::Marks;
 use crate::case::setup::LoadStrain;
 
 /// Fields a case may ask for.
 pub const FIELDS: [&str; 6] = ["displacement", "velocity", "stress", "principal_stress", "von_mises", "region"];
+
+/// The columns of `failures.csv`.
+const FAILURE_COLUMNS: [&str; 7] = ["time", "joint", "x", "y", "z", "area", "mode"];
+
+/// Fails unless every field is one of [`FIELDS`].
+fn check_fields(fields: &[String]) -> Result<()> {
+    if let Some(f) = fields.iter().find(|f| !FIELDS.contains(&f.as_str())) {
+        bail!("output.fields: `{f}` is not one of {}", FIELDS.join(", "));
+    }
+    Ok(())
+}
+
+/// The columns of `history.csv`: energies and failure counts, each drive's
+/// force and displacement, each surface load's force, and the load–strain
+/// pair when asked for.
+fn history_columns(solver: &Solver, load_strain: bool) -> Vec<String> {
+    let mut columns: Vec<String> = [
+        "time",
+        "step",
+        "kinetic",
+        "tet_elastic",
+        "joint_elastic",
+        "damping",
+        "fracture",
+        "contact",
+        "friction",
+        "external_work",
+        "balance",
+        "broken_tensile",
+        "broken_shear",
+        "broken_mixed",
+        "broken_collapsed",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    for d in &solver.loads.drives {
+        columns.extend(["fx", "fy", "fz", "ux", "uy", "uz"].map(|c| format!("{}_{c}", d.name)));
+    }
+    for s in &solver.loads.surfaces {
+        columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", s.name)));
+    }
+    if load_strain {
+        columns.extend(["load".to_string(), "strain".to_string()]);
+    }
+    columns
+}
 
 /// The run's writers.
 pub struct Output {
@@ -36,47 +84,50 @@ impl Output {
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
     ) -> Result<Output> {
-        for f in &fields {
-            if !FIELDS.contains(&f.as_str()) {
-                bail!("output.fields: `{f}` is not one of {}", FIELDS.join(", "));
-            }
-        }
+        check_fields(&fields)?;
         let series = SeriesWriter::new(dir, stem)?;
         let fractures = SeriesWriter::new(dir, &format!("{stem}_fractures"))?;
-        let mut columns: Vec<String> = [
-            "time",
-            "step",
-            "kinetic",
-            "tet_elastic",
-            "joint_elastic",
-            "damping",
-            "fracture",
-            "contact",
-            "friction",
-            "external_work",
-            "balance",
-            "broken_tensile",
-            "broken_shear",
-            "broken_mixed",
-            "broken_collapsed",
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-        for d in &solver.loads.drives {
-            columns.extend(["fx", "fy", "fz", "ux", "uy", "uz"].map(|c| format!("{}_{c}", d.name)));
-        }
-        for s in &solver.loads.surfaces {
-            columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", s.name)));
-        }
-        if load_strain.is_some() {
-            columns.extend(["load".to_string(), "strain".to_string()]);
-        }
+        let columns = history_columns(solver, load_strain.is_some());
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
-        let failures =
-            HistoryWriter::create(&dir.join("failures.csv"), &["time", "joint", "x", "y", "z", "area", "mode"])?;
+        let failures = HistoryWriter::create(&dir.join("failures.csv"), &FAILURE_COLUMNS)?;
         Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
+    }
+
+    /// Continues the output an earlier run of the same case left in `dir`
+    /// from a checkpoint's `marks`: the history and failure list cut back
+    /// to the lengths they had, the series to the frames they listed.
+    pub fn resume(
+        dir: &Path,
+        stem: &str,
+        fields: Vec<String>,
+        solver: &Solver,
+        pre_existing: Vec<[u32; 3]>,
+        load_strain: Option<LoadStrain>,
+        marks: &Marks,
+    ) -> Result<Output> {
+        check_fields(&fields)?;
+        let series = SeriesWriter::resume(dir, stem, &marks.frames)?;
+        let fractures = SeriesWriter::resume(dir, &format!("{stem}_fractures"), &marks.fracture_frames)?;
+        let columns = history_columns(solver, load_strain.is_some());
+        let names: Vec<&str> = columns.iter().map(String::as_str).collect();
+        let history = HistoryWriter::resume(&dir.join("history.csv"), &names, marks.history_len)?;
+        let failures = HistoryWriter::resume(&dir.join("failures.csv"), &FAILURE_COLUMNS, marks.failures_len)?;
+        Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
+    }
+
+    /// How far the output has got, for a checkpoint; the history and the
+    /// failure list are synced to disk first, so that their lengths are
+    /// there.
+    pub fn marks(&mut self) -> Result<Marks> {
+        self.history.sync()?;
+        self.failures.sync()?;
+        Ok(Marks {
+            history_len: self.history.len(),
+            failures_len: self.failures.len(),
+            frames: self.series.times(),
+            fracture_frames: self.fractures.times(),
+        })
     }
 
     /// Appends the joints that failed in the step of record `r` to

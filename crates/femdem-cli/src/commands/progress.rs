@@ -15,6 +15,8 @@ pub struct Progress {
     last_line: Instant,
     total: u64,
     elements: u64,
+    /// The step this run started from (not 0 after `--resume`).
+    first: u64,
 }
 
 impl Progress {
@@ -30,12 +32,19 @@ impl Progress {
             b
         });
         let now = Instant::now();
-        Progress { bar, start: now, last_line: now, total, elements }
+        Progress { bar, start: now, last_line: now, total, elements, first: 0 }
     }
 
-    /// Element-steps per second so far.
+    /// The same reporter for a run that starts at step `first` (a resumed
+    /// one): rates count the steps from there.
+    pub fn starting_at(self, first: u64) -> Progress {
+        Progress { first, ..self }
+    }
+
+    /// Element-steps per second so far, `steps` being the steps done
+    /// since step 0.
     pub fn throughput(&self, steps: u64) -> f64 {
-        steps as f64 * self.elements as f64 / self.start.elapsed().as_secs_f64().max(1e-9)
+        steps.saturating_sub(self.first) as f64 * self.elements as f64 / self.start.elapsed().as_secs_f64().max(1e-9)
     }
 
     /// Reports that `steps` steps are done at simulated time `time`.
@@ -47,7 +56,7 @@ impl Progress {
             }
         } else if self.last_line.elapsed() >= PLAIN_INTERVAL {
             self.last_line = Instant::now();
-            let rate = steps as f64 / self.start.elapsed().as_secs_f64().max(1e-9);
+            let rate = steps.saturating_sub(self.first) as f64 / self.start.elapsed().as_secs_f64().max(1e-9);
             let eta = (self.total - steps) as f64 / rate.max(1e-9);
             eprintln!(
                 "step {steps}/{}  t = {time:.4e} s  {:.3e} element-steps/s  eta {eta:.0} s",

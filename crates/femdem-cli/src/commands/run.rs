@@ -1,35 +1,85 @@
-//! `femdem run CASE.toml [--out DIR]`: integrate a case to its end time,
-//! writing VTU frames, a PVD series and a CSV history.
+//! `femdem run CASE.toml [--out DIR] [--resume [DIR]]`: integrate a case to
+//! its end time, writing VTU frames, a PVD series, a CSV history and
+//! checkpoints (`checkpoint.rs`); `--resume` continues from the latest
+//! complete checkpoint, and the results are those of an uninterrupted run.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use anyhow::{Context, Result, bail};
-use femdem_solver::Want;
+use std::time::Instant;
 
+use anyhow::{Context, Result, bail};
+use femdem_solver::{Solver, Want};
+
+use super::checkpoint::{self, Checkpoint, Identity, Schedule};
 use super::output::Output;
 use super::prepare::prepare;
 use super::progress::Progress;
 use crate::case::setup::LoadStrain;
 
+/// What `femdem run` was asked for, beyond the case file.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// `--out`: the output directory.
+    pub out: Option<PathBuf>,
+    /// `--threads`.
+    pub threads: Option<usize>,
+    /// `--resume [DIR]`: continue from the latest complete checkpoint in
+    /// `DIR` (`Some(None)`: in the usual output directory).
+    pub resume: Option<Option<PathBuf>>,
+    /// `--stop-after-steps N` (for tests): stop as a signal would once `N`
+    /// steps are done, writing a checkpoint.
+    pub stop_after_steps: Option<u64>,
+}
+
 /// Runs the command.
-pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<()> {
+pub fn run(path: &Path, options: RunOptions) -> Result<()> {
+    let RunOptions { out, threads, resume, stop_after_steps } = options;
     let prepared = prepare(path, threads)?;
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
     };
     let spec = run.output.clone();
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
-    let dir = out
-        .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
-        .unwrap_or_else(|| Path::new("out").join(&stem));
+    let dir = match (&resume, out) {
+        (Some(Some(from)), Some(out)) if from != &out => {
+            bail!("--resume {} and --out {} name different directories", from.display(), out.display())
+        }
+        (Some(Some(from)), _) => from.clone(),
+        (_, out) => out
+            .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
+            .unwrap_or_else(|| Path::new("out").join(&stem)),
+    };
     let (interval, history_interval, fields) = (spec.interval, spec.history_interval, spec.fields);
+    let checkpoints = spec.checkpoint;
+    let identity = Identity::of(&prepared.case.path, &prepared.case.source, &prepared.jointed.mesh);
     let solver = &mut run.solver;
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
-    let mut output = Output::create(&dir, &stem, fields, solver, pre_existing, run.load_strain)
-        .with_context(|| format!("output directory {}", dir.display()))?;
+    let (mut output, schedule) = if resume.is_some() {
+        let (file, saved) = checkpoint::latest(&dir)?;
+        saved.identity.check(&identity, &file)?;
+        solver.restore(&saved.solver).with_context(|| format!("checkpoint {}", file.display()))?;
+        let output = Output::resume(&dir, &stem, fields, solver, pre_existing, run.load_strain, &saved.marks)
+            .with_context(|| {
+                format!("continuing the output in {} from checkpoint {}", dir.display(), file.display())
+            })?;
+        checkpoint::remove_after(&dir, Some(saved.schedule.next_step))?;
+        eprintln!(
+            "femdem: resuming from {} (step {}, t = {:.6e} s)",
+            file.display(),
+            saved.schedule.next_step,
+            solver.state.time
+        );
+        (output, saved.schedule)
+    } else {
+        let output = Output::create(&dir, &stem, fields, solver, pre_existing, run.load_strain)
+            .with_context(|| format!("output directory {}", dir.display()))?;
+        checkpoint::remove_after(&dir, None)?;
+        let schedule = Schedule { next_step: 0, next_frame: 0.0, next_row: 0.0, ended_past_peak: false, peak: None };
+        (output, schedule)
+    };
 
     let stop = Arc::new(AtomicBool::new(false));
     {
@@ -52,17 +102,27 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
         run.stable.critical,
         run.steps
     );
-    let mut progress = Progress::new(run.steps, elements);
+    let first = schedule.next_step;
+    let mut progress = Progress::new(run.steps, elements).starting_at(first);
     let dt = solver.dt();
-    let mut next_frame = 0.0;
-    let mut next_row = 0.0;
+    let Schedule { mut next_frame, mut next_row, mut ended_past_peak, .. } = schedule;
     let mut interrupted = false;
     let mut past_peak = run.load_strain.and_then(PeakWatch::new);
-    let mut ended_past_peak = false;
-    for n in 0..run.steps {
+    if let (Some(w), Some((peak, last))) = (past_peak.as_mut(), schedule.peak) {
+        (w.peak, w.last) = (peak, last);
+    }
+    let mut saved_at = Instant::now();
+    let mut last_checkpoint: Option<PathBuf> = None;
+    for n in first..run.steps {
         let t = solver.state.time;
         let last = n + 1 == run.steps || ended_past_peak;
-        let stopping = stop.load(Ordering::SeqCst);
+        let stopping = stop.load(Ordering::SeqCst) || stop_after_steps.is_some_and(|s| n >= s);
+        if stopping {
+            // The state to continue from: this step has not been taken, and
+            // the frame and row the interruption adds below are not in it.
+            let at = schedule_at(n, next_frame, next_row, ended_past_peak, &past_peak);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver)?);
+        }
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
         solver.step(Want { stress: frame_due, energy: row_due });
@@ -103,6 +163,13 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
             interrupted = true;
             break;
         }
+        let by_steps = checkpoints.interval_steps > 0 && (n + 1) % checkpoints.interval_steps == 0;
+        let by_wall = checkpoints.interval_wall > 0.0 && saved_at.elapsed().as_secs_f64() >= checkpoints.interval_wall;
+        if !last && (by_steps || by_wall) {
+            let at = schedule_at(n + 1, next_frame, next_row, ended_past_peak, &past_peak);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver)?);
+            saved_at = Instant::now();
+        }
     }
     output.flush()?;
     progress.finish();
@@ -122,13 +189,37 @@ pub fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>) -> Result<
     println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures().len());
     println!("history     {}", output.history_path().display());
     println!("failures    {}", output.history_path().with_file_name("failures.csv").display());
+    if let Some(file) = &last_checkpoint {
+        println!("checkpoint  {}", file.display());
+    }
     if interrupted {
         bail!(
-            "interrupted by a signal (Ctrl-C, SIGTERM or SIGHUP); the state at t = {:.6e} s was written",
-            solver.state.time
+            "interrupted by a signal (Ctrl-C, SIGTERM or SIGHUP); the state at t = {:.6e} s was written, and a \
+             checkpoint to continue from: femdem run {} --resume {}",
+            solver.state.time,
+            path.display(),
+            dir.display()
         );
     }
     Ok(())
+}
+
+/// The run loop's schedule at the start of step `n`.
+fn schedule_at(n: u64, next_frame: f64, next_row: f64, ended: bool, watch: &Option<PeakWatch>) -> Schedule {
+    Schedule {
+        next_step: n,
+        next_frame,
+        next_row,
+        ended_past_peak: ended,
+        peak: watch.as_ref().map(|w| (w.peak, w.last)),
+    }
+}
+
+/// Writes a checkpoint of `solver` and `output` at `schedule` into `dir`;
+/// returns its file.
+fn save(dir: &Path, identity: &Identity, schedule: Schedule, output: &mut Output, solver: &Solver) -> Result<PathBuf> {
+    let saved = Checkpoint { identity: identity.clone(), schedule, marks: output.marks()?, solver: solver.snapshot() };
+    checkpoint::write(dir, &saved)
 }
 
 /// `[output.load_strain] stop_below_peak`: watches the load `F` of Eq. 21
@@ -148,7 +239,7 @@ impl PeakWatch {
 
     /// Updates the watch with the solver's last record; true once the run
     /// is over.
-    fn ended(&mut self, solver: &femdem_solver::Solver) -> bool {
+    fn ended(&mut self, solver: &Solver) -> bool {
         let r = solver.record();
         let (load, _) = self.ls.evaluate(&r.drive_forces, &r.drive_displacements);
         self.last = load;

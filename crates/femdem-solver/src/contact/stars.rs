@@ -67,6 +67,17 @@ impl Stars {
         self.piece[r.start + k]
     }
 
+    /// The piece of every entry, for a snapshot.
+    pub(crate) fn pieces(&self) -> &[u32] {
+        &self.piece
+    }
+
+    /// Puts back the pieces of a snapshot (checked for length by the
+    /// caller).
+    pub(crate) fn set_pieces(&mut self, piece: Vec<u32>) {
+        self.piece = piece;
+    }
+
     /// Finds the pieces of vertex `v` again, `bonded` being the tet pairs
     /// (smaller first) still joined by an active joint.
     pub(crate) fn split(&mut self, model: &Model, v: u32, bonded: &HashSet<(u32, u32)>) {

@@ -270,6 +270,21 @@ impl Solver {
         &self.record
     }
 
+    /// Replaces the evolving state that [`Solver::restore`] decoded (the
+    /// node state is set by the caller).
+    pub(crate) fn put_back(
+        &mut self,
+        energies: Energies,
+        failures: Vec<Failure>,
+        record: StepRecord,
+        contact: Option<Contact>,
+    ) {
+        self.energies = energies;
+        self.failures = failures;
+        self.record = record;
+        self.contact = contact;
+    }
+
     /// Turns on contact (§2.3): `initial` are tet pairs in contact from the
     /// start (pre-existing fractures).
     ///

@@ -18,5 +18,6 @@ mod guard;
 mod joint_compliance;
 mod objectivity;
 mod patch;
+mod snapshot;
 mod stability;
 mod wave_speed;

@@ -1,0 +1,361 @@
+//! Checkpoints of `femdem run`: the files `--resume` continues from.
+//!
+//! A checkpoint holds everything a run needs to continue bit for bit: the
+//! solver's evolving state ([`femdem_solver::Solver::snapshot`]), the run
+//! loop's schedule ([`Schedule`]: the next step, the next frame and history
+//! row times, the post-peak watch) and how far the output had got
+//! ([`Marks`]: the byte lengths of `history.csv` and `failures.csv`, the
+//! times of the frames of both `.pvd` series), with the [`Identity`] of the
+//! case that wrote it (hashes of the case text and of the jointed mesh).
+//!
+//! File `checkpoint_{step:012}.femdem-ckpt` in the output directory,
+//! little-endian:
+//!
+//! ```text
+//! magic    8 bytes  "FEMDEMCK"
+//! version  u32      FORMAT_VERSION
+//! length   u64      bytes of the payload
+//! checksum u64      FNV-1a 64 of the payload
+//! payload           identity, schedule, marks, solver snapshot
+//! ```
+//!
+//! It is written atomically: to `.checkpoint.tmp` in the same directory,
+//! flushed to disk (`fsync`), then renamed over its name, and the directory
+//! is synced; the history and failure files are synced before, so the
+//! lengths it records are on disk. The two latest checkpoints are kept.
+//! [`latest`] takes the newest one that is complete (magic, version, length
+//! and checksum all right), skipping, with a warning, any that is not.
+
+use std::fs::{self, File};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use femdem_mesh::TetMesh;
+use femdem_solver::snapshot::{Decoder, Encoder};
+
+/// The first bytes of every checkpoint file.
+pub const MAGIC: &[u8; 8] = b"FEMDEMCK";
+/// The layout version written; others are refused.
+pub const FORMAT_VERSION: u32 = 1;
+/// Checkpoints kept in the output directory (the newest ones).
+pub const KEEP: usize = 2;
+const PREFIX: &str = "checkpoint_";
+const SUFFIX: &str = ".femdem-ckpt";
+const TEMPORARY: &str = ".checkpoint.tmp";
+/// Bytes before the payload: magic, version, length, checksum.
+const HEADER: usize = 8 + 4 + 8 + 8;
+
+/// FNV-1a, 64 bits: a stable hash (the same on every platform and build,
+/// unlike `std`'s hasher) to recognise a case and to detect damaged files.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h = Fnv::new();
+    h.write(bytes);
+    h.0
+}
+
+/// An FNV-1a 64 hash fed piece by piece.
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+}
+
+/// Which case a checkpoint belongs to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Identity {
+    /// The case file, as the run that wrote it named it (for messages).
+    pub case_path: String,
+    /// FNV-1a of the case file's text.
+    pub case_hash: u64,
+    /// FNV-1a of the jointed mesh (coordinates by their bits, tets).
+    pub mesh_hash: u64,
+}
+
+impl Identity {
+    /// The identity of case `path` with text `source` and jointed mesh
+    /// `mesh`.
+    pub fn of(path: &Path, source: &str, mesh: &TetMesh) -> Identity {
+        let mut h = Fnv::new();
+        for c in &mesh.coords {
+            c.iter().for_each(|x| h.write(&x.to_bits().to_le_bytes()));
+        }
+        for t in &mesh.tets {
+            t.iter().for_each(|n| h.write(&n.to_le_bytes()));
+        }
+        let case_path = fs::canonicalize(path).unwrap_or_else(|_| path.to_owned()).display().to_string();
+        Identity { case_path, case_hash: fnv1a(source.as_bytes()), mesh_hash: h.0 }
+    }
+
+    /// Fails, naming both cases, unless checkpoint `file` (of identity
+    /// `self`) belongs to the case of identity `now`.
+    pub fn check(&self, now: &Identity, file: &Path) -> Result<()> {
+        let what = match (self.case_hash == now.case_hash, self.mesh_hash == now.mesh_hash) {
+            (true, true) => return Ok(()),
+            (false, true) => "its case text differs",
+            (true, false) => "its mesh differs (an MSH file it reads changed?)",
+            (false, false) => "its case text and mesh differ",
+        };
+        bail!(
+            "checkpoint {} was written by case {} (text {:016x}, mesh {:016x}), not by {} (text {:016x}, mesh {:016x}): \
+             {what}; resume with the case that wrote it, or run without --resume to start again",
+            file.display(),
+            self.case_path,
+            self.case_hash,
+            self.mesh_hash,
+            now.case_path,
+            now.case_hash,
+            now.mesh_hash
+        )
+    }
+}
+
+/// The run loop's own state at the start of a step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Schedule {
+    /// The step the loop continues with (steps `0..next_step` are done).
+    pub next_step: u64,
+    /// Simulated time of the next frame, s.
+    pub next_frame: f64,
+    /// Simulated time of the next history row, s.
+    pub next_row: f64,
+    /// Whether the run is past the peak and the next step is its last.
+    pub ended_past_peak: bool,
+    /// The post-peak watch: the largest load so far and the last one, N.
+    pub peak: Option<(f64, f64)>,
+}
+
+/// How far the output had got.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Marks {
+    /// Bytes of `history.csv`.
+    pub history_len: u64,
+    /// Bytes of `failures.csv`.
+    pub failures_len: u64,
+    /// Times of the frames of the main series, s.
+    pub frames: Vec<f64>,
+    /// Times of the frames of the fracture series, s.
+    pub fracture_frames: Vec<f64>,
+}
+
+/// One checkpoint.
+#[derive(Debug, PartialEq)]
+pub struct Checkpoint {
+    /// The case it belongs to.
+    pub identity: Identity,
+    /// The run loop's state.
+    pub schedule: Schedule,
+    /// The output's state.
+    pub marks: Marks,
+    /// [`femdem_solver::Solver::snapshot`].
+    pub solver: Vec<u8>,
+}
+
+impl Checkpoint {
+    /// The whole file's bytes.
+    fn to_bytes(&self) -> Vec<u8> {
+        let mut e = Encoder::new();
+        let id = &self.identity;
+        e.bytes(id.case_path.as_bytes());
+        e.u64(id.case_hash);
+        e.u64(id.mesh_hash);
+        let s = &self.schedule;
+        e.u64(s.next_step);
+        e.f64(s.next_frame);
+        e.f64(s.next_row);
+        e.bool(s.ended_past_peak);
+        e.bool(s.peak.is_some());
+        let (peak, last) = s.peak.unwrap_or_default();
+        e.f64(peak);
+        e.f64(last);
+        let m = &self.marks;
+        e.u64(m.history_len);
+        e.u64(m.failures_len);
+        e.f64s(&m.frames);
+        e.f64s(&m.fracture_frames);
+        e.bytes(&self.solver);
+        let payload = e.into_bytes();
+        let mut out = Vec::with_capacity(HEADER + payload.len());
+        out.extend_from_slice(MAGIC);
+        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        out.extend_from_slice(&fnv1a(&payload).to_le_bytes());
+        out.extend_from_slice(&payload);
+        out
+    }
+
+    /// Reads a file's bytes; the error says what is wrong with them.
+    fn from_bytes(bytes: &[u8]) -> Result<Checkpoint, String> {
+        if bytes.len() < HEADER || &bytes[..8] != MAGIC {
+            return Err("not a femdem checkpoint (no magic number)".into());
+        }
+        let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
+        if version != FORMAT_VERSION {
+            return Err(format!("format version {version}; this femdem reads version {FORMAT_VERSION}"));
+        }
+        let length = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
+        let checksum = u64::from_le_bytes(bytes[20..28].try_into().expect("8 bytes"));
+        let payload = &bytes[HEADER..];
+        if payload.len() as u64 != length {
+            return Err(format!("incomplete: {} bytes of payload, {length} expected", payload.len()));
+        }
+        if fnv1a(payload) != checksum {
+            return Err("damaged: its checksum does not match".into());
+        }
+        let read = |d: &mut Decoder<'_>| -> Result<Checkpoint, femdem_solver::SolverError> {
+            let case_path = String::from_utf8_lossy(d.bytes()?).into_owned();
+            let identity = Identity { case_path, case_hash: d.u64()?, mesh_hash: d.u64()? };
+            let (next_step, next_frame, next_row, ended_past_peak) = (d.u64()?, d.f64()?, d.f64()?, d.bool()?);
+            let has_peak = d.bool()?;
+            let peak = (d.f64()?, d.f64()?);
+            let schedule =
+                Schedule { next_step, next_frame, next_row, ended_past_peak, peak: has_peak.then_some(peak) };
+            let marks =
+                Marks { history_len: d.u64()?, failures_len: d.u64()?, frames: d.f64s()?, fracture_frames: d.f64s()? };
+            let solver = d.bytes()?.to_vec();
+            d.finish()?;
+            Ok(Checkpoint { identity, schedule, marks, solver })
+        };
+        read(&mut Decoder::new(payload)).map_err(|e| format!("malformed: {e}"))
+    }
+}
+
+/// The file name of the checkpoint of step `step`.
+fn file_name(step: u64) -> String {
+    format!("{PREFIX}{step:012}{SUFFIX}")
+}
+
+/// The checkpoint files in `dir` with their steps, newest first.
+fn list(dir: &Path) -> Result<Vec<(u64, PathBuf)>> {
+    let mut found = Vec::new();
+    let entries = fs::read_dir(dir).with_context(|| format!("reading directory {}", dir.display()))?;
+    for entry in entries {
+        let entry = entry.with_context(|| format!("reading directory {}", dir.display()))?;
+        let name = entry.file_name();
+        let Some(step) = name.to_str().and_then(|n| n.strip_prefix(PREFIX)?.strip_suffix(SUFFIX)?.parse::<u64>().ok())
+        else {
+            continue;
+        };
+        found.push((step, entry.path()));
+    }
+    found.sort_by_key(|f| std::cmp::Reverse(f.0));
+    Ok(found)
+}
+
+/// Writes `checkpoint` into `dir` atomically (see the module
+/// documentation), then removes all but the [`KEEP`] newest checkpoints.
+/// Returns the file written.
+pub fn write(dir: &Path, checkpoint: &Checkpoint) -> Result<PathBuf> {
+    let path = dir.join(file_name(checkpoint.schedule.next_step));
+    let tmp = dir.join(TEMPORARY);
+    let bytes = checkpoint.to_bytes();
+    let written = File::create(&tmp).and_then(|mut f| {
+        f.write_all(&bytes)?;
+        f.sync_all()
+    });
+    written.with_context(|| format!("writing checkpoint {}", tmp.display()))?;
+    fs::rename(&tmp, &path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+    // The rename itself is durable once the directory is synced (where the
+    // platform allows opening a directory; elsewhere this is best effort).
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
+    for (_, old) in list(dir)?.into_iter().skip(KEEP) {
+        fs::remove_file(&old).with_context(|| format!("removing old checkpoint {}", old.display()))?;
+    }
+    Ok(path)
+}
+
+/// The newest complete checkpoint in `dir` and its file. Incomplete or
+/// damaged ones newer than it are reported on stderr and skipped.
+///
+/// # Errors
+/// When `dir` holds no complete checkpoint, with the reason for each file
+/// that is not.
+pub fn latest(dir: &Path) -> Result<(PathBuf, Checkpoint)> {
+    let found = list(dir)?;
+    let mut skipped = Vec::new();
+    for (_, path) in found {
+        let read = fs::read(&path).map_err(|e| e.to_string()).and_then(|b| Checkpoint::from_bytes(&b));
+        match read {
+            Ok(c) => return Ok((path, c)),
+            Err(why) => {
+                eprintln!("femdem: skipping checkpoint {}: {why}", path.display());
+                skipped.push(format!("\n  {}: {why}", path.display()));
+            }
+        }
+    }
+    bail!(
+        "no complete checkpoint in {} (files {PREFIX}*{SUFFIX}){}; run without --resume to start again",
+        dir.display(),
+        skipped.concat()
+    )
+}
+
+/// Removes the checkpoints in `dir` newer than step `step` (after a resume
+/// from `step`, those are damaged or belong to a future this run will
+/// write again) or, with `None`, all of them (a fresh run), and a leftover
+/// temporary file.
+pub fn remove_after(dir: &Path, step: Option<u64>) -> Result<()> {
+    for (s, path) in list(dir)? {
+        if step.is_none_or(|step| s > step) {
+            fs::remove_file(&path).with_context(|| format!("removing checkpoint {}", path.display()))?;
+        }
+    }
+    let tmp = dir.join(TEMPORARY);
+    if tmp.exists() {
+        fs::remove_file(&tmp).with_context(|| format!("removing {}", tmp.display()))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> Checkpoint {
+        Checkpoint {
+            identity: Identity { case_path: "a.toml".into(), case_hash: 1, mesh_hash: 2 },
+            schedule: Schedule {
+                next_step: 7,
+                next_frame: 0.1 + 0.2,
+                next_row: 1e-7,
+                ended_past_peak: false,
+                peak: Some((3.0, -0.0)),
+            },
+            marks: Marks { history_len: 100, failures_len: 40, frames: vec![0.0, 0.5], fracture_frames: vec![0.0] },
+            solver: vec![1, 2, 3],
+        }
+    }
+
+    #[test]
+    fn a_checkpoint_round_trips_and_any_damage_is_detected() {
+        let c = sample();
+        let bytes = c.to_bytes();
+        assert_eq!(Checkpoint::from_bytes(&bytes).unwrap(), c);
+        for cut in 0..bytes.len() {
+            assert!(Checkpoint::from_bytes(&bytes[..cut]).is_err(), "cut at {cut}");
+        }
+        for at in 0..bytes.len() {
+            let mut bad = bytes.clone();
+            bad[at] ^= 0x10;
+            assert!(Checkpoint::from_bytes(&bad).is_err(), "flipped byte {at}");
+        }
+    }
+
+    #[test]
+    fn fnv1a_matches_its_reference_values() {
+        // From the FNV reference test suite.
+        assert_eq!(fnv1a(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+}

@@ -1,6 +1,6 @@
 //! `cargo xtask <task>`: project automation that needs nothing but cargo.
 //!
-//! - `validate [--profile quick|paper] [--case NAME] [--out DIR]`: runs the
+//! - `validate [--profile quick|paper] [--case NAME] [--out DIR] [--sensitivity]`: runs the
 //!   reference paper's examples and reports against its numbers
 //!   (`docs/validation.md`).
 //! - `bench [--memory | --callgrind] [criterion args…]`: the criterion

@@ -1,8 +1,12 @@
-//! `cargo xtask validate [--profile quick|paper] [--case NAME] [--out DIR]`:
+//! `cargo xtask validate [--profile quick|paper] [--case NAME] [--out DIR]
+//! [--sensitivity]`:
 //! runs the reference paper's examples through `femdem run`, as a user
 //! would, checks the results against the paper and closed forms, and writes
 //! `report.md`, `checks.csv`, the runs' data and PNG figures to DIR
 //! (default `target/validation`). Exits non-zero when a gating check fails.
+//!
+//! `--sensitivity` adds the Brazilian one-change-at-a-time runs (what moves
+//! f_bt; seven more runs).
 //!
 //! A run that finished before with the same case text is reused, so an
 //! interrupted validation resumes at the first unfinished run.
@@ -52,6 +56,7 @@ const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", true), ("mu
 pub fn run(args: &[String]) -> Result<()> {
     let mut profile = Profile::Quick;
     let mut only: Option<String> = None;
+    let mut sensitivity = false;
     let mut out = crate::root().join("target").join("validation");
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -66,8 +71,9 @@ pub fn run(args: &[String]) -> Result<()> {
             }
             "--case" => only = Some(value()?),
             "--out" => out = PathBuf::from(value()?),
+            "--sensitivity" => sensitivity = true,
             other => bail!(
-                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--out DIR]"
+                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--out DIR] [--sensitivity]"
             ),
         }
     }
@@ -89,7 +95,7 @@ pub fn run(args: &[String]) -> Result<()> {
             continue;
         }
         match name {
-            "brazilian" => brazilian::validate(&femdem, profile, &out, &mut report)?,
+            "brazilian" => brazilian::validate(&femdem, profile, sensitivity, &out, &mut report)?,
             "polyaxial" => polyaxial::validate(&femdem, profile, &out, &mut report)?,
             _ => unreachable!("every built case is dispatched"),
         }

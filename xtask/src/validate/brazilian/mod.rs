@@ -36,8 +36,9 @@ fn mesh(profile: Profile) -> Mesh {
     }
 }
 
-/// Runs the case in `profile`, adding its checks and sections to `report`.
-pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Report) -> Result<()> {
+/// Runs the case in `profile` (with the sensitivity runs if `sensitivity`),
+/// adding its checks and sections to `report`.
+pub fn validate(femdem: &Femdem, profile: Profile, sensitivity: bool, out: &Path, report: &mut Report) -> Result<()> {
     let base = Base::load()?;
     let disc = base.disc;
     let mesh = mesh(profile);
@@ -229,7 +230,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         figures::fracture_pattern(&figs.join(&z), &figs.join(&d3), &fr, disc, &format!("V = {v} m/s"))?;
         let _ = writeln!(md, "\n![fractures along z, V = {v}](figures/{z}) ![fractures 3D, V = {v}](figures/{d3})");
     }
-    if profile == Profile::Quick {
+    if sensitivity {
         md.push_str(&sensitivity::run(femdem, &base, mesh, &dir, &runs[0].1)?);
     }
     report.sections.push(md);

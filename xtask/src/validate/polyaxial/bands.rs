@@ -11,9 +11,11 @@
 //!   area scores `θ`; the best `θ` is the main band, the best `θ` at least
 //!   [`CONJUGATE_GAP`] away from it is the conjugate set. Ties go to the
 //!   direction whose slab is thinnest (smallest RMS spread).
-//! - **Facets** (the element-scale criterion): the angle between each
-//!   shear-failed face's plane and the x axis, `β = 90° − acos|n·x̂|`,
-//!   summarised by its area-weighted median.
+//! - **Facets** (the element-scale criterion): the angle to x of each
+//!   shear-failed face's trace on the x–y plane, `β = 90° − atan(|n_y| /
+//!   |n_x|)` from its unit normal `n` (61.7° for a face on the Test 1 plane),
+//!   summarised by the median weighted by area × `(n_x² + n_y²)`, so that a
+//!   face counts by how nearly it contains z as the Mohr–Coulomb planes do.
 
 /// Smallest angle between the main band and a conjugate one, degrees.
 pub const CONJUGATE_GAP: f64 = 20.0;
@@ -94,7 +96,9 @@ pub fn bands(facets: &[Facet], width: f64) -> Option<(Band, Band)> {
         scores
             .iter()
             .filter(|b| ok(b.0.theta))
-            .max_by(|a, b| a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta)))
+            .max_by(|a, b| {
+                a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta))
+            })
             .map(|b| b.0)
     };
     let main = best(&|_| true)?;
@@ -106,16 +110,23 @@ pub fn bands(facets: &[Facet], width: f64) -> Option<(Band, Band)> {
     Some((main, conjugate))
 }
 
-/// Area-weighted median of the facets' plane angle to the x axis,
-/// `β = 90° − acos|n·x̂|`, degrees; `None` without facets.
+/// The weighted median of the facets' trace angle to the x axis,
+/// `β = 90° − atan(|n_y| / |n_x|)`, degrees (see the module
+/// documentation); `None` without facets or weight.
 pub fn facet_angle(facets: &[Facet]) -> Option<f64> {
-    let mut b: Vec<(f64, f64)> =
-        facets.iter().map(|f| (90.0 - f.normal[0].abs().min(1.0).acos().to_degrees(), f.area)).collect();
+    let mut b: Vec<(f64, f64)> = facets
+        .iter()
+        .map(|f| {
+            let (nx, ny) = (f.normal[0].abs(), f.normal[1].abs());
+            (90.0 - ny.atan2(nx).to_degrees(), f.area * (nx * nx + ny * ny))
+        })
+        .filter(|x| x.1 > 0.0)
+        .collect();
     b.sort_by(|x, y| x.0.total_cmp(&y.0));
     let total: f64 = b.iter().map(|x| x.1).sum();
     let mut acc = 0.0;
-    for (angle, area) in b {
-        acc += area;
+    for (angle, weight) in b {
+        acc += weight;
         if acc >= 0.5 * total {
             return Some(angle);
         }
@@ -153,7 +164,11 @@ mod tests {
     #[test]
     fn a_compact_cluster_scores_the_same_in_every_direction() {
         let f: Vec<Facet> = (0..50)
-            .map(|i| Facet { at: (0.01 * f64::from(i % 5), 0.01 * f64::from(i / 5 % 5)), area: 1.0, normal: [1.0, 0.0, 0.0] })
+            .map(|i| Facet {
+                at: (0.01 * f64::from(i % 5), 0.01 * f64::from(i / 5 % 5)),
+                area: 1.0,
+                normal: [1.0, 0.0, 0.0],
+            })
             .collect();
         let (main, conj) = bands(&f, 0.2).unwrap();
         assert_eq!((main.share, conj.share), (1.0, 1.0));
@@ -165,6 +180,13 @@ mod tests {
         assert!((facet_angle(&f).unwrap() - 61.7).abs() < 1e-9);
         let vertical = [Facet { at: (0.0, 0.0), area: 1.0, normal: [1.0, 0.0, 0.0] }];
         assert!((facet_angle(&vertical).unwrap() - 90.0).abs() < 1e-12);
+        // A face normal to z has no trace direction and no weight.
+        let flat = Facet { at: (0.0, 0.0), area: 1.0, normal: [0.0, 0.0, 1.0] };
+        assert_eq!(facet_angle(&[flat]), None);
+        // Tilting a face about its trace leaves the trace angle alone.
+        let (s, c) = 61.7f64.to_radians().sin_cos();
+        let tilted = Facet { at: (0.0, 0.0), area: 1.0, normal: [-s * 0.6, c * 0.6, 0.8] };
+        assert!((facet_angle(&[tilted, flat]).unwrap() - 61.7).abs() < 1e-9);
         assert_eq!(facet_angle(&[]), None);
     }
 }

@@ -134,6 +134,20 @@ pub fn set_material(t: &mut Table, key: &str, value: Value) {
     }
 }
 
+/// Replaces the disc's extrusion (`mesh.parts[0]`) by the Gmsh mesh
+/// `cases/paper/meshes/<file>` (one physical volume `disc`).
+pub fn set_gmsh_disc(t: &mut Table, file: &str) {
+    if let Some(part) =
+        t.get_mut("mesh").and_then(|m| m.get_mut("parts")).and_then(|p| p.get_mut(0)).and_then(Value::as_table_mut)
+    {
+        part.clear();
+        part.insert("kind".into(), "msh".into());
+        part.insert("name".into(), "disc".into());
+        let path = crate::root().join("cases/paper/meshes").join(file);
+        part.insert("path".into(), path.to_string_lossy().into_owned().into());
+    }
+}
+
 /// Sets `[contact] key` to `value`.
 pub fn set_contact(t: &mut Table, key: &str, value: Value) {
     if let Some(c) = t.get_mut("contact").and_then(Value::as_table_mut) {

@@ -1,8 +1,9 @@
 //! What moves the Brazilian strength: one change at a time from the
 //! baseline at the fastest rate, each a full run, f_bt compared with the
 //! baseline's. The causes the issue lists: the joint penalty p0, the
-//! Eq. 11 coupling, the platens' friction, the contact penalty, damping
-//! and the element size.
+//! Eq. 11 coupling, the platens' friction, the contact penalty, damping,
+//! the element size, and an unstructured (Gmsh) disc instead of extruded
+//! prisms.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -11,7 +12,7 @@ use anyhow::Result;
 use toml::Table;
 
 use super::analysis::Outcome;
-use super::case::{Base, Mesh, set_contact, set_material, set_platen_friction};
+use super::case::{Base, Mesh, set_contact, set_gmsh_disc, set_material, set_platen_friction};
 use crate::validate::runner::Femdem;
 
 /// The rate the variants run at, m/s (the baseline's is the same run as
@@ -66,6 +67,18 @@ fn variants(base: &Base, mesh: Mesh) -> Vec<(&'static str, String, Mesh, Tweak)>
             format!("{} mm triangles, {} layers", 1e3 * finer.element_size, finer.layers),
             finer,
             Box::new(|_: &mut Table| {}),
+        ),
+        (
+            "unstructured 4 mm",
+            "Gmsh tets of 4 mm target size (cases/paper/meshes/disc-4mm.msh) instead of extruded prisms".into(),
+            mesh,
+            Box::new(|t: &mut Table| set_gmsh_disc(t, "disc-4mm.msh")),
+        ),
+        (
+            "unstructured 2 mm",
+            "Gmsh tets of 2 mm target size (disc-2mm.msh), platens 2 mm".into(),
+            Mesh { platen_size: 2.0e-3, ..mesh },
+            Box::new(|t: &mut Table| set_gmsh_disc(t, "disc-2mm.msh")),
         ),
     ]
 }

@@ -52,6 +52,20 @@ fn brazilian_disc_matches_the_paper_setup() {
     }
 }
 
+/// The README's main case is the paper's disc on a 4 mm mesh, platens
+/// included, and ends on its own once split (`stop_below_peak`).
+#[test]
+fn readme_case_is_the_paper_disc_on_a_coarse_mesh() {
+    let r = check_json("cases/brazilian-split.toml");
+    let disc = region(&r, "disc");
+    let exact = std::f64::consts::PI * 0.02f64.powi(2) * 0.015;
+    let v = disc["volume"].as_f64().unwrap();
+    assert!((v / exact - 1.0).abs() < 0.01, "disc volume {v} vs {exact}");
+    assert!(disc["tets"].as_u64().unwrap() < 5_000, "a coarse disc: {}", disc["tets"]);
+    let text = std::fs::read_to_string(root().join("cases/brazilian-split.toml")).unwrap();
+    assert!(text.contains("stop_below_peak"), "the README's run must end once split");
+}
+
 #[test]
 fn polyaxial_cube_fills_half_a_metre_cubed() {
     let r = check_json("cases/paper/polyaxial.toml");

@@ -55,7 +55,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, sensitivity: bool, out: &Path
     let mut md = format!("## Brazilian disc ({} profile)\n\n", profile.name());
     let _ = writeln!(
         md,
-        "Mesh: {} mm triangles, {} layers (platens {} mm). Runs end once the load has fallen to half its peak.\n",
+        "Mesh: {} mm triangles, {} layers (platens {} mm). Runs end once the load has fallen to a tenth of its peak (the disc has split).\n",
         1e3 * mesh.element_size,
         mesh.layers,
         1e3 * mesh.platen_size

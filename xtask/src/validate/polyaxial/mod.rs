@@ -117,8 +117,8 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     let (unstructured, lattice) = meshes(profile);
     let dir = out.join("polyaxial");
     let mut runs = Vec::new();
-    let mut plan: Vec<(Test, &Mesh)> = TESTS.iter().map(|t| (*t, &unstructured)).collect();
-    plan.push((TESTS[0], &lattice));
+    let plan: Vec<(Test, &Mesh)> =
+        TESTS.iter().map(|t| (*t, &unstructured)).chain(TESTS.iter().map(|t| (*t, &lattice))).collect();
     for (test, mesh) in plan {
         let title = format!(
             "Polyaxial compression, Test {} (c = {} MPa, φ = {}°), {}, {} profile (cargo xtask validate)",
@@ -259,16 +259,23 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
             gate_paper,
         );
     }
-    if let (Some(l), Some(u)) = (runs.iter().find(|o| o.mesh == lattice.label()), angle(unstr[0])) {
-        let lattice_text = angle(l).map_or_else(
-            || format!("no shear failure on the lattice ({}) vs {u:.1}°", l.modes().text()),
-            |la| format!("{la:.1}° vs {u:.1}°"),
-        );
+    for t in TESTS {
+        let on = |label: String| runs.iter().find(|o| o.mesh == label && o.test.number == t.number);
+        let (Some(l), Some(u)) = (on(lattice.label()), on(unstructured.label())) else {
+            continue;
+        };
+        let describe = |o: &Outcome| {
+            let main = bands::bands(&o.shear, width).map_or("—".into(), |b| format!("{:.0}°", b.0.angle_to_x()));
+            match angle(o) {
+                Some(a) => format!("band {main}, facets {a:.1}° ({})", o.modes().text()),
+                None => format!("no shear failure ({})", o.modes().text()),
+            }
+        };
         report.check(
             c,
-            "mesh bias: Test 1 facet angle, lattice against unstructured",
-            "no preferred direction".into(),
-            lattice_text,
+            &format!("mesh bias, Test {}: lattice against unstructured", t.number),
+            format!("{:.1}° on both (no preferred direction)", mohr::band_angle(t.friction_angle)),
+            format!("lattice: {}; unstructured: {}", describe(l), describe(u)),
             "reported",
             true,
             Kind::Info,

@@ -94,7 +94,9 @@ pub fn bands(facets: &[Facet], width: f64) -> Option<(Band, Band)> {
         scores
             .iter()
             .filter(|b| ok(b.0.theta))
-            .max_by(|a, b| a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta)))
+            .max_by(|a, b| {
+                a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta))
+            })
             .map(|b| b.0)
     };
     let main = best(&|_| true)?;
@@ -153,7 +155,11 @@ mod tests {
     #[test]
     fn a_compact_cluster_scores_the_same_in_every_direction() {
         let f: Vec<Facet> = (0..50)
-            .map(|i| Facet { at: (0.01 * f64::from(i % 5), 0.01 * f64::from(i / 5 % 5)), area: 1.0, normal: [1.0, 0.0, 0.0] })
+            .map(|i| Facet {
+                at: (0.01 * f64::from(i % 5), 0.01 * f64::from(i / 5 % 5)),
+                area: 1.0,
+                normal: [1.0, 0.0, 0.0],
+            })
             .collect();
         let (main, conj) = bands(&f, 0.2).unwrap();
         assert_eq!((main.share, conj.share), (1.0, 1.0));

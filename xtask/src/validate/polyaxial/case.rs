@@ -62,7 +62,9 @@ fn pressure(t: &Table, group: &str) -> Result<f64> {
         .iter()
         .find(|l| l.get("group").and_then(Value::as_str) == Some(group))
         .with_context(|| format!("{BASE}: no load on `{group}`"))?;
-    load.get("pressure").and_then(Value::as_float).with_context(|| format!("{BASE}: the load on `{group}` has no pressure"))
+    load.get("pressure")
+        .and_then(Value::as_float)
+        .with_context(|| format!("{BASE}: the load on `{group}` has no pressure"))
 }
 
 impl Base {
@@ -73,7 +75,8 @@ impl Base {
         let table: Table = text.parse().with_context(|| format!("parsing {BASE}"))?;
         let mut p = [0.0; 3];
         for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-            let (lo, hi) = (pressure(&table, &format!("cube.{axis}min"))?, pressure(&table, &format!("cube.{axis}max"))?);
+            let (lo, hi) =
+                (pressure(&table, &format!("cube.{axis}min"))?, pressure(&table, &format!("cube.{axis}max"))?);
             if lo != hi {
                 bail!("{BASE}: the pressures on cube.{axis}min and cube.{axis}max differ ({lo} and {hi} Pa)");
             }
@@ -91,12 +94,12 @@ impl Base {
     pub fn case(&self, title: &str, test: Test, mesh: &Mesh, end_time: f64) -> Result<String> {
         let mut t = self.table.clone();
         t.insert("title".into(), title.into());
-        t.get_mut("solver").and_then(Value::as_table_mut).context("[solver]")?.insert("end_time".into(), end_time.into());
-        let m = t
-            .get_mut("materials")
-            .and_then(|m| m.get_mut(0))
+        t.get_mut("solver")
             .and_then(Value::as_table_mut)
-            .context("materials[0]")?;
+            .context("[solver]")?
+            .insert("end_time".into(), end_time.into());
+        let m =
+            t.get_mut("materials").and_then(|m| m.get_mut(0)).and_then(Value::as_table_mut).context("materials[0]")?;
         m.insert("cohesion".into(), test.cohesion.into());
         m.insert("friction_angle".into(), test.friction_angle.into());
         let part = t

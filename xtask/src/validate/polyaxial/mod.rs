@@ -159,7 +159,8 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         let t = o.test;
         let modes = o.modes();
         let found = bands::bands(&o.shear, width);
-        let band = |b: Option<bands::Band>| b.map_or("—".into(), |b| format!("{:.0} ({:.0}%)", b.theta, 100.0 * b.share));
+        let band =
+            |b: Option<bands::Band>| b.map_or("—".into(), |b| format!("{:.0} ({:.0}%)", b.theta, 100.0 * b.share));
         let facets = bands::facet_angle(&o.shear).map_or("—".into(), |a| format!("{a:.1}"));
         let _ = writeln!(
             md,
@@ -241,7 +242,11 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         report.check(
             c,
             "facet angle falls with φ (Test 1 > Test 2)",
-            format!("{:.1}° > {:.1}°", mohr::band_angle(TESTS[0].friction_angle), mohr::band_angle(TESTS[1].friction_angle)),
+            format!(
+                "{:.1}° > {:.1}°",
+                mohr::band_angle(TESTS[0].friction_angle),
+                mohr::band_angle(TESTS[1].friction_angle)
+            ),
             format!("{a1:.1}° vs {a2:.1}°"),
             "strict",
             a1 > a2,
@@ -265,12 +270,21 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     std::fs::create_dir_all(&figs)?;
     let materials: Vec<(String, f64, f64)> = TESTS
         .iter()
-        .map(|t| (format!("Test {} (c = {} MPa, φ = {}°)", t.number, 1e-6 * t.cohesion, t.friction_angle), t.cohesion, t.friction_angle))
+        .map(|t| {
+            (
+                format!("Test {} (c = {} MPa, φ = {}°)", t.number, 1e-6 * t.cohesion, t.friction_angle),
+                t.cohesion,
+                t.friction_angle,
+            )
+        })
         .collect();
     mohr::figure(&figs.join("polyaxial_mohr.png"), s, &materials)?;
     md.push_str("\n![Mohr circles](figures/polyaxial_mohr.png)\n");
     for o in &runs {
-        let name = format!("polyaxial_fractures_{}.png", o.run.dir.parent().and_then(|d| d.file_name()).map_or("run".into(), |d| d.to_string_lossy().into_owned()));
+        let name = format!(
+            "polyaxial_fractures_{}.png",
+            o.run.dir.parent().and_then(|d| d.file_name()).map_or("run".into(), |d| d.to_string_lossy().into_owned())
+        );
         let tris: Vec<([(f64, f64); 3], RGBColor)> = o.faces.iter().map(|(p, m)| (*p, mode_colour(*m))).collect();
         plot::triangles(
             &figs.join(&name),

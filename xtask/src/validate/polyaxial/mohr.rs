@@ -62,7 +62,13 @@ pub fn figure(path: &Path, s: Stresses, materials: &[(String, f64, f64)]) -> Res
         // side is cut off at σ = c / tan φ (Eq. 5) and not drawn.
         series.push((format!("envelope {label}"), vec![(0.0, 1e-6 * c), (-1e-6 * far, 1e-6 * (c + far * t))]));
     }
-    plot::lines(path, "Polyaxial test: Mohr circles and envelopes (Fig. 13)", "normal stress σ (MPa, tension +)", "shear stress τ (MPa)", &series)
+    plot::lines(
+        path,
+        "Polyaxial test: Mohr circles and envelopes (Fig. 13)",
+        "normal stress σ (MPa, tension +)",
+        "shear stress τ (MPa)",
+        &series,
+    )
 }
 
 #[cfg(test)]

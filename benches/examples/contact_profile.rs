@@ -11,8 +11,8 @@
 //!     target/release/examples/contact_profile 3400 10
 //! ```
 //!
-//! profiles the set-up and ten fragmented steps (`cargo xtask bench
-//! --callgrind-contact` takes the difference of 2 and 12 steps; see
+//! profiles the set-up and ten fragmented steps (a profile with 2 steps,
+//! subtracted, leaves the steps alone; see
 //! `docs/performance.md`). Prints the tets, steps, failures, detections
 //! and contact pairs.
 

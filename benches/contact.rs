@@ -65,5 +65,32 @@ fn kernel(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, nbs, kernel);
+/// Five steps of the quick polyaxial cube (`femdem_benches::polyaxial_cube`,
+/// 4,993 tets) from step 3,400, once some 630 joints have failed and more
+/// fail at nearly every step: detection is redone at most steps and some
+/// 3,700 pairs are in contact. Each sample restores the same snapshot, so
+/// every iteration runs the same five steps; throughput in tet-steps.
+fn fragmented(c: &mut Criterion) {
+    use femdem_solver::Want;
+    let mut s = femdem_benches::polyaxial_cube_at(3400);
+    let bytes = s.snapshot();
+    let tets = s.model.num_deformable_tets() as u64;
+    let mut g = c.benchmark_group("contact_fragmented_cube");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(5 * tets));
+    for threads in [1usize, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        g.bench_function(BenchmarkId::new("5_steps", format!("{threads}_threads")), |b| {
+            pool.install(|| {
+                b.iter(|| {
+                    s.restore(&bytes).expect("restore");
+                    (0..5).map(|_| s.step(Want::default()).contact_pairs).sum::<usize>()
+                })
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, nbs, kernel, fragmented);
 criterion_main!(benches);

@@ -62,3 +62,97 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
     s.set_velocity(|x| femdem_core::Vec3::new(x.y, -x.x, 0.0) * 10.0);
     s
 }
+
+/// The quick polyaxial cube of the contact profile: `cases/paper/polyaxial.toml`
+/// (Test 1: limestone, c = 0.5 MPa, φ = 33.4°, G_f = 60 J/m², pressures of
+/// 3.75, 15 and 9.375 MPa on the x, y and z faces ramped over 2 ms, contact
+/// with penalty E, μ = 0.6 and a 5 mm buffer) on the 50 mm Gmsh cube
+/// (`cases/paper/meshes/cube-50mm.msh`, 4,993 tets), built with the library
+/// crates as `femdem run` builds it (mean-edge damping ratio 0.05, joint
+/// penalty 10 E, 400 Lanczos iterations, 0.9 of the critical step with the
+/// contact bound): 3,638 steps to 2.5 ms, joints failing from about step
+/// 2,900 on.
+pub fn polyaxial_cube() -> femdem_solver::Solver {
+    use femdem_fracture::{Coupling, GfCalibration, JointParams};
+    use femdem_material::{ElasticParams, Law};
+    use femdem_solver::{
+        ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, StepParams, SurfaceKind, SurfaceLoad,
+        contact_omega, held_nodes, stable_time_step,
+    };
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../cases/paper/meshes/cube-50mm.msh");
+    let bytes = std::fs::read(path).expect("cases/paper/meshes/cube-50mm.msh");
+    let mut mesh = femdem_mesh::msh::read_msh(&bytes).expect("cube mesh");
+    for r in &mut mesh.regions {
+        r.breakable = true;
+    }
+    let jointed = femdem_mesh::insert_joints(&mesh).expect("joints");
+    let m = &jointed.mesh;
+    let (young, density) = (30.0e9, 2700.0);
+    let mean_edge =
+        (0..m.num_tets()).map(|t| femdem_core::tet::edge_lengths(&m.tet_points(t)).iter().sum::<f64>()).sum::<f64>()
+            / (6 * m.num_tets()) as f64;
+    let viscosity = 0.05 * femdem_material::critical_viscosity(mean_edge, young, density);
+    let material = ElasticParams { young, poisson: 0.27, density, viscosity }.validate().expect("limestone");
+    let joints = JointParams {
+        penalty: 10.0 * young,
+        tensile_strength: 1.0e6,
+        cohesion: 0.5e6,
+        friction_angle: 33.4f64.to_radians(),
+        gf_tension: 60.0,
+        gf_shear: 60.0,
+        calibration: GfCalibration::Paper,
+        coupling: Coupling::Printed,
+    }
+    .validate()
+    .expect("joints");
+    let model = Model::new(
+        &jointed,
+        &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints: Some(joints) }],
+        1.0,
+    )
+    .expect("model");
+    let mut loads = Loads::default();
+    for (face, pressure) in
+        [("xmin", 3.75e6), ("xmax", 3.75e6), ("ymin", 15e6), ("ymax", 15e6), ("zmin", 9.375e6), ("zmax", 9.375e6)]
+    {
+        let group = m.boundary.iter().find(|g| g.name.ends_with(face)).expect("face group").name.clone();
+        loads.surfaces.push(SurfaceLoad {
+            faces: femdem_solver::select::group_faces(&jointed, &group).expect("group"),
+            name: group,
+            kind: SurfaceKind::Pressure(pressure),
+            ramp: Ramp { ramp_time: 2.0e-3, stop_time: None },
+        });
+    }
+    let held = held_nodes(&model, &loads).expect("constraints");
+    let mut settings = ContactSettings::new(30.0e9);
+    settings.friction = 0.6;
+    settings.buffer = 5.0e-3;
+    let stable = stable_time_step(&model, &held, 400).with_contact(contact_omega(&model, settings.penalty));
+    let dt = 0.9 * stable.critical;
+    let mut s = Solver::new(model, loads, StepParams::new(dt).expect("step")).expect("solver");
+    s.enable_contact(settings, &[]);
+    s
+}
+
+/// [`polyaxial_cube`] advanced to step `step`: restored from the snapshot
+/// `target/contact_profile/cube50_<step>.snap` when one is there (and
+/// restores), else run there (about 20 s to step 3,400 on one core) and
+/// saved, so that a profiler sees only the steps after it.
+pub fn polyaxial_cube_at(step: u64) -> femdem_solver::Solver {
+    use femdem_solver::Want;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/contact_profile");
+    let file = dir.join(format!("cube50_{step}.snap"));
+    let mut s = polyaxial_cube();
+    if let Ok(bytes) = std::fs::read(&file) {
+        if s.restore(&bytes).is_ok() && s.state.step == step {
+            return s;
+        }
+        s = polyaxial_cube();
+    }
+    while s.state.step < step {
+        s.step(Want::default());
+    }
+    std::fs::create_dir_all(&dir).expect("target/contact_profile");
+    std::fs::write(&file, s.snapshot()).expect("snapshot");
+    s
+}

@@ -24,6 +24,49 @@ pub(crate) struct PairForce {
     pub spring_energy: Real,
 }
 
+/// A set of tet pairs keyed by [`spring_key`] (see [`PairHasher`]).
+pub(crate) type PairSet = std::collections::HashSet<(u32, u32), std::hash::BuildHasherDefault<PairHasher>>;
+
+/// A map from tet pairs keyed by [`spring_key`] (see [`PairHasher`]).
+pub(crate) type PairMap<V> = std::collections::HashMap<(u32, u32), V, std::hash::BuildHasherDefault<PairHasher>>;
+
+/// The hasher of the pair state (bonded pairs, friction springs, Eq. 18
+/// ramps): FxHash's step `h ← (rotl(h, 5) ⊕ w) · 0x517c_c1b7_2722_0a95` per
+/// word, as in rustc, instead of std's SipHash-1-3, whose keyed,
+/// DoS-resistant rounds cost some 60 instructions per lookup of two `u32`s
+/// (8% of a fragmented step went to the bonded-pair lookups of detection).
+/// The keys are tet indices of the model, not input an adversary chooses.
+/// Nothing depends on the maps' iteration order: snapshots write them
+/// sorted, and the pass only looks keys up or retains by value.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PairHasher(u64);
+
+impl PairHasher {
+    #[inline]
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+impl std::hash::Hasher for PairHasher {
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.add(u64::from(b));
+        }
+    }
+
+    #[inline]
+    fn write_u32(&mut self, n: u32) {
+        self.add(u64::from(n));
+    }
+
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
 /// The key of a pair, smaller tet first.
 pub(crate) fn spring_key(a: u32, b: u32) -> (u32, u32) {
     (a.min(b), a.max(b))
@@ -43,8 +86,10 @@ pub(crate) struct PairInput<'a> {
     pub tets: [u32; 2],
     pub x: [[Vec3; 4]; 2],
     pub v: [[Vec3; 4]; 2],
-    /// `V^{1/3}` of the smaller tet, m (the friction spring's length scale).
-    pub size: Real,
+    /// The reference volumes of the two tets, m³: `V^{1/3}` of the smaller
+    /// is the friction spring's length scale, taken only for a pair in
+    /// contact (a cube root per candidate was 5% of a fragmented step).
+    pub volumes: [Real; 2],
     pub penalty: Real,
     pub mu: Real,
     /// Eq. 18's `n_c / n_total` while the ramp lasts, else 1.
@@ -128,7 +173,8 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         let mut spring = input.spring.copied().unwrap_or_else(Vec3::zeros) * sign;
         spring -= n * spring.dot(&n);
         spring += vt * input.dt;
-        let kt = input.penalty * input.size;
+        let size = input.volumes[0].min(input.volumes[1]).cbrt();
+        let kt = input.penalty * size;
         let limit = input.mu * n_mag;
         let mut ft = -spring * kt;
         if ft.norm() > limit {

@@ -10,8 +10,7 @@
 //! side); a crack that ends at `v` (a crack front) leaves one piece, the
 //! tets on either side still being linked around the front.
 
-use std::collections::HashSet;
-
+use super::pair::PairSet;
 use crate::model::Model;
 
 /// The stars of the original vertices and their pieces.
@@ -80,7 +79,7 @@ impl Stars {
 
     /// Finds the pieces of vertex `v` again, `bonded` being the tet pairs
     /// (smaller first) still joined by an active joint.
-    pub(crate) fn split(&mut self, model: &Model, v: u32, bonded: &HashSet<(u32, u32)>) {
+    pub(crate) fn split(&mut self, model: &Model, v: u32, bonded: &PairSet) {
         let r = self.range(v);
         let star = &self.tets[r.clone()];
         let k = star.len();

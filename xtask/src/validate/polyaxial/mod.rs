@@ -144,8 +144,8 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     };
     let mut md = format!(
         "## Polyaxial compression ({} profile)\n\nApplied: σ1 = −{} MPa along x, σ2 = −{} MPa along z, σ3 = −{} MPa along y, ramped over 2 ms and held; runs end at {} ms. \
-         Bands: Hough transform of the shear-failed faces' centroids seen along z, slabs {} mm wide; facets: area-weighted median angle of \
-         the shear-failed faces' planes to x. Mohr–Coulomb (Eq. 24): 45° + φ/2 from the σ1 axis.\n\n\
+         Bands: Hough transform of the shear-failed faces' centroids seen along z, slabs {} mm wide; facets: median angle to x of the \
+         shear-failed faces' traces on x–y, weighted by area and by how nearly a face contains z. Mohr–Coulomb (Eq. 24): 45° + φ/2 from the σ1 axis.\n\n\
          | test | mesh | c (MPa) | φ (°) | circle reach R/R_fail | failures T/S/M/C | shear share | main band (°, share) | conjugate (°, share) | facets (°) | 45° + φ/2 | energy error | steps | wall (s) |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         profile.name(),

@@ -23,6 +23,26 @@ here = os.path.dirname(os.path.abspath(__file__))
 EDGE = 0.5  # m
 
 
+def mesh_and_write(name, h):
+    """Meshes the current model at uniform target size h (m) with Gmsh's
+    Delaunay mesher and Netgen optimisation, writes <name>.msh (MSH 4.1
+    ASCII, physical groups only) beside this script, and removes the model."""
+    gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    gmsh.option.setNumber("Mesh.Algorithm3D", 1)
+    gmsh.model.mesh.generate(3)
+    gmsh.model.mesh.optimize("Netgen")
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+    gmsh.option.setNumber("Mesh.Binary", 0)
+    gmsh.option.setNumber("Mesh.SaveAll", 0)
+    path = os.path.join(here, f"{name}.msh")
+    gmsh.write(path)
+    tets, _ = gmsh.model.mesh.getElementsByType(4)
+    print(f"{os.path.basename(path)}: {len(tets)} tets")
+    gmsh.model.remove()
+
+
 def cube(h_mm):
     h = 1e-3 * h_mm
     gmsh.model.add(f"cube-{h_mm}mm")
@@ -36,19 +56,7 @@ def cube(h_mm):
                 gmsh.model.addPhysicalGroup(2, [tag], name=axis + "min")
             if abs(c[k] - EDGE) < 1e-9:
                 gmsh.model.addPhysicalGroup(2, [tag], name=axis + "max")
-    gmsh.option.setNumber("Mesh.MeshSizeMin", h)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", h)
-    gmsh.option.setNumber("Mesh.Algorithm3D", 1)
-    gmsh.model.mesh.generate(3)
-    gmsh.model.mesh.optimize("Netgen")
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 0)
-    gmsh.option.setNumber("Mesh.SaveAll", 0)
-    path = os.path.join(here, f"cube-{h_mm}mm.msh")
-    gmsh.write(path)
-    tets, _ = gmsh.model.mesh.getElementsByType(4)
-    print(f"{os.path.basename(path)}: {len(tets)} tets")
-    gmsh.model.remove()
+    mesh_and_write(f"cube-{h_mm}mm", h)
 
 
 def disc(h_mm):
@@ -57,20 +65,7 @@ def disc(h_mm):
     v = gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, 0.015, 0.020)
     gmsh.model.occ.synchronize()
     gmsh.model.addPhysicalGroup(3, [v], name="disc")
-    gmsh.option.setNumber("Mesh.MeshSizeMin", h)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", h)
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-    gmsh.option.setNumber("Mesh.Algorithm3D", 1)
-    gmsh.model.mesh.generate(3)
-    gmsh.model.mesh.optimize("Netgen")
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 0)
-    gmsh.option.setNumber("Mesh.SaveAll", 0)
-    path = os.path.join(here, f"disc-{h_mm}mm.msh")
-    gmsh.write(path)
-    tets, _ = gmsh.model.mesh.getElementsByType(4)
-    print(f"{os.path.basename(path)}: {len(tets)} tets")
-    gmsh.model.remove()
+    mesh_and_write(f"disc-{h_mm}mm", h)
 
 
 gmsh.initialize()

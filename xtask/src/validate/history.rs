@@ -44,4 +44,18 @@ impl Table {
     pub fn len(&self) -> usize {
         self.rows.len()
     }
+
+    /// The largest |balance| / external work over the rows once the work
+    /// has reached 10% of its final value (earlier, both are tiny and their
+    /// ratio is noise): the run's energy-balance error.
+    pub fn energy_error(&self) -> Result<f64> {
+        let (work, balance) = (self.col("external_work")?, self.col("balance")?);
+        let w_end = work.last().copied().unwrap_or(0.0);
+        Ok(work
+            .iter()
+            .zip(&balance)
+            .filter(|(w, _)| **w >= 0.1 * w_end && **w > 0.0)
+            .map(|(w, b)| b.abs() / w)
+            .fold(0.0, f64::max))
+    }
 }

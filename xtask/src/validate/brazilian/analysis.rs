@@ -44,18 +44,11 @@ impl Outcome {
     pub fn read(run: RunOutput, disc: Disc) -> Result<Outcome> {
         let h = Table::read(&run.dir.join("history.csv"))?;
         let (time, load, strain) = (h.col("time")?, h.col("load")?, h.col("strain")?);
-        let (work, balance) = (h.col("external_work")?, h.col("balance")?);
+        let energy_error = h.energy_error()?;
         let curve: Vec<(f64, f64)> = strain.iter().copied().zip(load.iter().copied()).collect();
         let (ipk, peak) =
             load.iter().copied().enumerate().fold((0, f64::NEG_INFINITY), |a, (i, f)| if f > a.1 { (i, f) } else { a });
         let passed_peak = load[ipk..].iter().any(|&f| f < 0.9 * peak);
-        let w_end = work.last().copied().unwrap_or(0.0);
-        let energy_error = work
-            .iter()
-            .zip(&balance)
-            .filter(|(w, _)| **w >= 0.1 * w_end && **w > 0.0)
-            .map(|(w, b)| b.abs() / w)
-            .fold(0.0, f64::max);
         let failures = Failure::read_all(&run.dir)?;
         Ok(Outcome {
             run,

@@ -23,6 +23,9 @@ use super::report::{Kind, Report};
 use super::runner::{Femdem, RunOutput};
 use super::vtu::{self, Grid};
 
+/// Picks the main or the conjugate band of [`bands::bands`].
+type PickBand = fn(&(bands::Band, bands::Band)) -> bands::Band;
+
 /// The largest error allowed on a band angle, degrees (the 8°).
 const ANGLE_TOLERANCE: f64 = 8.0;
 
@@ -67,14 +70,7 @@ struct Outcome {
 impl Outcome {
     fn read(run: RunOutput, test: Test, mesh: String) -> Result<Outcome> {
         let h = Table::read(&run.dir.join("history.csv"))?;
-        let (work, balance) = (h.col("external_work")?, h.col("balance")?);
-        let w_end = work.last().copied().unwrap_or(0.0);
-        let energy_error = work
-            .iter()
-            .zip(&balance)
-            .filter(|(w, _)| **w >= 0.1 * w_end && **w > 0.0)
-            .map(|(w, b)| b.abs() / w)
-            .fold(0.0, f64::max);
+        let energy_error = h.energy_error()?;
         let failures = Failure::read_all(&run.dir)?;
         let fpvd = run.dir.join(format!("{}_fractures.pvd", run.stem));
         let last = vtu::series(&fpvd)?.pop().context("no fracture frame")?;
@@ -208,28 +204,24 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
             let expected = mohr::band_angle(t.friction_angle);
             let within = |a: f64| (a - expected).abs() <= ANGLE_TOLERANCE;
             let found = bands::bands(&o.shear, width);
-            report.check(
-                c,
-                &format!("main shear band angle to σ1 (x), {name}"),
-                format!("{expected:.1}° (45° + φ/2, Eq. 24)"),
-                found.map_or("no shear failure".into(), |b| {
-                    format!("{:.0}° ({:.0}% of the shear area)", b.0.angle_to_x(), 100.0 * b.0.share)
-                }),
-                "±8°",
-                found.is_some_and(|b| within(b.0.angle_to_x())),
-                Kind::Gate,
-            );
-            report.check(
-                c,
-                &format!("conjugate shear band angle to σ1 (x), {name}"),
-                format!("{expected:.1}°, mirrored (Fig. 10-11)"),
-                found.map_or("no shear failure".into(), |b| {
-                    format!("{:.0}° ({:.0}% of the shear area)", b.1.angle_to_x(), 100.0 * b.1.share)
-                }),
-                "±8°",
-                found.is_some_and(|b| within(b.1.angle_to_x())),
-                gate_paper,
-            );
+            let sets: [(&str, String, PickBand, Kind); 2] = [
+                ("main", format!("{expected:.1}° (45° + φ/2, Eq. 24)"), |b| b.0, Kind::Gate),
+                ("conjugate", format!("{expected:.1}°, mirrored (Fig. 10-11)"), |b| b.1, gate_paper),
+            ];
+            for (set, reference, pick, kind) in sets {
+                let band = found.as_ref().map(pick);
+                report.check(
+                    c,
+                    &format!("{set} shear band angle to σ1 (x), {name}"),
+                    reference,
+                    band.map_or("no shear failure".into(), |b| {
+                        format!("{:.0}° ({:.0}% of the shear area)", b.angle_to_x(), 100.0 * b.share)
+                    }),
+                    "±8°",
+                    band.is_some_and(|b| within(b.angle_to_x())),
+                    kind,
+                );
+            }
         } else {
             report.check(
                 c,

@@ -193,3 +193,30 @@ fn bad_trace_files_are_refused_with_file_and_line() {
         assert!(err.contains(&format!("{case}:16:1")), "{stem}: the case's traces_file key must be named: {err}");
     }
 }
+
+/// Paper §3.3: the multi-layer block is 1.5 × 1.5 × 0.5 m, its six faces
+/// each a group for its own pressure, and its fracture map (a seeded
+/// stand-in, `cargo xtask map --seed 1`) has persistent layer interfaces
+/// from x = 0 to x = 1.5 m besides the cross fractures.
+#[test]
+fn multilayer_case_is_the_paper_block_with_a_layered_map() {
+    let r = check_json("cases/paper/multilayer.toml");
+    assert!((r["volume"].as_f64().unwrap() - 1.5 * 1.5 * 0.5).abs() < 1e-9);
+    assert!(r["min_volume"].as_f64().unwrap() > 0.0);
+    assert_eq!(r["joints"], r["interior_faces"]);
+    assert!(r["initial_contact_faces"].as_u64().unwrap() > 0);
+    let groups: Vec<&str> = r["boundary_groups"].as_array().unwrap().iter().map(|g| g["name"].as_str().unwrap()).collect();
+    for side in ["xmin", "xmax", "ymin", "ymax", "bottom", "top"] {
+        assert!(groups.contains(&format!("block.{side}").as_str()), "no group block.{side} in {groups:?}");
+    }
+    let map = std::fs::read_to_string(root().join("cases/paper/multilayer-map.txt")).unwrap();
+    let lines: Vec<Vec<f64>> = map
+        .lines()
+        .map(|l| l.split('#').next().unwrap())
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let interfaces = lines.iter().filter(|c| c[0] == 0.0 && c[2] == 1.5 && c[1] == c[3]).count();
+    assert!(interfaces >= 3, "{interfaces} layer interfaces");
+    assert!(lines.len() > interfaces + 10, "{} cross fractures", lines.len() - interfaces);
+}

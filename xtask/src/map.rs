@@ -180,7 +180,9 @@ pub fn run(args: &[String]) -> Result<()> {
             "--out" => out = Some(value()?.clone()),
             "--width" => width = value()?.parse().context("--width")?,
             "--height" => height = value()?.parse().context("--height")?,
-            other => bail!("unknown argument `{other}`; usage: cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]"),
+            other => bail!(
+                "unknown argument `{other}`; usage: cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]"
+            ),
         }
     }
     if !(width > 2.0 * MIN_GAP && height >= 2.0 * THICKNESS.0) {

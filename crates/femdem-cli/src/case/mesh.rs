@@ -86,7 +86,9 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                 };
                 let spec = ExtrusionSpec {
                     outline,
-                    traces: file.as_ref().map_or_else(|| traces.clone(), |(_, t)| t.iter().map(|p| p.points.clone()).collect()),
+                    traces: file
+                        .as_ref()
+                        .map_or_else(|| traces.clone(), |(_, t)| t.iter().map(|p| p.points.clone()).collect()),
                     z0: *z0,
                     thickness: *thickness,
                     element_size: *element_size,
@@ -98,10 +100,9 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                     (femdem_mesh::MeshError::Trace { trace, point, reason }, Some((path, t))) => {
                         trace_file_error(case, &span, &key, path, t[*trace].at[*point], reason)
                     }
-                    (femdem_mesh::MeshError::Trace { trace, point, reason }, None) => case.error_at(
-                        span.clone(),
-                        format!("{key}.traces[{trace}], point {point}: {reason}"),
-                    ),
+                    (femdem_mesh::MeshError::Trace { trace, point, reason }, None) => {
+                        case.error_at(span.clone(), format!("{key}.traces[{trace}], point {point}: {reason}"))
+                    }
                     _ => fail(e),
                 })?;
                 (name.clone().unwrap_or_else(|| r.clone()), body)
@@ -180,8 +181,8 @@ fn read_trace_file(
     let path = case.dir().join(file);
     let text = std::fs::read_to_string(&path)
         .map_err(|e| case.error_at(span.clone(), format!("{key}.traces_file: cannot read {}: {e}", path.display())))?;
-    let traces = parse_traces(&text)
-        .map_err(|e| trace_file_error(case, span, key, &path, (e.line, e.column), &e.message))?;
+    let traces =
+        parse_traces(&text).map_err(|e| trace_file_error(case, span, key, &path, (e.line, e.column), &e.message))?;
     Ok((path, traces))
 }
 

@@ -108,7 +108,12 @@ fn polyline(numbers: Vec<(f64, (usize, usize))>, start: (usize, usize)) -> Resul
             return Err(error(
                 at[k].0,
                 at[k].1,
-                format!("zero-length segment: point {} ({}, {}) repeats the point before it", k + 1, points[k][0], points[k][1]),
+                format!(
+                    "zero-length segment: point {} ({}, {}) repeats the point before it",
+                    k + 1,
+                    points[k][0],
+                    points[k][1]
+                ),
             ));
         }
     }

@@ -160,10 +160,7 @@ fn trace_file_with_junctions_gives_contact_faces_and_side_groups() {
     assert!(r["initial_contact_faces"].as_u64().unwrap() > 100, "{}", r["initial_contact_faces"]);
     let groups = r["boundary_groups"].as_array().unwrap();
     let faces = |name: &str| {
-        groups
-            .iter()
-            .find(|g| g["name"] == name)
-            .unwrap_or_else(|| panic!("no group {name}"))["faces"]
+        groups.iter().find(|g| g["name"] == name).unwrap_or_else(|| panic!("no group {name}"))["faces"]
             .as_u64()
             .unwrap()
     };
@@ -205,7 +202,8 @@ fn multilayer_case_is_the_paper_block_with_a_layered_map() {
     assert!(r["min_volume"].as_f64().unwrap() > 0.0);
     assert_eq!(r["joints"], r["interior_faces"]);
     assert!(r["initial_contact_faces"].as_u64().unwrap() > 0);
-    let groups: Vec<&str> = r["boundary_groups"].as_array().unwrap().iter().map(|g| g["name"].as_str().unwrap()).collect();
+    let groups: Vec<&str> =
+        r["boundary_groups"].as_array().unwrap().iter().map(|g| g["name"].as_str().unwrap()).collect();
     for side in ["xmin", "xmax", "ymin", "ymax", "bottom", "top"] {
         assert!(groups.contains(&format!("block.{side}").as_str()), "no group block.{side} in {groups:?}");
     }

@@ -301,9 +301,7 @@ fn axis_aligned_rectangle(outline: &Outline) -> Option<[f64; 4]> {
             hi[k] = hi[k].max(q[k]);
         }
     }
-    let on_side = |a: [f64; 2], b: [f64; 2]| {
-        (0..2).any(|k| a[k] == b[k] && (a[k] == lo[k] || a[k] == hi[k]))
-    };
+    let on_side = |a: [f64; 2], b: [f64; 2]| (0..2).any(|k| a[k] == b[k] && (a[k] == lo[k] || a[k] == hi[k]));
     (0..p.len()).all(|i| on_side(p[i], p[(i + 1) % p.len()])).then_some([lo[0], hi[0], lo[1], hi[1]])
 }
 
@@ -311,8 +309,11 @@ fn axis_aligned_rectangle(outline: &Outline) -> Option<[f64; 4]> {
 /// `rect` (`[xmin, xmax, ymin, ymax]`) adds a group per side of a
 /// rectangular outline.
 fn classify_faces(mesh: &mut TetMesh, planar: &Planar, np: u32, layers: u32, rect: Option<[f64; 4]>) {
-    let names: &[&str] =
-        if rect.is_some() { &["bottom", "top", "side", "xmin", "xmax", "ymin", "ymax"] } else { &["bottom", "top", "side"] };
+    let names: &[&str] = if rect.is_some() {
+        &["bottom", "top", "side", "xmin", "xmax", "ymin", "ymax"]
+    } else {
+        &["bottom", "top", "side"]
+    };
     let mut groups: Vec<BoundaryGroup> =
         names.iter().map(|n| BoundaryGroup { name: (*n).to_string(), faces: Vec::new() }).collect();
     let mut seen_trace_faces = HashSet::new();

@@ -60,7 +60,10 @@ struct Segment {
 enum Hit {
     None,
     /// Parameters `s` on the first segment and `u` on the second.
-    Point { s: f64, u: f64 },
+    Point {
+        s: f64,
+        u: f64,
+    },
     /// Collinear, sharing more than a point.
     Overlap,
 }
@@ -171,7 +174,12 @@ pub fn trace_network(outline: &[[f64; 2]], traces: &[Vec<[f64; 2]>]) -> Result<T
     let eps = TRACE_TOLERANCE * norm(sub(hi, lo));
 
     let mut segments: Vec<Segment> = (0..outline.len())
-        .map(|i| Segment { a: outline[i], b: outline[(i + 1) % outline.len()], owner: Owner::Outline, cuts: Vec::new() })
+        .map(|i| Segment {
+            a: outline[i],
+            b: outline[(i + 1) % outline.len()],
+            owner: Owner::Outline,
+            cuts: Vec::new(),
+        })
         .collect();
     for (t, trace) in traces.iter().enumerate() {
         if trace.len() < 2 {
@@ -343,8 +351,7 @@ mod tests {
         assert!(e(&[vec![[0.5, 0.5]]]).starts_with("trace 0, point 0: a trace needs at least 2 points"));
         assert!(e(&[vec![[0.1, 0.1], [0.2, 0.2], [0.2, 0.2]]]).starts_with("trace 0, point 2: zero-length"));
         assert!(
-            e(&[vec![[0.1, 0.1], [0.6, 0.1]], vec![[0.4, 0.1], [0.9, 0.1]]])
-                .contains("overlaps segment 0 of trace 0")
+            e(&[vec![[0.1, 0.1], [0.6, 0.1]], vec![[0.4, 0.1], [0.9, 0.1]]]).contains("overlaps segment 0 of trace 0")
         );
         let l_shape = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.5, 1.0], [0.5, 0.5], [0.0, 0.5]];
         let e = trace_network(&l_shape, &[vec![[0.1, 0.1], [0.9, 0.2]], vec![[0.25, 0.4], [0.75, 0.9]]])

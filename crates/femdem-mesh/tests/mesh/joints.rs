@@ -169,11 +169,7 @@ fn fracture_face_inside_an_unbreakable_region_is_refused() {
 /// its length times the thickness (to round-off: the faces tile it).
 #[test]
 fn crossing_traces_become_initial_contacts_on_every_trace() {
-    let traces = vec![
-        vec![[-1.0, 0.0], [1.0, 0.0]],
-        vec![[-0.7, -0.5], [0.5, 0.7]],
-        vec![[0.5, -0.6], [0.5, 0.0]],
-    ];
+    let traces = vec![vec![[-1.0, 0.0], [1.0, 0.0]], vec![[-0.7, -0.5], [0.5, 0.7]], vec![[0.5, -0.6], [0.5, 0.0]]];
     let t = 0.3;
     let spec = ExtrusionSpec {
         outline: Outline::Polygon(vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]),

@@ -7,11 +7,14 @@
 //!   benchmarks; with `--memory` only the peak-memory run of joint insertion
 //!   on 10⁶ tets; with `--callgrind` the instructions per tet-step of each
 //!   kernel of the step (needs valgrind; `docs/performance.md`).
+//! - `map [--seed N] [--out FILE] [--width W] [--height H]`: a seeded
+//!   layered fracture map in the trace-file format (`map.rs`).
 //! - `fixtures`: regenerates the Gmsh test fixture and the paper cases' meshes
 //!   (needs `pip install gmsh`).
 
 mod bench;
 mod fixtures;
+mod map;
 mod validate;
 
 use anyhow::{Result, bail};
@@ -23,9 +26,10 @@ fn main() -> Result<()> {
     match task.as_deref() {
         Some("bench") => bench::run(&rest),
         Some("fixtures") => fixtures::run(),
+        Some("map") => map::run(&rest),
         Some("validate") => validate::run(&rest),
-        Some(other) => bail!("unknown task `{other}`; tasks: validate, bench, fixtures"),
-        None => bail!("usage: cargo xtask <validate|bench|fixtures>"),
+        Some(other) => bail!("unknown task `{other}`; tasks: validate, bench, fixtures, map"),
+        None => bail!("usage: cargo xtask <validate|bench|fixtures|map>"),
     }
 }
 

@@ -70,6 +70,17 @@ pub enum MeshError {
         /// Why.
         reason: &'static str,
     },
+    /// A fracture trace of an extrusion that cannot be meshed: it leaves the
+    /// outline, repeats a point, overlaps another trace, ...
+    #[error("trace {trace}, point {point}: {reason}")]
+    Trace {
+        /// Index of the trace (0-based, in the order given).
+        trace: usize,
+        /// Index of the point of that trace where the problem is (0-based).
+        point: usize,
+        /// What is wrong there.
+        reason: String,
+    },
     /// Arrays of the mesh that disagree with each other.
     #[error("inconsistent mesh: {0}")]
     Inconsistent(String),

@@ -387,6 +387,9 @@ pub enum PartSpec {
         /// Pre-existing fracture traces: polylines inside the outline.
         #[serde(default)]
         traces: Vec<Vec<[f64; 2]>>,
+        /// Pre-existing fracture traces from a trace file (relative to the
+        /// case file; exclusive with `traces`).
+        traces_file: Option<String>,
         /// Bottom z, m (default 0).
         #[serde(default)]
         z0: f64,

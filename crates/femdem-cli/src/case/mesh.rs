@@ -6,6 +6,7 @@ use femdem_mesh::generate::{
 use femdem_mesh::{Region, TetMesh};
 
 use super::format::PartSpec;
+use super::traces::{TracePolyline, parse_traces};
 use super::{CaseError, LoadedCase};
 
 /// Default `jitter` of box parts (fraction of the element size).
@@ -57,7 +58,18 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                 };
                 (name.clone().unwrap_or_else(|| r.clone()), generate_box(&spec).map_err(fail)?)
             }
-            PartSpec::Extrusion { name, region: r, circle, polygon, traces, z0, thickness, element_size, layers } => {
+            PartSpec::Extrusion {
+                name,
+                region: r,
+                circle,
+                polygon,
+                traces,
+                traces_file,
+                z0,
+                thickness,
+                element_size,
+                layers,
+            } => {
                 let outline = match (circle, polygon) {
                     (Some(c), None) => Outline::Circle { center: c.center, radius: c.radius },
                     (None, Some(p)) => Outline::Polygon(p.clone()),
@@ -65,16 +77,35 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                         return Err(case.error_at(span, format!("{key}: give exactly one of `circle` and `polygon`")));
                     }
                 };
+                let file = match traces_file {
+                    Some(_) if !traces.is_empty() => {
+                        return Err(case.error_at(span, format!("{key}: give `traces` or `traces_file`, not both")));
+                    }
+                    Some(f) => Some(read_trace_file(case, &span, &key, f)?),
+                    None => None,
+                };
                 let spec = ExtrusionSpec {
                     outline,
-                    traces: traces.clone(),
+                    traces: file
+                        .as_ref()
+                        .map_or_else(|| traces.clone(), |(_, t)| t.iter().map(|p| p.points.clone()).collect()),
                     z0: *z0,
                     thickness: *thickness,
                     element_size: *element_size,
                     layers: *layers,
                     region: region(r)?,
                 };
-                (name.clone().unwrap_or_else(|| r.clone()), generate_extrusion(&spec).map_err(fail)?)
+                let body = generate_extrusion(&spec).map_err(|e| match (&e, &file) {
+                    // A trace of the file: point at the line where it is written.
+                    (femdem_mesh::MeshError::Trace { trace, point, reason }, Some((path, t))) => {
+                        trace_file_error(case, &span, &key, path, t[*trace].at[*point], reason)
+                    }
+                    (femdem_mesh::MeshError::Trace { trace, point, reason }, None) => {
+                        case.error_at(span.clone(), format!("{key}.traces[{trace}], point {point}: {reason}"))
+                    }
+                    _ => fail(e),
+                })?;
+                (name.clone().unwrap_or_else(|| r.clone()), body)
             }
             PartSpec::Platen { name, region: r, side, thickness, extent, element_size } => {
                 let Some((lo, hi)) = mesh.bounding_box() else {
@@ -137,6 +168,54 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
         message: format!("mesh check failed: {e}"),
     })?;
     Ok(mesh)
+}
+
+/// Reads and parses the trace file `file` (relative to the case) of part
+/// `key`, whose table is at `span`.
+fn read_trace_file(
+    case: &LoadedCase,
+    span: &std::ops::Range<usize>,
+    key: &str,
+    file: &str,
+) -> Result<(std::path::PathBuf, Vec<TracePolyline>), CaseError> {
+    let path = case.dir().join(file);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| case.error_at(span.clone(), format!("{key}.traces_file: cannot read {}: {e}", path.display())))?;
+    let traces =
+        parse_traces(&text).map_err(|e| trace_file_error(case, span, key, &path, (e.line, e.column), &e.message))?;
+    Ok((path, traces))
+}
+
+/// An error at line and column `at` of trace file `path`, naming the case
+/// key that reads it and where.
+fn trace_file_error(
+    case: &LoadedCase,
+    span: &std::ops::Range<usize>,
+    key: &str,
+    path: &std::path::Path,
+    at: (usize, usize),
+    message: &str,
+) -> CaseError {
+    // Point at the `traces_file` key of the part where it can be found.
+    // (The part's span may be its header only: look on to the next table.)
+    let mut offset = span.start;
+    let mut pos = span.start;
+    for (i, l) in case.source.get(span.start..).unwrap_or("").split_inclusive('\n').enumerate() {
+        if i > 0 && l.trim_start().starts_with('[') {
+            break;
+        }
+        if l.trim_start().starts_with("traces_file") {
+            offset = pos + l.len() - l.trim_start().len();
+            break;
+        }
+        pos += l.len();
+    }
+    let (line, column) = super::line_col(&case.source, offset);
+    CaseError {
+        path: path.to_path_buf(),
+        at: Some(at),
+        message: format!("{message} (the trace file of {key}.traces_file, {}:{line}:{column})", case.path.display()),
+    }
 }
 
 fn parse_side(s: &str) -> Option<Side> {

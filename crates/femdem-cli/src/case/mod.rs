@@ -4,6 +4,7 @@
 pub mod format;
 pub mod mesh;
 pub mod setup;
+pub mod traces;
 
 use std::fmt;
 use std::ops::Range;

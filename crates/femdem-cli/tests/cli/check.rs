@@ -143,3 +143,78 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         assert!(err.contains(words), "{file}: expected `{words}` in: {err}");
     }
 }
+
+/// A fracture map from a trace file (issue 11): a layer boundary from
+/// outline to outline, a trace crossing it (X) and one ending on it (T).
+/// The mesh checks, the traces give initial contact faces, and the four
+/// side groups of the rectangular block add up to `side`.
+#[test]
+fn trace_file_with_junctions_gives_contact_faces_and_side_groups() {
+    let r = check_json("crates/femdem-cli/tests/cases/trace_map.toml");
+    assert!(r["min_volume"].as_f64().unwrap() > 0.0);
+    assert!((r["volume"].as_f64().unwrap() - 1.0 * 0.6 * 0.2).abs() < 1e-12);
+    assert_eq!(r["joints"], r["interior_faces"]);
+    // Each trace face is a vertical triangle of a prism split: the map's
+    // traces are 1 + 0.42 + 0.2 + 0.21 m long, 0.2 m high, cut into edges of
+    // about 0.05 m and 4 layers: well over 100 faces.
+    assert!(r["initial_contact_faces"].as_u64().unwrap() > 100, "{}", r["initial_contact_faces"]);
+    let groups = r["boundary_groups"].as_array().unwrap();
+    let faces = |name: &str| {
+        groups.iter().find(|g| g["name"] == name).unwrap_or_else(|| panic!("no group {name}"))["faces"]
+            .as_u64()
+            .unwrap()
+    };
+    let sides: u64 = ["xmin", "xmax", "ymin", "ymax"].iter().map(|s| faces(&format!("block.{s}"))).sum();
+    assert_eq!(sides, faces("block.side"));
+}
+
+/// Each bad trace file (named by a case of the same stem) with the
+/// location in the trace file and the words its error must carry.
+#[test]
+fn bad_trace_files_are_refused_with_file_and_line() {
+    let dir = "crates/femdem-cli/tests/cases/bad";
+    let expected = [
+        ("traces_not_a_number", ":3:14:", "`O.45` is not a finite number"),
+        ("traces_odd_count", ":3:1:", "5 coordinates"),
+        ("traces_one_point", ":2:1:", "at least 2 points, got 1"),
+        ("traces_outside", ":4:12:", "(0.5, 0.75) m is outside the outline"),
+        ("traces_zero_length", ":2:19:", "zero-length segment"),
+    ];
+    for (stem, at, words) in expected {
+        let case = format!("{dir}/{stem}.toml");
+        let out = femdem(&["check", &case]);
+        assert!(!out.status.success(), "{stem} was accepted");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(err.contains(&format!("{dir}/{stem}.txt{at}")), "{stem}: expected location {at} in: {err}");
+        assert!(err.contains(words), "{stem}: expected `{words}` in: {err}");
+        assert!(err.contains(&format!("{case}:16:1")), "{stem}: the case's traces_file key must be named: {err}");
+    }
+}
+
+/// Paper §3.3: the multi-layer block is 1.5 × 1.5 × 0.5 m, its six faces
+/// each a group for its own pressure, and its fracture map (a seeded
+/// stand-in, `cargo xtask map --seed 1`) has persistent layer interfaces
+/// from x = 0 to x = 1.5 m besides the cross fractures.
+#[test]
+fn multilayer_case_is_the_paper_block_with_a_layered_map() {
+    let r = check_json("cases/paper/multilayer.toml");
+    assert!((r["volume"].as_f64().unwrap() - 1.5 * 1.5 * 0.5).abs() < 1e-9);
+    assert!(r["min_volume"].as_f64().unwrap() > 0.0);
+    assert_eq!(r["joints"], r["interior_faces"]);
+    assert!(r["initial_contact_faces"].as_u64().unwrap() > 0);
+    let groups: Vec<&str> =
+        r["boundary_groups"].as_array().unwrap().iter().map(|g| g["name"].as_str().unwrap()).collect();
+    for side in ["xmin", "xmax", "ymin", "ymax", "bottom", "top"] {
+        assert!(groups.contains(&format!("block.{side}").as_str()), "no group block.{side} in {groups:?}");
+    }
+    let map = std::fs::read_to_string(root().join("cases/paper/multilayer-map.txt")).unwrap();
+    let lines: Vec<Vec<f64>> = map
+        .lines()
+        .map(|l| l.split('#').next().unwrap())
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let interfaces = lines.iter().filter(|c| c[0] == 0.0 && c[2] == 1.5 && c[1] == c[3]).count();
+    assert!(interfaces >= 3, "{interfaces} layer interfaces");
+    assert!(lines.len() > interfaces + 10, "{} cross fractures", lines.len() - interfaces);
+}

@@ -11,10 +11,12 @@
 //! [`super::prism`]. Internal polylines are pre-existing fracture traces:
 //! the vertical faces on them become [`TetMesh::fracture_faces`].
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
+use spade::handles::FixedVertexHandle;
 use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
 
+use super::traces::{inside, nearest_on_segment, trace_network};
 use super::{MAX_CELLS, positive, prism::split_prism};
 use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
 
@@ -46,7 +48,9 @@ pub struct ExtrusionSpec {
     /// The 2D outline in the xy-plane.
     pub outline: Outline,
     /// Internal polylines (pre-existing fracture traces), each at least two
-    /// points, inside the outline, not crossing each other.
+    /// points, inside the outline or on it. They may cross and end on each
+    /// other or on the outline: [`super::trace_network`] splits them at
+    /// their junctions.
     pub traces: Vec<Vec<[f64; 2]>>,
     /// Bottom of the extrusion (z).
     pub z0: f64,
@@ -109,10 +113,19 @@ struct Planar {
 }
 
 fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
-    let outline = outline_points(&spec.outline, h)?;
+    let network = trace_network(&outline_points(&spec.outline, h)?, &spec.traces)?;
+    let outline = network.outline;
     let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
-    let ins = |cdt: &mut ConstrainedDelaunayTriangulation<Point2<f64>>, p| {
-        cdt.insert(point(p)?).map_err(|e| MeshError::Triangulation(format!("{e:?}")))
+    // Junctions are shared by several pieces with bit-identical coordinates:
+    // insert each point once.
+    let mut inserted: HashMap<[u64; 2], FixedVertexHandle> = HashMap::new();
+    let mut ins = |cdt: &mut ConstrainedDelaunayTriangulation<Point2<f64>>, p: [f64; 2]| {
+        if let Some(&v) = inserted.get(&p.map(f64::to_bits)) {
+            return Ok(v);
+        }
+        let v = cdt.insert(point(p)?).map_err(|e| MeshError::Triangulation(format!("{e:?}")))?;
+        inserted.insert(p.map(f64::to_bits), v);
+        Ok::<_, MeshError>(v)
     };
     let handles = outline.iter().map(|&p| ins(&mut cdt, p)).collect::<Result<Vec<_>, _>>()?;
     for i in 0..handles.len() {
@@ -126,24 +139,21 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
         }
         cdt.add_constraint(a, b);
     }
-    // Trace segments in point form, to recognise their sub-edges after refinement.
+    // Trace segments in point form, to recognise their sub-edges after
+    // refinement. The network's pieces meet only at their vertices.
     let mut segments = Vec::new();
-    for (t, trace) in spec.traces.iter().enumerate() {
-        if trace.len() < 2 {
-            return Err(MeshError::InvalidParameter {
-                name: "traces",
-                reason: format!("trace {t} needs at least 2 points, got {}", trace.len()),
-            });
-        }
-        let hs = trace.iter().map(|&p| ins(&mut cdt, p)).collect::<Result<Vec<_>, _>>()?;
+    for piece in &network.pieces {
+        let hs = piece.iter().map(|&p| ins(&mut cdt, p)).collect::<Result<Vec<_>, _>>()?;
         for w in 0..hs.len() - 1 {
             if hs[w] == hs[w + 1] || !cdt.can_add_constraint(hs[w], hs[w + 1]) {
                 return Err(MeshError::Triangulation(format!(
-                    "segment {w} of trace {t} repeats a point or crosses another constraint"
+                    "trace segment {:?} → {:?} repeats a point or crosses another constraint",
+                    piece[w],
+                    piece[w + 1]
                 )));
             }
             cdt.add_constraint(hs[w], hs[w + 1]);
-            segments.push((trace[w], trace[w + 1]));
+            segments.push((piece[w], piece[w + 1]));
         }
     }
 
@@ -194,7 +204,7 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
             (points[a as usize][0] + points[b as usize][0]) / 2.0,
             (points[a as usize][1] + points[b as usize][1]) / 2.0,
         ];
-        let on_trace = segments.iter().any(|&(p, q)| distance_to_segment(mid, p, q) <= 1e-9 * h);
+        let on_trace = segments.iter().any(|&(p, q)| nearest_on_segment(mid, p, q).1 <= 1e-9 * h);
         if on_trace {
             trace_edges.insert(key);
         } else {
@@ -204,30 +214,11 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
     Ok(Planar { points, triangles, outline_edges, trace_edges })
 }
 
-/// Even–odd point-in-polygon test.
-fn inside(x: [f64; 2], polygon: &[[f64; 2]]) -> bool {
-    let mut inside = false;
-    let mut j = polygon.len() - 1;
-    for i in 0..polygon.len() {
-        let (a, b) = (polygon[i], polygon[j]);
-        if (a[1] > x[1]) != (b[1] > x[1]) && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0] {
-            inside = !inside;
-        }
-        j = i;
-    }
-    inside
-}
-
-fn distance_to_segment(x: [f64; 2], p: [f64; 2], q: [f64; 2]) -> f64 {
-    let d = [q[0] - p[0], q[1] - p[1]];
-    let len2 = d[0] * d[0] + d[1] * d[1];
-    let s = if len2 > 0.0 { (((x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
-    let c = [p[0] + s * d[0] - x[0], p[1] + s * d[1] - x[1]];
-    (c[0] * c[0] + c[1] * c[1]).sqrt()
-}
-
 /// Meshes the extrusion. Boundary groups: `bottom` (z = z0), `top`
-/// (z = z0 + thickness) and `side` (the extruded outline).
+/// (z = z0 + thickness) and `side` (the extruded outline); when the outline
+/// is a polygon whose every edge lies on a side of its bounding box (an
+/// axis-aligned rectangle, possibly with extra vertices on its sides), also
+/// `xmin`, `xmax`, `ymin` and `ymax`, which split `side` face for face.
 ///
 /// # Errors
 /// [`MeshError::InvalidParameter`] or [`MeshError::Triangulation`] for a bad
@@ -295,14 +286,36 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
         regions: vec![spec.region.clone()],
         ..Default::default()
     };
-    classify_faces(&mut mesh, &planar, np, layers as u32);
+    classify_faces(&mut mesh, &planar, np, layers as u32, axis_aligned_rectangle(&spec.outline));
     Ok(mesh)
 }
 
-/// Fills the boundary groups and the fracture faces from the planar edges.
-fn classify_faces(mesh: &mut TetMesh, planar: &Planar, np: u32, layers: u32) {
+/// `[xmin, xmax, ymin, ymax]` of a polygon outline whose every edge lies on
+/// a side of its bounding box; `None` otherwise.
+fn axis_aligned_rectangle(outline: &Outline) -> Option<[f64; 4]> {
+    let Outline::Polygon(p) = outline else { return None };
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for q in p {
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    let on_side = |a: [f64; 2], b: [f64; 2]| (0..2).any(|k| a[k] == b[k] && (a[k] == lo[k] || a[k] == hi[k]));
+    (0..p.len()).all(|i| on_side(p[i], p[(i + 1) % p.len()])).then_some([lo[0], hi[0], lo[1], hi[1]])
+}
+
+/// Fills the boundary groups and the fracture faces from the planar edges;
+/// `rect` (`[xmin, xmax, ymin, ymax]`) adds a group per side of a
+/// rectangular outline.
+fn classify_faces(mesh: &mut TetMesh, planar: &Planar, np: u32, layers: u32, rect: Option<[f64; 4]>) {
+    let names: &[&str] = if rect.is_some() {
+        &["bottom", "top", "side", "xmin", "xmax", "ymin", "ymax"]
+    } else {
+        &["bottom", "top", "side"]
+    };
     let mut groups: Vec<BoundaryGroup> =
-        ["bottom", "top", "side"].iter().map(|n| BoundaryGroup { name: (*n).to_string(), faces: Vec::new() }).collect();
+        names.iter().map(|n| BoundaryGroup { name: (*n).to_string(), faces: Vec::new() }).collect();
     let mut seen_trace_faces = HashSet::new();
     for t in 0..mesh.tets.len() {
         for local in 0..4u8 {
@@ -332,6 +345,18 @@ fn classify_faces(mesh: &mut TetMesh, planar: &Planar, np: u32, layers: u32) {
             }
             if planar.outline_edges.contains(&pair) {
                 groups[2].faces.push(f);
+                if let Some(r) = rect {
+                    let [a, b] = [pair.0, pair.1].map(|v| planar.points[v as usize]);
+                    // Sides in the order of `names` after `side`: x = xmin, xmax, y = ymin, ymax.
+                    let tol = 1e-9 * ((r[1] - r[0]).powi(2) + (r[3] - r[2]).powi(2)).sqrt();
+                    let group = (0..4).find(|&g| {
+                        let (k, v) = (g / 2, r[g]);
+                        (a[k] - v).abs() <= tol && (b[k] - v).abs() <= tol
+                    });
+                    if let Some(g) = group {
+                        groups[3 + g].faces.push(f);
+                    }
+                }
             } else if planar.trace_edges.contains(&pair) {
                 let mut key = nodes;
                 key.sort_unstable();

@@ -6,10 +6,12 @@ mod block;
 mod extrude;
 mod platen;
 mod prism;
+mod traces;
 
 pub use block::{BoxSpec, generate_box};
 pub use extrude::{AREA_FACTOR, ExtrusionSpec, Outline, circle_segments, generate_extrusion};
 pub use platen::{PlatenSpec, Side, generate_platen};
+pub use traces::{TRACE_TOLERANCE, TraceNetwork, trace_network};
 
 use crate::MeshError;
 

@@ -207,3 +207,43 @@ fn a_tiny_extrusion_element_size_is_refused_before_meshing() {
         other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
     }
 }
+
+/// A rectangular outline gets a group per side (issue 11: a pressure per
+/// face of the multi-layer block): together they are `side`, face for face,
+/// each lies in its plane, and its area is that side's length times the
+/// thickness. A trace ending on the outline (which puts a vertex on a side)
+/// keeps the outline a rectangle. A non-rectangular outline has `side` only.
+#[test]
+fn a_rectangular_outline_has_a_group_per_side() {
+    let (w, hgt, t) = (1.5, 1.2, 0.5);
+    let spec = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[0.0, 0.0], [w, 0.0], [w, hgt], [0.0, hgt]]),
+        traces: vec![vec![[0.0, 0.4], [w, 0.5]]],
+        z0: 0.0,
+        thickness: t,
+        element_size: 0.15,
+        layers: None,
+        region: region(),
+    };
+    let mesh = generate_extrusion(&spec).unwrap();
+    let side = &mesh.boundary_group("side").unwrap().faces;
+    let mut union = Vec::new();
+    for (name, k, v, length) in [("xmin", 0, 0.0, hgt), ("xmax", 0, w, hgt), ("ymin", 1, 0.0, w), ("ymax", 1, hgt, w)] {
+        let faces = &mesh.boundary_group(name).unwrap().faces;
+        assert!(!faces.is_empty(), "{name}");
+        for f in faces {
+            assert!(f.nodes(&mesh.tets).iter().all(|&n| mesh.point(n)[k] == v), "{name}: a face off its plane");
+        }
+        assert!(rel(group_area(&mesh, name), length * t) < 1e-12, "{name} area");
+        union.extend(faces.iter().copied());
+    }
+    let key = |f: &femdem_mesh::FaceRef| (f.tet, f.local);
+    union.sort_by_key(key);
+    let mut all = side.clone();
+    all.sort_by_key(key);
+    assert_eq!(union, all, "xmin + xmax + ymin + ymax must be `side`, face for face");
+
+    let quad = ExtrusionSpec { outline: Outline::Polygon(vec![[0.0, 0.0], [w, 0.1], [w, hgt], [0.0, hgt]]), ..spec };
+    let mesh = generate_extrusion(&quad).unwrap();
+    assert!(mesh.boundary_group("xmin").is_none() && mesh.boundary_group("side").is_some());
+}

@@ -159,3 +159,47 @@ fn fracture_face_inside_an_unbreakable_region_is_refused() {
     let e = insert_joints(&mesh).unwrap_err().to_string();
     assert!(e.contains("unbreakable"), "{e}");
 }
+
+/// A fracture map with both kinds of junction (issue 11): a persistent
+/// trace across the whole square (a layer boundary, ending on the outline
+/// at both ends), a trace crossing it (X-junction) and a trace ending on
+/// it from below (T-junction, a non-persistent fracture ending inside the
+/// domain at its other end). The mesh is valid, and the initial contact
+/// faces cover each trace, whole: the area of the faces on each trace is
+/// its length times the thickness (to round-off: the faces tile it).
+#[test]
+fn crossing_traces_become_initial_contacts_on_every_trace() {
+    let traces = vec![vec![[-1.0, 0.0], [1.0, 0.0]], vec![[-0.7, -0.5], [0.5, 0.7]], vec![[0.5, -0.6], [0.5, 0.0]]];
+    let t = 0.3;
+    let spec = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]),
+        traces: traces.clone(),
+        z0: 0.0,
+        thickness: t,
+        element_size: 0.2,
+        layers: Some(2),
+        region: Region { name: "rock".into(), breakable: true },
+    };
+    let mesh = generate_extrusion(&spec).unwrap();
+    assert_eq!(check(&mesh), Ok(()));
+    let j = insert_joints(&mesh).unwrap();
+    assert_joint_invariants(&mesh, &j);
+    assert_eq!(j.initial_contacts.len(), mesh.fracture_faces.len());
+    for trace in &traces {
+        let (p, q) = (trace[0], trace[1]);
+        let length = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+        let on_trace = |x: [f64; 2]| {
+            let s = ((x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])) / (length * length);
+            let c = [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])];
+            (0.0..=1.0).contains(&s) && ((c[0] - x[0]).powi(2) + (c[1] - x[1]).powi(2)).sqrt() < 1e-12
+        };
+        let area: f64 = j
+            .initial_contacts
+            .iter()
+            .map(|(f, _)| f.nodes(&j.mesh.tets).map(|n| j.mesh.point(n)))
+            .filter(|[a, b, c]| [a, b, c].iter().all(|v| on_trace([v[0], v[1]])))
+            .map(|[a, b, c]| femdem_core::tet::triangle_area(&a, &b, &c))
+            .sum();
+        assert!((area / (length * t) - 1.0).abs() < 1e-12, "trace {trace:?}: contact area {area} vs {}", length * t);
+    }
+}

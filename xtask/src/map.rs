@@ -1,0 +1,208 @@
+//! `cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]`: a
+//! seeded layered fracture map in the trace-file format of
+//! docs/case-format.md, like the map of the reference paper's §3.3 (a
+//! limestone horizon of the Bristol Channel Basin): layers of varying
+//! thickness separated by persistent, layer-parallel fractures (the layer
+//! interfaces, from outline to outline), and in each layer cross fractures
+//! at a spacing proportional to the layer's thickness (the usual fracture
+//! spacing–bed thickness ratio of order 1: 0.5–1 here), most ending at both layer
+//! boundaries, some ending inside the layer, a few crossing several layers,
+//! each within a few degrees of normal to the layering.
+//!
+//! Every coordinate is rounded to 0.1 mm before it is used, so that the
+//! file holds exactly the geometry that was generated: a cross fracture
+//! ending on an interface has exactly the interface's y. Fracture ends on
+//! an interface are kept at least `MIN_GAP` apart, and away from the
+//! outline's sides, so that the map does not force tiny elements.
+
+use std::fmt::Write as _;
+
+use anyhow::{Context, Result, bail};
+
+/// Layer thicknesses are drawn in this range, m.
+const THICKNESS: (f64, f64) = (0.15, 0.40);
+/// Cross-fracture spacing over layer thickness, drawn in this range.
+const SPACING: (f64, f64) = (0.5, 1.0);
+/// Largest angle of a cross fracture from the normal to the layering, degrees.
+const SCATTER_DEG: f64 = 6.0;
+/// Smallest distance between fracture ends on an interface, and from the
+/// outline's sides, m.
+const MIN_GAP: f64 = 0.05;
+
+/// SplitMix64: a small, fixed generator, so the same seed gives the same
+/// map on every platform and version.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [lo, hi).
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Rounds to 0.1 mm.
+fn round(x: f64) -> f64 {
+    (x * 1e4).round() / 1e4
+}
+
+/// A layered map of `width × height` m from `seed`, as trace-file text.
+pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
+    let mut rng = Rng(seed);
+    // Interfaces: y of each layer boundary, 0 and height included.
+    let mut ys = vec![0.0];
+    loop {
+        let y = round(ys.last().unwrap() + rng.uniform(THICKNESS.0, THICKNESS.1));
+        if height - y < THICKNESS.0 {
+            break;
+        }
+        ys.push(y);
+    }
+    ys.push(height);
+    let layers = ys.len() - 1;
+    // Fracture ends on each interface (index into ys), to keep them apart.
+    let mut ends: Vec<Vec<f64>> = vec![Vec::new(); ys.len()];
+    let free = |ends: &[Vec<f64>], k: usize, x: f64| {
+        x > MIN_GAP && x < width - MIN_GAP && ends[k].iter().all(|e| (e - x).abs() >= MIN_GAP)
+    };
+    let mut cross: Vec<Vec<[f64; 2]>> = Vec::new();
+    let mut kinds = [0usize; 3];
+    for l in 0..layers {
+        let t = ys[l + 1] - ys[l];
+        let mut x = t * rng.uniform(0.1, 0.6) - t * SPACING.1;
+        loop {
+            x += t * rng.uniform(SPACING.0, SPACING.1);
+            if x < MIN_GAP {
+                continue;
+            }
+            if x > width - MIN_GAP {
+                break;
+            }
+            let slope = rng.uniform(-SCATTER_DEG, SCATTER_DEG).to_radians().tan();
+            let kind = rng.uniform(0.0, 1.0);
+            // Through-going: up to two more layers; non-persistent: from one
+            // interface to a tip inside the layer; otherwise interface to interface.
+            let (lo, hi, tip) = if kind < 0.12 && l + 1 < layers {
+                (l, (l + 1 + (rng.uniform(0.0, 1.0) < 0.5) as usize).min(layers - 1) + 1, None)
+            } else if kind < 0.32 {
+                (l, l + 1, Some(rng.uniform(0.4, 0.75)))
+            } else {
+                (l, l + 1, None)
+            };
+            let x0 = round(x);
+            let at = |y: f64| round(x0 + (y - ys[lo]) * slope);
+            let (a, b) = match tip {
+                None => ([at(ys[lo]), ys[lo]], [at(ys[hi]), ys[hi]]),
+                Some(f) => {
+                    let y = round(ys[lo] + f * t);
+                    // From the lower or from the upper interface.
+                    if rng.uniform(0.0, 1.0) < 0.5 {
+                        ([at(ys[lo]), ys[lo]], [at(y), y])
+                    } else {
+                        ([at(y), y], [at(ys[hi]), ys[hi]])
+                    }
+                }
+            };
+            // The interfaces this fracture ends on, and the ones it crosses.
+            let mut on: Vec<(usize, f64)> = Vec::new();
+            for (k, &y) in ys.iter().enumerate().take(hi + 1).skip(lo) {
+                if y >= a[1] && y <= b[1] {
+                    on.push((k, at(y)));
+                }
+            }
+            // A fracture crossing an interface must keep clear of the other
+            // fractures there, and so must its ends.
+            let clear = on.iter().all(|&(k, xk)| free(&ends, k, xk))
+                && cross.iter().all(|c| {
+                    // No other fracture in the same span of y within MIN_GAP.
+                    let (c0, c1) = (c[0], c[1]);
+                    c1[1] <= a[1] || c0[1] >= b[1] || {
+                        let y = a[1].max(c0[1]).midpoint(b[1].min(c1[1]));
+                        let xc = c0[0] + (y - c0[1]) / (c1[1] - c0[1]) * (c1[0] - c0[0]);
+                        (xc - (x0 + (y - ys[lo]) * slope)).abs() >= MIN_GAP
+                    }
+                });
+            if !clear {
+                continue;
+            }
+            for &(k, xk) in &on {
+                ends[k].push(xk);
+            }
+            kinds[if hi > lo + 1 {
+                2
+            } else if tip.is_some() {
+                1
+            } else {
+                0
+            }] += 1;
+            cross.push(vec![a, b]);
+        }
+    }
+
+    let mut out = String::new();
+    let _ = writeln!(out, "# A layered fracture map: `cargo xtask map --seed {seed}` ({width} m x {height} m).");
+    let _ = writeln!(out, "# Trace-file format: docs/case-format.md. Coordinates in metres.");
+    let _ = writeln!(
+        out,
+        "# {layers} layers; {} cross fractures: {} from interface to interface, {} ending inside \
+         their layer, {} through two or three layers.",
+        cross.len(),
+        kinds[0],
+        kinds[1],
+        kinds[2]
+    );
+    let _ = writeln!(out, "\n# Layer interfaces (persistent fractures, outline to outline).");
+    for y in &ys[1..layers] {
+        let _ = writeln!(out, "0 {y:.4} {width:.4} {y:.4}");
+    }
+    let _ = writeln!(out, "\n# Cross fractures.");
+    for c in &cross {
+        let _ = writeln!(out, "{:.4} {:.4} {:.4} {:.4}", c[0][0], c[0][1], c[1][0], c[1][1]);
+    }
+    out
+}
+
+/// Parses the arguments and writes the map.
+pub fn run(args: &[String]) -> Result<()> {
+    let (mut seed, mut out, mut width, mut height) = (1u64, None::<String>, 1.5, 1.5);
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = || it.next().with_context(|| format!("{a} needs a value"));
+        match a.as_str() {
+            "--seed" => seed = value()?.parse().context("--seed")?,
+            "--out" => out = Some(value()?.clone()),
+            "--width" => width = value()?.parse().context("--width")?,
+            "--height" => height = value()?.parse().context("--height")?,
+            other => bail!(
+                "unknown argument `{other}`; usage: cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]"
+            ),
+        }
+    }
+    if !(width > 2.0 * MIN_GAP && height >= 2.0 * THICKNESS.0) {
+        bail!("the map must be wider than {} m and at least {} m high", 2.0 * MIN_GAP, 2.0 * THICKNESS.0);
+    }
+    let text = layered_map(seed, width, height);
+    match out {
+        Some(path) => std::fs::write(&path, text).with_context(|| format!("writing {path}"))?,
+        None => print!("{text}"),
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::layered_map;
+
+    #[test]
+    fn the_same_seed_gives_the_same_map_and_another_seed_another() {
+        assert_eq!(layered_map(3, 1.5, 1.5), layered_map(3, 1.5, 1.5));
+        assert_ne!(layered_map(3, 1.5, 1.5), layered_map(4, 1.5, 1.5));
+    }
+}

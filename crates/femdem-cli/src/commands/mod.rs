@@ -2,6 +2,6 @@
 
 pub mod check;
 mod output;
-mod prepare;
+pub(crate) mod prepare;
 mod progress;
 pub mod run;

@@ -85,9 +85,16 @@ enum LineEdit {
     Duplicate(prop::sample::Index),
     Swap(prop::sample::Index, prop::sample::Index),
     /// Replace token `token` of line `line` by `NASTY[with]`.
-    Token { line: prop::sample::Index, token: prop::sample::Index, with: usize },
+    Token {
+        line: prop::sample::Index,
+        token: prop::sample::Index,
+        with: usize,
+    },
     /// Replace a whole line by a nasty token (a count, a tag, garbage).
-    Line { line: prop::sample::Index, with: usize },
+    Line {
+        line: prop::sample::Index,
+        with: usize,
+    },
 }
 
 fn line_edit() -> impl Strategy<Value = LineEdit> {

@@ -9,8 +9,11 @@
 //! another type, NaN, ±∞, a negative, zero, a huge or a tiny number, or
 //! removes a key; one to three mutations per case. Each case is written to
 //! a file and loaded as `femdem check` loads it ([`prepare`]). The meshes
-//! are a few dozen to a few hundred tets, so a case costs about a
-//! millisecond to a few; 256 cases per base.
+//! are a few dozen to a few hundred tets, so a case costs a few
+//! milliseconds; 400 cases per base (about 5 s for both in release). A
+//! one-off run of 1500 cases per base found the two bugs kept below as
+//! regression tests (`femdem-mesh` `a_trace_point_outside_the_outline_is_refused`
+//! and [`a_joint_insertion_error_names_the_file`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -18,7 +21,7 @@ use std::sync::OnceLock;
 use proptest::prelude::*;
 use toml::{Table, Value};
 
-use crate::commands::prepare::prepare;
+use crate::commands::prepare::{MAX_THREADS, prepare};
 
 /// Where a value sits: keys and array indices from the root.
 #[derive(Clone, Debug)]
@@ -199,8 +202,38 @@ fn the_bases_load() {
     }
 }
 
+/// Regression (found by this fuzzing): an extruded circle of element size
+/// 9.2e18 m is one layer of a few prisms, and its trace lands on the
+/// outline: joint insertion refused the fracture face as not interior, and
+/// the error did not name the case file.
+#[test]
+fn a_joint_insertion_error_names_the_file() {
+    let text = EXTRUSION.replacen("element_size = 0.005", "element_size = 9223372036854775807", 1);
+    let path = work_dir().join("joint_insertion.toml");
+    std::fs::write(&path, &text).unwrap();
+    let message = format!("{:#}", prepare(&path, None).err().expect("the case is refused"));
+    assert!(message.starts_with(&path.display().to_string()), "{message}");
+    assert!(message.contains("inserting the joints failed"), "{message}");
+}
+
+/// Regression (found fuzzing: `threads = 100000000000000`): rayon starts
+/// every thread asked for, and the run hung before any output. Above
+/// [`MAX_THREADS`] the count is refused, on the command line and in the
+/// case (with its file and line).
+#[test]
+fn a_huge_thread_count_is_refused() {
+    let huge = 100_000_000_000_000usize;
+    let path = work_dir().join("threads.toml");
+    std::fs::write(&path, EXTRUSION.replacen("threads = 1", &format!("threads = {huge}"), 1)).unwrap();
+    let message = format!("{:#}", prepare(&path, None).err().expect("refused"));
+    assert!(message.starts_with(&format!("{}:", path.display())), "{message}");
+    assert!(message.contains(&format!("threads = {huge} is more than the {MAX_THREADS}")), "{message}");
+    let message = format!("{:#}", prepare(&path, Some(huge)).err().expect("refused"));
+    assert!(message.contains(&format!("--threads {huge} is more than the {MAX_THREADS}")), "{message}");
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 1500, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
 
     #[test]
     fn mutated_box_cases_load_or_name_the_file(

@@ -75,7 +75,8 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
     let fracture: std::collections::HashSet<u128> =
         mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
     let breakable = |t: u32| mesh.regions[mesh.tet_region[t as usize] as usize].breakable;
-    let interior_faces = face_adjacency(mesh)?
+    let interior_faces = face_adjacency(mesh)
+        .map_err(|e| anyhow::anyhow!("{}: mesh: {e}", path.display()))?
         .interior
         .iter()
         .filter(|(a, b)| breakable(a.tet) && breakable(b.tet) && !fracture.contains(&face_key(a.nodes(&mesh.tets))))

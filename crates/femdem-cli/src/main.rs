@@ -45,6 +45,9 @@ enum Command {
         /// cores). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
+        /// Run even if the mesh's estimated memory exceeds what is available.
+        #[arg(long)]
+        force: bool,
     },
 }
 
@@ -52,7 +55,9 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads } => commands::check::run(&case, json, threads),
-        Command::Run { case, out, threads } => commands::run::run(&case, out, threads),
+        Command::Run { case, out, threads, force } => {
+            commands::memory::refuse_if_too_big(&case, force).and_then(|()| commands::run::run(&case, out, threads))
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod check;
+pub mod memory;
 mod output;
 pub(crate) mod prepare;
 mod progress;

@@ -2,4 +2,5 @@
 //! one test binary (one link instead of one per file).
 
 mod check;
+mod memory;
 mod run;

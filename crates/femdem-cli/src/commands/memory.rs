@@ -248,14 +248,14 @@ mod tests {
     /// boxes and platens exactly in tets and nodes; joints within 5% (two
     /// per tet counts the boundary faces as interior: 1.7% high on the
     /// 192,000-tet box of `docs/reliability.md`, more on a small mesh with
-    /// more of its faces on the boundary); an extrusion's tets within 25%
+    /// more of its faces on the boundary); an extrusion's tets within 10% and joints within 15% (measured 3% and 10% on the small Brazilian disc)
     /// (refinement makes triangles smaller than the equilateral one of edge
     /// h, up to `AREA_FACTOR` times larger, and the circle is inscribed).
     #[test]
     fn the_estimate_counts_what_the_mesh_holds() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         for (file, tet_tol, joint_tol) in
-            [("tests/cases/small_brazilian.toml", 0.25, 0.6), ("tests/cases/bad/crushed_cube.toml", 0.0, 0.0)]
+            [("tests/cases/small_brazilian.toml", 0.1, 0.15), ("tests/cases/bad/crushed_cube.toml", 0.0, 0.0)]
         {
             let path = root.join(file);
             let loaded = case::load(&path).unwrap();

@@ -352,7 +352,7 @@ fn a_tiny_fracture_energy_breaks_at_the_peak_without_trouble() {
     assert_energy_bounded(&p, "Gf = 1e-3 J/m²");
 }
 
-/// Gf = 1e6 J/m²: `δc = 1 m`, so over a pull of 10 µm past the peak the
+/// Gf = 1e6 J/m²: `δc = 1 m`, so over the few µm pulled past the peak the
 /// damage is ~1e-5 and Munjiza's z(D) ≈ 1: the bar yields and keeps
 /// carrying its peak load (a plateau, no failure): the end stress at least
 /// 95% of the peak (softening by z(D) is ~1e-5; the damping force η ε̇ is
@@ -360,7 +360,7 @@ fn a_tiny_fracture_energy_breaks_at_the_peak_without_trouble() {
 /// reaches it), the guard quiet and the energy bounded.
 #[test]
 fn a_huge_fracture_energy_yields_without_failing() {
-    let (p, _) = pull(10.0 * E, 1e6, 0.05, 3e-4, false);
+    let (p, _) = pull(10.0 * E, 1e6, 0.05, 1.5e-4, false);
     eprintln!("Gf = 1e6: peak {:.4e} Pa, end {:.4e} Pa, {} failures", p.peak_stress, p.end_stress, p.failures);
     assert_eq!(p.trouble, None);
     assert_eq!(p.failures, 0);

@@ -55,6 +55,9 @@ enum Command {
         /// checkpoint, the last frame, a non-zero exit status).
         #[arg(long, value_name = "N", hide = true)]
         stop_after_steps: Option<u64>,
+        /// Run even if the mesh's estimated memory exceeds what is available.
+        #[arg(long)]
+        force: bool,
     },
 }
 
@@ -62,8 +65,10 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads } => commands::check::run(&case, json, threads),
-        Command::Run { case, out, threads, resume, stop_after_steps } => {
-            commands::run::run(&case, commands::run::RunOptions { out, threads, resume, stop_after_steps })
+        Command::Run { case, out, threads, resume, stop_after_steps, force } => {
+            commands::memory::refuse_if_too_big(&case, force).and_then(|()| {
+                commands::run::run(&case, commands::run::RunOptions { out, threads, resume, stop_after_steps })
+            })
         }
     };
     match result {

@@ -2,6 +2,8 @@
 //! the column and the key.
 
 pub mod format;
+#[cfg(test)]
+mod fuzz;
 pub mod mesh;
 pub mod setup;
 pub mod traces;

@@ -44,6 +44,9 @@ struct CheckReport {
     min_inradius: f64,
     max_aspect_ratio: f64,
     memory_bytes: usize,
+    /// The memory estimated from the parts before meshing (what `femdem
+    /// run` compares with the available memory), bytes.
+    estimated_memory_bytes: Option<f64>,
     regions: Vec<RegionReport>,
     boundary_groups: Vec<GroupReport>,
     /// Present when the case has a `[solver]`.
@@ -75,7 +78,8 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
     let fracture: std::collections::HashSet<u128> =
         mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
     let breakable = |t: u32| mesh.regions[mesh.tet_region[t as usize] as usize].breakable;
-    let interior_faces = face_adjacency(mesh)?
+    let interior_faces = face_adjacency(mesh)
+        .map_err(|e| anyhow::anyhow!("{}: mesh: {e}", path.display()))?
         .interior
         .iter()
         .filter(|(a, b)| breakable(a.tet) && breakable(b.tet) && !fracture.contains(&face_key(a.nodes(&mesh.tets))))
@@ -98,6 +102,7 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
         min_inradius: s.min_inradius,
         max_aspect_ratio: s.max_aspect_ratio,
         memory_bytes: jointed.array_bytes(),
+        estimated_memory_bytes: super::memory::estimate(loaded).map(|e| e.bytes),
         regions: s
             .regions
             .iter()
@@ -145,6 +150,12 @@ fn print_text(r: &CheckReport) {
         r.min_inradius, r.max_aspect_ratio
     );
     println!("memory    {:.1} MiB in mesh and joint arrays", r.memory_bytes as f64 / (1024.0 * 1024.0));
+    if let Some(bytes) = r.estimated_memory_bytes {
+        println!(
+            "          {:.1} MiB estimated for the run before meshing (mesh, model, state, force pass)",
+            bytes / (1024.0 * 1024.0)
+        );
+    }
     println!("regions");
     for g in &r.regions {
         let kind = if g.breakable { "breakable" } else { "unbreakable" };

@@ -2,7 +2,8 @@
 
 pub mod check;
 mod checkpoint;
+pub mod memory;
 mod output;
-mod prepare;
+pub(crate) mod prepare;
 mod progress;
 pub mod run;

@@ -10,6 +10,12 @@ use crate::case::{self, LoadedCase};
 /// days of computing: more is a unit mistake, not a plan).
 pub const MAX_STEPS: f64 = 1e9;
 
+/// The most worker threads a run may ask for. Rayon starts every thread
+/// it is asked for: `--threads 100000000000000` hung before any output
+/// (found fuzzing the case loader); a thousand is far above any machine's
+/// cores.
+pub const MAX_THREADS: usize = 1024;
+
 /// Lanczos iterations allowed for the stable-step estimate.
 pub const POWER_ITERATIONS: usize = 400;
 
@@ -51,6 +57,10 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>) -> Result<Prepare
     match (threads, from_case) {
         (Some(0), _) => bail!("--threads must be ≥ 1"),
         (None, Some((0, span))) => bail!(loaded.error_at(span, "solver: threads must be ≥ 1")),
+        (Some(n), _) if n > MAX_THREADS => bail!("--threads {n} is more than the {MAX_THREADS} femdem allows"),
+        (None, Some((n, span))) if n > MAX_THREADS => {
+            bail!(loaded.error_at(span, format!("solver: threads = {n} is more than the {MAX_THREADS} femdem allows")))
+        }
         (Some(n), _) | (None, Some((n, _))) => {
             // Refused only if a pool already exists (tests calling `run` twice in one process).
             let _ = rayon::ThreadPoolBuilder::new().num_threads(n).build_global();
@@ -58,7 +68,11 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>) -> Result<Prepare
         (None, None) => {}
     }
     let mesh = case::mesh::build_mesh(&loaded)?;
-    let jointed = femdem_mesh::insert_joints(&mesh)?;
+    let jointed = femdem_mesh::insert_joints(&mesh).map_err(|e| case::CaseError {
+        path: loaded.path.clone(),
+        at: None,
+        message: format!("mesh: inserting the joints failed: {e}"),
+    })?;
     let Some(spec) = &loaded.case.solver else {
         return Ok(Prepared { case: loaded, mesh, jointed, run: None });
     };

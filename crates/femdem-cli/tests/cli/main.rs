@@ -2,5 +2,6 @@
 //! one test binary (one link instead of one per file).
 
 mod check;
+mod memory;
 mod resume;
 mod run;

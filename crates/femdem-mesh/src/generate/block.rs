@@ -60,7 +60,10 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
         n[k] = ((len / h).round() as usize).max(1);
         step[k] = len / n[k] as f64;
     }
-    if (n[0] * n[1] * n[2]) as f64 * 6.0 > MAX_CELLS {
+    // In floating point: the cell counts saturate at usize::MAX for a huge
+    // box, and their integer product would wrap to a small number (it did:
+    // max = [1e300, 1e300, 1] made 1 × 6 tets pass, then pushed vertices until memory ran out).
+    if n.iter().map(|&c| c as f64).product::<f64>() * 6.0 > MAX_CELLS {
         return Err(MeshError::InvalidParameter {
             name: "element_size",
             reason: format!("{h} m would make {}×{}×{}×6 tets; refuse above {MAX_CELLS:e}", n[0], n[1], n[2]),

@@ -247,3 +247,48 @@ fn a_rectangular_outline_has_a_group_per_side() {
     let mesh = generate_extrusion(&quad).unwrap();
     assert!(mesh.boundary_group("xmin").is_none() && mesh.boundary_group("side").is_some());
 }
+
+/// Regression (found by fuzzing the case loader): a trace point outside the
+/// outline widened the region the 2D mesher refines far past the area the
+/// size check estimates; a circle moved to x = 9.2e18 m with its trace
+/// left near the origin refined for over ten minutes. Such a point is now
+/// refused, naming the trace and the point.
+#[test]
+fn a_trace_point_outside_the_outline_is_refused() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Circle { center: [9.223372036854776e18, 0.0], radius: 0.01 },
+        traces: vec![vec![[-0.004, 0.0], [0.004, 0.001]]],
+        z0: 0.0,
+        thickness: 0.004,
+        element_size: 0.005,
+        layers: Some(1),
+        region: region(),
+    };
+    match generate_extrusion(&spec) {
+        Err(femdem_mesh::MeshError::InvalidParameter { name: "traces", reason }) => {
+            assert!(reason.contains("point 0 of trace 0") && reason.contains("outside the outline"), "{reason}");
+        }
+        other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
+    }
+    // A trace inside the same circle at the origin still meshes.
+    let inside = ExtrusionSpec { outline: Outline::Circle { center: [0.0, 0.0], radius: 0.01 }, ..spec };
+    assert!(generate_extrusion(&inside).is_ok());
+}
+
+/// Regression (found reading the generators while fuzzing): the box's cell counts saturate at `usize::MAX` for a huge
+/// extent, and their integer product wrapped (`MAX × MAX = 1`), so a box of
+/// `max = [1e300, 1e300, 1]` passed the tet-count cap as 6 tets and then
+/// pushed vertices until memory ran out (in a debug build, an overflow
+/// panic). The count is now
+/// a floating-point product, and the box is refused.
+#[test]
+fn a_box_huge_on_two_axes_is_refused_not_wrapped() {
+    let spec =
+        BoxSpec { min: [0.0; 3], max: [1e300, 1e300, 1.0], element_size: 1.0, jitter: 0.0, seed: 0, region: region() };
+    match generate_box(&spec) {
+        Err(femdem_mesh::MeshError::InvalidParameter { name: "element_size", reason }) => {
+            assert!(reason.contains("refuse above"), "{reason}");
+        }
+        other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
+    }
+}

@@ -4,3 +4,4 @@
 mod generators;
 mod joints;
 mod msh;
+mod msh_fuzz;

@@ -1,0 +1,282 @@
+//! The memory a case will need, estimated from its parts' sizes before any
+//! mesh is built, and the refusal of a run that would not fit.
+//!
+//! Counts per part: a box (and a platen, a box against the parts before
+//! it) has exactly `6 n_x n_y n_z` tets on `(n_x+1)(n_y+1)(n_z+1)`
+//! vertices; an extrusion about `3 × layers × A / (√3/4 h²)` tets (the
+//! estimate its generator refuses above 2e8), on about half as many
+//! vertices per layer as triangles; an MSH file is read (its size is the
+//! file's). A breakable region's tets own their four nodes after joint
+//! insertion and carry a joint on each interior face, about two per tet;
+//! an unbreakable region keeps its vertices and has no joints.
+//!
+//! Bytes per item are the arrays that hold them, element by element (see
+//! [`PER_NODE`], [`PER_TET`], [`per_joint`]); `docs/reliability.md` has
+//! the ratio of a run's measured peak resident memory to this estimate.
+
+use std::mem::size_of;
+use std::path::Path;
+
+use anyhow::{Result, bail};
+use femdem_core::{Mat3, Vec3};
+use femdem_mesh::generate::Side;
+
+use crate::case::format::PartSpec;
+use crate::case::{self, LoadedCase};
+
+/// Bytes per node after joint insertion: positions in the mesh, the
+/// model's reference and the state (`x0`, `x`, `v`), the gathered internal
+/// force and the update's force (5 `Vec3`, plus the jointed mesh's copy),
+/// the lumped mass, the origin (mesh and model), the rigid flag, the two
+/// gather offsets.
+pub const PER_NODE: usize = 6 * size_of::<Vec3>() + size_of::<f64>() + 2 * size_of::<u32>() + 1 + 2 * size_of::<u32>();
+
+/// Bytes per tet: its nodes in the mesh, the jointed mesh and the model
+/// (3 × `[u32; 4]`, with the region ids), the reference data (`Dm⁻¹` and
+/// volume), the material id, four force slots, the stress and four gather
+/// slots, and the contact pass's tets around each vertex (four ids).
+pub const PER_TET: usize = 3 * (size_of::<[u32; 4]>() + size_of::<u16>())
+    + size_of::<femdem_material::TetReference>()
+    + size_of::<u16>()
+    + 4 * size_of::<Vec3>()
+    + size_of::<Mat3>()
+    + 4 * size_of::<u32>()
+    + 4 * size_of::<u32>();
+
+/// Bytes per joint: its six nodes (jointed mesh and model), its law (the
+/// parameters and the derived lengths), its two tets, its two faces, its
+/// history (the per-joint state: damage at three points, energies), six
+/// force slots, the failure flag and six gather slots.
+pub fn per_joint() -> usize {
+    2 * size_of::<[u32; 6]>()
+        + size_of::<femdem_fracture::Joint>()
+        + size_of::<[u32; 2]>()
+        + 2 * size_of::<femdem_mesh::FaceRef>()
+        + size_of::<femdem_fracture::JointHistory>()
+        + 6 * size_of::<Vec3>()
+        + size_of::<Option<femdem_fracture::FailureMode>>()
+        + 6 * size_of::<u32>()
+}
+
+/// What a case's mesh will hold and need.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Estimate {
+    /// Tets.
+    pub tets: f64,
+    /// Nodes after joint insertion.
+    pub nodes: f64,
+    /// Joints.
+    pub joints: f64,
+    /// Bytes of the arrays of the mesh, the model, the state and the
+    /// force pass.
+    pub bytes: f64,
+}
+
+impl Estimate {
+    fn add(&mut self, tets: f64, vertices: f64, breakable: bool) {
+        self.tets += tets;
+        if breakable {
+            self.nodes += 4.0 * tets;
+            self.joints += 2.0 * tets;
+        } else {
+            self.nodes += vertices;
+        }
+        self.bytes = self.nodes * PER_NODE as f64 + self.tets * PER_TET as f64 + self.joints * per_joint() as f64;
+    }
+}
+
+/// The estimate of `case`'s mesh, from its parts, before building it; `None`
+/// when a part cannot be sized (a bad parameter or an unreadable MSH file:
+/// building the mesh reports it).
+pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
+    let section = &case.case.mesh;
+    let breakable = |region: &str| section.regions.iter().any(|r| r.get_ref().name == region && r.get_ref().breakable);
+    let mut out = Estimate::default();
+    // The bounding box of the parts so far, for platens.
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    let grow = |a: [f64; 3], b: [f64; 3], lo: &mut [f64; 3], hi: &mut [f64; 3]| {
+        for k in 0..3 {
+            lo[k] = lo[k].min(a[k]);
+            hi[k] = hi[k].max(b[k]);
+        }
+    };
+    for part in &section.parts {
+        match part.get_ref() {
+            PartSpec::Box { region, min, max, element_size, .. } => {
+                let (tets, vertices) = box_counts(*min, *max, *element_size)?;
+                out.add(tets, vertices, breakable(region));
+                grow(*min, *max, &mut lo, &mut hi);
+            }
+            PartSpec::Extrusion { region, circle, polygon, z0, thickness, element_size, layers, .. } => {
+                let h = *element_size;
+                let (area, b_lo, b_hi) = match (circle, polygon) {
+                    (Some(c), None) => (
+                        std::f64::consts::PI * c.radius * c.radius,
+                        [c.center[0] - c.radius, c.center[1] - c.radius],
+                        [c.center[0] + c.radius, c.center[1] + c.radius],
+                    ),
+                    (None, Some(p)) if !p.is_empty() => {
+                        let area = 0.5
+                            * (0..p.len())
+                                .map(|i| {
+                                    let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                                    a[0] * b[1] - b[0] * a[1]
+                                })
+                                .sum::<f64>()
+                                .abs();
+                        let lo = p.iter().fold([f64::INFINITY; 2], |l, q| [l[0].min(q[0]), l[1].min(q[1])]);
+                        let hi = p.iter().fold([f64::NEG_INFINITY; 2], |l, q| [l[0].max(q[0]), l[1].max(q[1])]);
+                        (area, lo, hi)
+                    }
+                    _ => return None,
+                };
+                let layers = layers.map_or_else(|| (thickness / h).round().max(1.0), |n| n as f64);
+                // The generator's own estimate (equilateral triangles of
+                // edge h).
+                let triangles = area / (3f64.sqrt() / 4.0 * h * h);
+                let tets = 3.0 * layers * triangles;
+                let vertices = 0.5 * triangles * (layers + 1.0);
+                if !(tets.is_finite() && tets >= 0.0) {
+                    return None;
+                }
+                out.add(tets, vertices, breakable(region));
+                grow([b_lo[0], b_lo[1], *z0], [b_hi[0], b_hi[1], z0 + thickness], &mut lo, &mut hi);
+            }
+            PartSpec::Platen { region, side, thickness, extent, element_size, .. } => {
+                if lo[0] > hi[0] {
+                    return None;
+                }
+                let side = match side.as_str() {
+                    "+x" => Side::XMax,
+                    "-x" => Side::XMin,
+                    "+y" => Side::YMax,
+                    "-y" => Side::YMin,
+                    "+z" => Side::ZMax,
+                    "-z" => Side::ZMin,
+                    _ => return None,
+                };
+                let axis = side.axis();
+                let others = [(axis + 1) % 3, (axis + 2) % 3];
+                let others = if others[0] < others[1] { others } else { [others[1], others[0]] };
+                let mut size = [*thickness; 3];
+                for (k, &a) in others.iter().enumerate() {
+                    size[a] = extent.map_or(hi[a] - lo[a], |e| e[k]);
+                }
+                let (tets, vertices) = box_counts([0.0; 3], size, *element_size)?;
+                out.add(tets, vertices, breakable(region));
+            }
+            PartSpec::Msh { path, .. } => {
+                let bytes = std::fs::read(case.dir().join(path)).ok()?;
+                let mesh = femdem_mesh::msh::read_msh(&bytes).ok()?;
+                let (b_lo, b_hi) = mesh.bounding_box()?;
+                for (r, region) in mesh.regions.iter().enumerate() {
+                    let tets = mesh.tet_region.iter().filter(|&&t| t as usize == r).count() as f64;
+                    let share = tets / mesh.num_tets().max(1) as f64;
+                    out.add(tets, share * mesh.num_nodes() as f64, breakable(&region.name));
+                }
+                grow(b_lo, b_hi, &mut lo, &mut hi);
+            }
+        }
+    }
+    Some(out)
+}
+
+/// Tets and vertices of a box meshed at `h`, as `generate_box` makes them.
+fn box_counts(min: [f64; 3], max: [f64; 3], h: f64) -> Option<(f64, f64)> {
+    let mut cells = 1.0;
+    let mut vertices = 1.0;
+    for k in 0..3 {
+        let n = ((max[k] - min[k]) / h).round().max(1.0);
+        if !n.is_finite() {
+            return None;
+        }
+        cells *= n;
+        vertices *= n + 1.0;
+    }
+    Some((6.0 * cells, vertices))
+}
+
+/// `MemAvailable` of `/proc/meminfo`, bytes (Linux; `None` elsewhere or if
+/// unreadable).
+pub fn available_memory() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024.0)
+}
+
+/// The refusal message when `estimate` exceeds `available` bytes.
+pub fn refusal(path: &Path, estimate: &Estimate, available: f64) -> Option<String> {
+    const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+    (estimate.bytes > available).then(|| {
+        format!(
+            "{}: the mesh would need about {:.1} GiB ({:.3e} tets, {:.3e} nodes, {:.3e} joints), more than the \
+             {:.1} GiB of memory available (MemAvailable); use a larger element_size, or run with --force to try \
+             anyway",
+            path.display(),
+            estimate.bytes / GIB,
+            estimate.tets,
+            estimate.nodes,
+            estimate.joints,
+            available / GIB
+        )
+    })
+}
+
+/// Before `femdem run` builds anything: refuses a case whose estimate
+/// exceeds the available memory, unless `force`. A case that does not load
+/// or cannot be sized is left to the run, which reports why.
+pub fn refuse_if_too_big(path: &Path, force: bool) -> Result<()> {
+    if force {
+        return Ok(());
+    }
+    let (Ok(loaded), Some(available)) = (case::load(path), available_memory()) else {
+        return Ok(());
+    };
+    if let Some(message) = estimate(&loaded).and_then(|e| refusal(path, &e, available)) {
+        bail!(message);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counts estimated from the parts against those of the mesh built:
+    /// boxes and platens exactly in tets and nodes; joints within 5% (two
+    /// per tet counts the boundary faces as interior: 1.7% high on the
+    /// 192,000-tet box of `docs/reliability.md`, more on a small mesh with
+    /// more of its faces on the boundary); an extrusion's tets within 10% and joints within 15% (measured 3% and 10% on the small Brazilian disc)
+    /// (refinement makes triangles smaller than the equilateral one of edge
+    /// h, up to `AREA_FACTOR` times larger, and the circle is inscribed).
+    #[test]
+    fn the_estimate_counts_what_the_mesh_holds() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        for (file, tet_tol, joint_tol) in
+            [("tests/cases/small_brazilian.toml", 0.1, 0.15), ("tests/cases/bad/crushed_cube.toml", 0.0, 0.0)]
+        {
+            let path = root.join(file);
+            let loaded = case::load(&path).unwrap();
+            let e = estimate(&loaded).expect("the case can be sized");
+            let mesh = case::mesh::build_mesh(&loaded).unwrap();
+            let jointed = femdem_mesh::insert_joints(&mesh).unwrap();
+            let (tets, joints) = (mesh.num_tets() as f64, jointed.joints.len() as f64);
+            let rel = |a: f64, b: f64| if b == 0.0 { a } else { (a - b).abs() / b };
+            eprintln!("{file}: tets {} vs {tets}, joints {} vs {joints}", e.tets, e.joints);
+            assert!(rel(e.tets, tets) <= tet_tol, "{file}: tets {} vs {tets}", e.tets);
+            assert!(rel(e.joints, joints) <= joint_tol, "{file}: joints {} vs {joints}", e.joints);
+            assert!(e.bytes > jointed.array_bytes() as f64, "the run holds more than the jointed mesh");
+        }
+    }
+
+    #[test]
+    fn a_run_that_does_not_fit_is_refused_with_its_figures() {
+        let e = Estimate { tets: 1e8, nodes: 4e8, joints: 2e8, bytes: 3e11 };
+        let message = refusal(Path::new("big.toml"), &e, 16e9).expect("refused");
+        assert!(message.starts_with("big.toml: the mesh would need about 279.4 GiB"), "{message}");
+        assert!(message.contains("1.000e8 tets") && message.contains("--force"), "{message}");
+        assert_eq!(refusal(Path::new("big.toml"), &e, 4e11), None);
+    }
+}

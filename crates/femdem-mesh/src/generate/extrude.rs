@@ -95,20 +95,6 @@ fn outline_points(outline: &Outline, h: f64) -> Result<Vec<[f64; 2]>, MeshError>
     }
 }
 
-/// The bounding box of an outline (of the circle itself, not of its
-/// inscribed polygon); NaN bounds, which no point satisfies, for a
-/// non-finite outline.
-fn outline_bounds(outline: &Outline) -> ([f64; 2], [f64; 2]) {
-    match outline {
-        Outline::Circle { center, radius } => {
-            ([center[0] - radius, center[1] - radius], [center[0] + radius, center[1] + radius])
-        }
-        Outline::Polygon(p) => p.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), q| {
-            ([lo[0].min(q[0]), lo[1].min(q[1])], [hi[0].max(q[0]), hi[1].max(q[1])])
-        }),
-    }
-}
-
 fn point(p: [f64; 2]) -> Result<Point2<f64>, MeshError> {
     if p[0].is_finite() && p[1].is_finite() {
         Ok(Point2::new(p[0], p[1]))
@@ -262,24 +248,6 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
                 .abs()
         }
     };
-    // The 2D mesher refines the convex hull of the outline and the traces:
-    // a trace point outside the outline would widen it far past the area
-    // estimated here (a centre moved to 1e19 m left a trace at the origin
-    // and refined for ever). Traces lie inside the outline: refuse any
-    // point outside its bounding box.
-    let (lo, hi) = outline_bounds(&spec.outline);
-    for (t, trace) in spec.traces.iter().enumerate() {
-        for (k, p) in trace.iter().enumerate() {
-            if !(p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1]) {
-                return Err(MeshError::InvalidParameter {
-                    name: "traces",
-                    reason: format!(
-                        "point {k} of trace {t}, {p:?}, lies outside the outline (its bounding box is {lo:?} to {hi:?})"
-                    ),
-                });
-            }
-        }
-    }
     let estimate = area / (3f64.sqrt() / 4.0 * h * h) * layers as f64 * 3.0;
     if estimate > MAX_CELLS {
         return Err(MeshError::InvalidParameter {

@@ -252,7 +252,8 @@ fn a_rectangular_outline_has_a_group_per_side() {
 /// outline widened the region the 2D mesher refines far past the area the
 /// size check estimates; a circle moved to x = 9.2e18 m with its trace
 /// left near the origin refined for over ten minutes. Such a point is now
-/// refused, naming the trace and the point.
+/// refused by the trace network before any refinement, naming the trace
+/// and the point.
 #[test]
 fn a_trace_point_outside_the_outline_is_refused() {
     let spec = ExtrusionSpec {
@@ -265,8 +266,8 @@ fn a_trace_point_outside_the_outline_is_refused() {
         region: region(),
     };
     match generate_extrusion(&spec) {
-        Err(femdem_mesh::MeshError::InvalidParameter { name: "traces", reason }) => {
-            assert!(reason.contains("point 0 of trace 0") && reason.contains("outside the outline"), "{reason}");
+        Err(femdem_mesh::MeshError::Trace { trace: 0, point: 0, reason }) => {
+            assert!(reason.contains("outside the outline"), "{reason}");
         }
         other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
     }

@@ -31,13 +31,11 @@
 //! Printed (`--nocapture`), not asserted: the joints damaged next to the
 //! crack without failing add ~0.2 J/m².
 
-use crate::common::{at_step, box_mesh, rock, stable};
-use femdem_core::Vec3;
+use crate::common::{at_step, box_mesh, pulled_bar_loads, rock, stable};
 use femdem_fracture::{GfCalibration, JointParams, softening::softening_area};
 use femdem_material::Law;
 use femdem_mesh::insert_joints;
-use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{Fixed, Loads, Model, Ramp, RegionBehaviour, VelocityDrive, Want};
+use femdem_solver::{Model, RegionBehaviour, Want};
 
 const FT: f64 = 3e6;
 /// Pull velocity, m/s: the peak (strain f_t/E over the bar) is reached after
@@ -64,26 +62,7 @@ fn pull(calibration: GfCalibration) -> (f64, Vec<f64>, f64, f64, f64) {
     let behaviour =
         [RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(viscosity), joints: Some(params) }];
     let model = Model::new(&jointed, &behaviour, 1.0).unwrap();
-    let sel = |group: &str, within: Option<([f64; 3], [f64; 3])>| {
-        select_nodes(&jointed, &NodeSelection { group: Some(group.into()), within, ..Default::default() }).unwrap()
-    };
-    let eps = 1e-9;
-    let loads = Loads {
-        fixed: vec![
-            Fixed { nodes: sel("zmin", None), components: [false, false, true] },
-            // Roller supports: x held on the edge x = 0, y on the edge y = 0.
-            Fixed { nodes: sel("zmin", Some(([-eps; 3], [eps, w + eps, eps]))), components: [true, false, false] },
-            Fixed { nodes: sel("zmin", Some(([-eps; 3], [w + eps, eps, eps]))), components: [false, true, false] },
-        ],
-        drives: vec![VelocityDrive {
-            name: "pull".into(),
-            nodes: sel("zmax", None),
-            velocity: Vec3::new(0.0, 0.0, V),
-            components: [false, false, true],
-            ramp: Ramp { ramp_time: 5e-5, stop_time: None },
-        }],
-        ..Loads::default()
-    };
+    let loads = pulled_bar_loads(&jointed, w, V);
     let dt = 0.9 * stable(&model, &loads, 300).critical;
     let mut s = at_step(model, loads, dt);
     let mut peak: f64 = 0.0;

@@ -13,12 +13,9 @@ use femdem_core::{Real, Vec3};
 use femdem_fracture::JointParams;
 use femdem_material::{Law, Material};
 use femdem_mesh::{Region, TetMesh, insert_joints};
-use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{
-    ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, Trouble, VelocityDrive, Want, contact_omega,
-};
+use femdem_solver::{ContactSettings, Loads, Model, RegionBehaviour, Solver, Trouble, Want, contact_omega};
 
-use crate::common::{at_step, box_mesh, joints, rock, rock_nu, stable};
+use crate::common::{at_step, box_mesh, joints, pulled_bar_loads, rock, rock_nu, stable};
 
 const E: f64 = 26e9;
 const FT: f64 = 3e6;
@@ -259,25 +256,7 @@ fn pull(p0: f64, gf: f64, v: f64, end: f64, contact: bool) -> (Pulled, Solver) {
     let behaviour =
         [RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(viscosity), joints: Some(params) }];
     let model = Model::new(&jointed, &behaviour, 1.0).unwrap();
-    let sel = |group: &str, within: Option<([f64; 3], [f64; 3])>| {
-        select_nodes(&jointed, &NodeSelection { group: Some(group.into()), within, ..Default::default() }).unwrap()
-    };
-    let eps = 1e-9;
-    let loads = Loads {
-        fixed: vec![
-            Fixed { nodes: sel("zmin", None), components: [false, false, true] },
-            Fixed { nodes: sel("zmin", Some(([-eps; 3], [eps, w + eps, eps]))), components: [true, false, false] },
-            Fixed { nodes: sel("zmin", Some(([-eps; 3], [w + eps, eps, eps]))), components: [false, true, false] },
-        ],
-        drives: vec![VelocityDrive {
-            name: "pull".into(),
-            nodes: sel("zmax", None),
-            velocity: Vec3::new(0.0, 0.0, v),
-            components: [false, false, true],
-            ramp: Ramp { ramp_time: 5e-5, stop_time: None },
-        }],
-        ..Loads::default()
-    };
+    let loads = pulled_bar_loads(&jointed, w, v);
     let st = stable(&model, &loads, 300);
     let mut s = at_step(model, loads, 0.9 * st.critical);
     if contact {

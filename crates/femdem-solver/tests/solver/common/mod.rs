@@ -222,3 +222,31 @@ pub fn tet_overlap(a: &[Vec3; 4], b: &[Vec3; 4]) -> (f64, f64) {
     }
     (volume.max(0.0), depth)
 }
+
+/// The loads of a square bar `w` wide pulled along z: its base `zmin` held
+/// along z, with roller supports (x held on the edge x = 0, y on the edge
+/// y = 0) so that it may contract freely, and its top `zmax` driven at
+/// `v` (m/s) along z after a 50 µs ramp (the drive is named `pull`).
+pub fn pulled_bar_loads(jointed: &JointedMesh, w: f64, v: f64) -> Loads {
+    use femdem_solver::select::{NodeSelection, select_nodes};
+    use femdem_solver::{Fixed, Ramp, VelocityDrive};
+    let sel = |group: &str, within: Option<([f64; 3], [f64; 3])>| {
+        select_nodes(jointed, &NodeSelection { group: Some(group.into()), within, ..Default::default() }).unwrap()
+    };
+    let eps = 1e-9;
+    Loads {
+        fixed: vec![
+            Fixed { nodes: sel("zmin", None), components: [false, false, true] },
+            Fixed { nodes: sel("zmin", Some(([-eps; 3], [eps, w + eps, eps]))), components: [true, false, false] },
+            Fixed { nodes: sel("zmin", Some(([-eps; 3], [w + eps, eps, eps]))), components: [false, true, false] },
+        ],
+        drives: vec![VelocityDrive {
+            name: "pull".into(),
+            nodes: sel("zmax", None),
+            velocity: Vec3::new(0.0, 0.0, v),
+            components: [false, false, true],
+            ramp: Ramp { ramp_time: 5e-5, stop_time: None },
+        }],
+        ..Loads::default()
+    }
+}

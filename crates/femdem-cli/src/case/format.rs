@@ -287,6 +287,9 @@ pub struct OutputSpec {
     /// Fields written (default all): `displacement`, `velocity`, `stress`,
     /// `principal_stress`, `von_mises`, `region`.
     pub fields: Option<Vec<String>>,
+    /// Compression of the VTU frames' binary arrays: `lz4` (default),
+    /// `zlib` (level 6), `zlib:N` (level N, 0–9) or `none`.
+    pub compression: Option<String>,
     /// `[output.load_strain]`: the load–strain curve of a specimen between
     /// two platens, as history columns `load` and `strain`.
     pub load_strain: Option<Spanned<LoadStrainSpec>>,

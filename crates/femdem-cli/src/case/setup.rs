@@ -10,6 +10,7 @@ use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_node
 use femdem_solver::{
     ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
 };
+use femdem_vtk::Compression;
 
 use super::format::{LoadSpec, NodeSpec, OutputSpec};
 use super::{CaseError, LoadedCase};
@@ -465,6 +466,8 @@ pub struct OutputSettings {
     pub history_interval: f64,
     /// Fields written.
     pub fields: Vec<String>,
+    /// Compression of the VTU frames.
+    pub compression: Compression,
     /// When checkpoints are written.
     pub checkpoint: CheckpointSettings,
 }
@@ -485,7 +488,7 @@ pub const CHECKPOINT_WALL_DEFAULT: f64 = 1800.0;
 
 /// Resolves and checks `[output]`: intervals finite and > 0 s (defaults
 /// `end_time / 20` and a tenth of the frame interval), fields among
-/// `fields_known`.
+/// `fields_known`, the compression one of [`compression`]'s.
 ///
 /// # Errors
 /// A located [`CaseError`] naming the key.
@@ -511,6 +514,7 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
     if let Some(f) = fields.iter().find(|f| !fields_known.contains(&f.as_str())) {
         return Err(at(format!("`fields`: `{f}` is not one of {}", fields_known.join(", "))));
     }
+    let compression = compression(spec.compression.as_deref().unwrap_or("lz4")).map_err(at)?;
     let default_checkpoint = crate::case::format::CheckpointSpec::default();
     let (cp, cp_span) = match &spec.checkpoint {
         Some(c) => (c.get_ref(), Some(c.span())),
@@ -525,5 +529,25 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
         });
     }
     let checkpoint = CheckpointSettings { interval_steps: cp.interval_steps.unwrap_or(0), interval_wall };
-    Ok(OutputSettings { dir: spec.dir.clone(), interval, history_interval, fields, checkpoint })
+    Ok(OutputSettings { dir: spec.dir.clone(), interval, history_interval, fields, compression, checkpoint })
+}
+
+/// `[output] compression`: `lz4` (read by VTK 8.1 and later, ParaView 5.5
+/// and later; not by meshio), `zlib` (level 6) or `zlib:N` (N = 0–9; read
+/// by every VTK version and by meshio, slower to write), `none` (read by
+/// every reader, largest files).
+///
+/// # Errors
+/// The message for any other value.
+pub fn compression(name: &str) -> Result<Compression, String> {
+    let bad = || format!("`compression`: `{name}` is not one of lz4, zlib, zlib:N (N = 0 to 9), none");
+    match name {
+        "lz4" => Ok(Compression::Lz4),
+        "none" => Ok(Compression::None),
+        "zlib" => Ok(Compression::Zlib { level: 6 }),
+        _ => match name.strip_prefix("zlib:").map(str::parse::<u32>) {
+            Some(Ok(level)) if level <= 9 => Ok(Compression::Zlib { level }),
+            _ => Err(bad()),
+        },
+    }
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{Result, bail};
 use femdem_material::{principal_stresses, von_mises};
 use femdem_solver::{Solver, StepRecord};
-use femdem_vtk::{Field, Frame, HistoryWriter, SeriesWriter};
+use femdem_vtk::{Compression, Field, Frame, HistoryWriter, SeriesWriter, VtuOptions};
 
 use super::checkpoint::Marks;
 use crate::case::setup::LoadStrain;
@@ -79,14 +79,15 @@ impl Output {
     pub fn create(
         dir: &Path,
         stem: &str,
-        fields: Vec<String>,
+        (fields, compression): (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
     ) -> Result<Output> {
         check_fields(&fields)?;
-        let series = SeriesWriter::new(dir, stem)?;
-        let fractures = SeriesWriter::new(dir, &format!("{stem}_fractures"))?;
+        let options = VtuOptions::default().with_compression(compression);
+        let series = SeriesWriter::new(dir, stem)?.with_options(options);
+        let fractures = SeriesWriter::new(dir, &format!("{stem}_fractures"))?.with_options(options);
         let columns = history_columns(solver, load_strain.is_some());
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
@@ -100,15 +101,17 @@ impl Output {
     pub fn resume(
         dir: &Path,
         stem: &str,
-        fields: Vec<String>,
+        (fields, compression): (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
         marks: &Marks,
     ) -> Result<Output> {
         check_fields(&fields)?;
-        let series = SeriesWriter::resume(dir, stem, &marks.frames)?;
-        let fractures = SeriesWriter::resume(dir, &format!("{stem}_fractures"), &marks.fracture_frames)?;
+        let options = VtuOptions::default().with_compression(compression);
+        let series = SeriesWriter::resume(dir, stem, &marks.frames)?.with_options(options);
+        let fractures =
+            SeriesWriter::resume(dir, &format!("{stem}_fractures"), &marks.fracture_frames)?.with_options(options);
         let columns = history_columns(solver, load_strain.is_some());
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let history = HistoryWriter::resume(&dir.join("history.csv"), &names, marks.history_len)?;

@@ -51,7 +51,8 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
             .unwrap_or_else(|| Path::new("out").join(&stem)),
     };
-    let (interval, history_interval, fields) = (spec.interval, spec.history_interval, spec.fields);
+    let (interval, history_interval) = (spec.interval, spec.history_interval);
+    let written = (spec.fields, spec.compression);
     let checkpoints = spec.checkpoint;
     let identity = Identity::of(&prepared.case.path, &prepared.case.source, &prepared.jointed.mesh);
     let solver = &mut run.solver;
@@ -61,7 +62,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         let (file, saved) = checkpoint::latest(&dir)?;
         saved.identity.check(&identity, &file)?;
         solver.restore(&saved.solver).with_context(|| format!("checkpoint {}", file.display()))?;
-        let output = Output::resume(&dir, &stem, fields, solver, pre_existing, run.load_strain, &saved.marks)
+        let output = Output::resume(&dir, &stem, written, solver, pre_existing, run.load_strain, &saved.marks)
             .with_context(|| {
                 format!("continuing the output in {} from checkpoint {}", dir.display(), file.display())
             })?;
@@ -74,7 +75,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         );
         (output, saved.schedule)
     } else {
-        let output = Output::create(&dir, &stem, fields, solver, pre_existing, run.load_strain)
+        let output = Output::create(&dir, &stem, written, solver, pre_existing, run.load_strain)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;
         let schedule = Schedule { next_step: 0, next_frame: 0.0, next_row: 0.0, ended_past_peak: false, peak: None };

@@ -164,6 +164,7 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("empty_selector", ":55:", "`nodes` has no `group`, `region` or `box`"),
         ("zero_output_interval", ":68:", "output: `interval` must be finite and > 0 s"),
         ("unknown_output_field", ":68:", "output: `fields`: `strain` is not one of"),
+        ("unknown_compression", ":68:", "output: `compression`: `gzip` is not one of lz4, zlib, zlib:N"),
         ("negative_damping_ratio", ":23:", "`damping_ratio` must be finite and ≥ 0, got -0.5"),
         ("friction_angle_95", ":23:", "`friction_angle` must lie in [0°, 90°), got 95°"),
         ("zero_fracture_energy", ":23:", "`fracture_energy` must be finite and > 0 J/m², got 0 J/m²"),
@@ -231,4 +232,40 @@ fn negative_pressure_pulls_on_its_side_only() {
     assert!((f[0] / 12_500.0 - 1.0).abs() < 1e-3, "fx = {} N", f[0]);
     assert!(f[1].abs() < 1e-3 * f[0] && f[2].abs() < 1e-3 * f[0], "f = {f:?}");
     assert!(last[col("external_work")] > 0.0);
+}
+
+/// `[output] compression` reaches the VTU writer: each value names its
+/// compressor in the frames' header (`none` names none); the default is
+/// LZ4. Reading each compression back with VTK and meshio is tested in
+/// `femdem-vtk/tests/readback.rs`.
+#[test]
+fn output_compression_is_the_case_setting() {
+    let base = std::fs::read_to_string(root().join("cases/elastic-bar.toml")).unwrap();
+    assert!(base.contains("[output]\n"), "cases/elastic-bar.toml has an [output] section");
+    for (setting, compressor) in [
+        (None, Some("vtkLZ4DataCompressor")),
+        (Some("none"), None),
+        (Some("zlib:1"), Some("vtkZLibDataCompressor")),
+        (Some("lz4"), Some("vtkLZ4DataCompressor")),
+    ] {
+        let name = setting.map_or("default".to_owned(), |s| s.replace(':', "_"));
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("compression-{name}"));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = match setting {
+            Some(s) => base.replace("[output]\n", &format!("[output]\ncompression = \"{s}\"\n")),
+            None => base.clone(),
+        };
+        let case = dir.join("bar.toml");
+        std::fs::write(&case, text).unwrap();
+        let out = dir.join("out");
+        let o = femdem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        let vtu = std::fs::read_to_string(out.join("bar_000000.vtu")).unwrap();
+        let header = vtu.lines().find(|l| l.contains("<VTKFile")).unwrap_or_default();
+        match compressor {
+            Some(c) => assert!(header.contains(&format!("compressor=\"{c}\"")), "{name}: {header}"),
+            None => assert!(!header.contains("compressor="), "{name}: {header}"),
+        }
+    }
 }

@@ -218,7 +218,8 @@ fn trace_file_error(
     }
 }
 
-fn parse_side(s: &str) -> Option<Side> {
+/// The `side` of a platen part (`+x` … `-z`); `None` for anything else.
+pub(crate) fn parse_side(s: &str) -> Option<Side> {
     Some(match s {
         "+x" => Side::XMax,
         "-x" => Side::XMin,

@@ -19,7 +19,6 @@ use std::path::Path;
 
 use anyhow::{Result, bail};
 use femdem_core::{Mat3, Vec3};
-use femdem_mesh::generate::Side;
 
 use crate::case::format::PartSpec;
 use crate::case::{self, LoadedCase};
@@ -147,15 +146,7 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
                 if lo[0] > hi[0] {
                     return None;
                 }
-                let side = match side.as_str() {
-                    "+x" => Side::XMax,
-                    "-x" => Side::XMin,
-                    "+y" => Side::YMax,
-                    "-y" => Side::YMin,
-                    "+z" => Side::ZMax,
-                    "-z" => Side::ZMin,
-                    _ => return None,
-                };
+                let side = crate::case::mesh::parse_side(side)?;
                 let axis = side.axis();
                 let others = [(axis + 1) % 3, (axis + 2) % 3];
                 let others = if others[0] < others[1] { others } else { [others[1], others[0]] };

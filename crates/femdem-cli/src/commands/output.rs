@@ -79,20 +79,12 @@ impl Output {
     pub fn create(
         dir: &Path,
         stem: &str,
-        (fields, compression): (Vec<String>, Compression),
+        written: (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
     ) -> Result<Output> {
-        check_fields(&fields)?;
-        let options = VtuOptions::default().with_compression(compression);
-        let series = SeriesWriter::new(dir, stem)?.with_options(options);
-        let fractures = SeriesWriter::new(dir, &format!("{stem}_fractures"))?.with_options(options);
-        let columns = history_columns(solver, load_strain.is_some());
-        let names: Vec<&str> = columns.iter().map(String::as_str).collect();
-        let history = HistoryWriter::create(&dir.join("history.csv"), &names)?;
-        let failures = HistoryWriter::create(&dir.join("failures.csv"), &FAILURE_COLUMNS)?;
-        Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
+        Output::open(dir, stem, written, solver, pre_existing, load_strain, None)
     }
 
     /// Continues the output an earlier run of the same case left in `dir`
@@ -101,21 +93,46 @@ impl Output {
     pub fn resume(
         dir: &Path,
         stem: &str,
-        (fields, compression): (Vec<String>, Compression),
+        written: (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
         marks: &Marks,
     ) -> Result<Output> {
+        Output::open(dir, stem, written, solver, pre_existing, load_strain, Some(marks))
+    }
+
+    /// [`Output::create`] without `marks`, [`Output::resume`] with them.
+    fn open(
+        dir: &Path,
+        stem: &str,
+        (fields, compression): (Vec<String>, Compression),
+        solver: &Solver,
+        pre_existing: Vec<[u32; 3]>,
+        load_strain: Option<LoadStrain>,
+        marks: Option<&Marks>,
+    ) -> Result<Output> {
         check_fields(&fields)?;
         let options = VtuOptions::default().with_compression(compression);
-        let series = SeriesWriter::resume(dir, stem, &marks.frames)?.with_options(options);
-        let fractures =
-            SeriesWriter::resume(dir, &format!("{stem}_fractures"), &marks.fracture_frames)?.with_options(options);
+        let fracture_stem = format!("{stem}_fractures");
         let columns = history_columns(solver, load_strain.is_some());
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
-        let history = HistoryWriter::resume(&dir.join("history.csv"), &names, marks.history_len)?;
-        let failures = HistoryWriter::resume(&dir.join("failures.csv"), &FAILURE_COLUMNS, marks.failures_len)?;
+        let (history_path, failures_path) = (dir.join("history.csv"), dir.join("failures.csv"));
+        let (series, fractures, history, failures) = match marks {
+            None => (
+                SeriesWriter::new(dir, stem)?,
+                SeriesWriter::new(dir, &fracture_stem)?,
+                HistoryWriter::create(&history_path, &names)?,
+                HistoryWriter::create(&failures_path, &FAILURE_COLUMNS)?,
+            ),
+            Some(m) => (
+                SeriesWriter::resume(dir, stem, &m.frames)?,
+                SeriesWriter::resume(dir, &fracture_stem, &m.fracture_frames)?,
+                HistoryWriter::resume(&history_path, &names, m.history_len)?,
+                HistoryWriter::resume(&failures_path, &FAILURE_COLUMNS, m.failures_len)?,
+            ),
+        };
+        let (series, fractures) = (series.with_options(options), fractures.with_options(options));
         Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
     }
 
@@ -267,6 +284,14 @@ impl Output {
     /// The fracture-surface `.pvd`.
     pub fn fracture_pvd(&self) -> std::path::PathBuf {
         self.fractures.pvd_path()
+    }
+
+    /// Writes the frame and the fracture frame at time `t` (s) and flushes
+    /// everything written so far.
+    pub fn frames(&mut self, solver: &Solver, t: f64) -> Result<()> {
+        self.frame(solver, t)?;
+        self.fracture_frame(solver, t)?;
+        self.flush()
     }
 
     /// Flushes the history and the failure list.

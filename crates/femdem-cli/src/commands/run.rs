@@ -136,17 +136,13 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
         }
         if frame_due {
-            output.frame(solver, t)?;
-            output.fracture_frame(solver, t)?;
-            output.flush()?;
+            output.frames(solver, t)?;
             next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
         }
         let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
         if let Some(trouble) = checked.then(|| solver.check(run.stable.critical).err()).flatten() {
             // Keep what shows the trouble: the current frame and the history so far.
-            output.frame(solver, solver.state.time)?;
-            output.fracture_frame(solver, solver.state.time)?;
-            output.flush()?;
+            output.frames(solver, solver.state.time)?;
             progress.finish();
             bail!(
                 "the run guard stopped the run: {trouble}\nthe state at that point was written to {}",

@@ -8,24 +8,12 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use femdem_core::{Real, Vec3};
-use femdem_fracture::{
-    Coupling, GfCalibration, Joint, JointHistory, JointParams, KernelConsts, LANES, joint_update, joint_update_fast,
-    joint_update_lanes,
-};
+use femdem_fracture::{Joint, JointHistory, KernelConsts, LANES, joint_update, joint_update_fast, joint_update_lanes};
 
 const JOINTS: usize = 4096;
 
 fn setup() -> (Vec<Joint>, Vec<[Vec3; 6]>) {
-    let params = JointParams {
-        penalty: 2.6e11,
-        tensile_strength: 3e6,
-        cohesion: 15e6,
-        friction_angle: 30f64.to_radians(),
-        gf_tension: 50.0,
-        gf_shear: 50.0,
-        calibration: GfCalibration::Paper,
-        coupling: Coupling::default(),
-    };
+    let params = femdem_benches::brazilian_joints();
     let mut seed = 1u64;
     let mut uniform = move || {
         seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);

@@ -31,20 +31,9 @@ pub fn disc_extrusion(element_size: f64) -> ExtrusionSpec {
     }
 }
 
-/// A solver for the paper's Brazilian disc (Table 1 rock, joints with
-/// p0 = 10 E, 5% damping, no loads), or the same disc without joints when
-/// `breakable` is false; `dt` at 0.9 of the critical step.
-pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver {
-    use femdem_fracture::JointParams;
-    use femdem_material::{ElasticParams, Law};
-    use femdem_solver::{Loads, Model, RegionBehaviour, Solver, StepParams, held_nodes, stable_time_step};
-    let mut spec = disc_extrusion(element_size);
-    spec.region.breakable = breakable;
-    let mesh = femdem_mesh::generate::generate_extrusion(&spec).expect("disc");
-    let jointed = femdem_mesh::insert_joints(&mesh).expect("joints");
-    let viscosity = femdem_material::critical_viscosity(element_size, 26e9, 2340.0) * 0.05;
-    let material = ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().expect("rock");
-    let joints = breakable.then_some(JointParams {
+/// The joint law of the paper's Brazilian disc (Table 1, p0 = 10 E).
+pub fn brazilian_joints() -> femdem_fracture::JointParams {
+    femdem_fracture::JointParams {
         penalty: 2.6e11,
         tensile_strength: 3e6,
         cohesion: 15e6,
@@ -53,7 +42,22 @@ pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver 
         gf_shear: 50.0,
         calibration: femdem_fracture::GfCalibration::Paper,
         coupling: femdem_fracture::Coupling::default(),
-    });
+    }
+}
+
+/// A solver for the paper's Brazilian disc (Table 1 rock, joints with
+/// p0 = 10 E, 5% damping, no loads), or the same disc without joints when
+/// `breakable` is false; `dt` at 0.9 of the critical step.
+pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver {
+    use femdem_material::{ElasticParams, Law};
+    use femdem_solver::{Loads, Model, RegionBehaviour, Solver, StepParams, held_nodes, stable_time_step};
+    let mut spec = disc_extrusion(element_size);
+    spec.region.breakable = breakable;
+    let mesh = femdem_mesh::generate::generate_extrusion(&spec).expect("disc");
+    let jointed = femdem_mesh::insert_joints(&mesh).expect("joints");
+    let viscosity = femdem_material::critical_viscosity(element_size, 26e9, 2340.0) * 0.05;
+    let material = ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().expect("rock");
+    let joints = breakable.then(brazilian_joints);
     let model = Model::new(&jointed, &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints }], 1.0)
         .expect("model");
     let held = held_nodes(&model, &Loads::default()).expect("constraints");

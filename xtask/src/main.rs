@@ -3,6 +3,8 @@
 //! - `validate [--profile quick|paper] [--case NAME] [--out DIR] [--sensitivity]`: runs the
 //!   reference paper's examples and reports against its numbers
 //!   (`docs/validation.md`).
+//! - `tradeoff [--quick] [--out DIR]`: the speed–accuracy trade of the
+//!   Brazilian disc, measured over its knobs (`docs/tradeoff.md`).
 //! - `bench [--memory | --callgrind] [criterion args…]`: the criterion
 //!   benchmarks; with `--memory` only the peak-memory run of joint insertion
 //!   on 10⁶ tets; with `--callgrind` the instructions per tet-step of each
@@ -15,6 +17,7 @@
 mod bench;
 mod fixtures;
 mod map;
+mod tradeoff;
 mod validate;
 
 use anyhow::{Result, bail};
@@ -28,8 +31,9 @@ fn main() -> Result<()> {
         Some("fixtures") => fixtures::run(),
         Some("map") => map::run(&rest),
         Some("validate") => validate::run(&rest),
-        Some(other) => bail!("unknown task `{other}`; tasks: validate, bench, fixtures, map"),
-        None => bail!("usage: cargo xtask <validate|bench|fixtures|map>"),
+        Some("tradeoff") => tradeoff::run(&rest),
+        Some(other) => bail!("unknown task `{other}`; tasks: validate, tradeoff, bench, fixtures, map"),
+        None => bail!("usage: cargo xtask <validate|tradeoff|bench|fixtures|map>"),
     }
 }
 

@@ -11,13 +11,13 @@
 //! A run that finished before with the same case text is reused, so an
 //! interrupted validation resumes at the first unfinished run.
 
-mod brazilian;
-mod failures;
-mod history;
-mod plot;
+pub(crate) mod brazilian;
+pub(crate) mod failures;
+pub(crate) mod history;
+pub(crate) mod plot;
 mod polyaxial;
 mod report;
-mod runner;
+pub(crate) mod runner;
 mod vtu;
 
 use std::path::PathBuf;

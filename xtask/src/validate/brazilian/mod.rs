@@ -2,8 +2,8 @@
 //! 21–23): four loading rates, the paper's checks, the figures, and the
 //! sensitivity runs that measure what moves the tensile strength.
 
-mod analysis;
-mod case;
+pub(crate) mod analysis;
+pub(crate) mod case;
 mod figures;
 mod hondros;
 mod sensitivity;

@@ -8,13 +8,26 @@ use plotters::prelude::*;
 
 use super::Row;
 use super::setting::Knob;
-use crate::validate::plot::{err, font, series_colour};
+use crate::validate::plot::{err, font};
+
+/// One colour per knob, in [`Knob`] order.
+const COLOURS: [RGBColor; 8] = [
+    RGBColor(0, 0, 0),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(31, 119, 180),
+    RGBColor(150, 150, 150),
+];
 
 /// Errors below this are drawn at it (the anchor's is zero by definition).
 pub const FLOOR: f64 = 1.0e-4;
 
 /// Draws `rows` (with `front`, indices into `rows` by increasing wall time)
-/// into the PNG `path`.
+/// into the PNG `path`. Runs that did not pass their peak (the error is a
+/// lower bound) are hollow; the front's runs and the anchor are labelled.
 pub fn draw(path: &Path, title: &str, rows: &[Row], front: &[usize]) -> Result<()> {
     font();
     let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
@@ -33,6 +46,8 @@ pub fn draw(path: &Path, title: &str, rows: &[Row], front: &[usize]) -> Result<(
         .configure_mesh()
         .x_desc("wall time, s (2 cores)")
         .y_desc("|peak − anchor peak| / anchor peak")
+        .x_labels(8)
+        .x_label_formatter(&|x| format!("{x:.0}"))
         .label_style(("sans-serif", 15))
         .draw()
         .map_err(err)?;
@@ -46,18 +61,20 @@ pub fn draw(path: &Path, title: &str, rows: &[Row], front: &[usize]) -> Result<(
     let mut knobs: Vec<Knob> = rows.iter().map(|r| r.knob).collect();
     knobs.sort();
     knobs.dedup();
-    for (k, knob) in knobs.iter().enumerate() {
-        let c = if *knob == Knob::Combination { RGBColor(90, 90, 90) } else { series_colour(k) };
+    for knob in knobs {
+        let c = COLOURS[knob as usize % COLOURS.len()];
+        let style = |r: &Row| if r.passed_peak { c.filled() } else { c.stroke_width(2) };
         chart
-            .draw_series(rows.iter().filter(|r| r.knob == *knob).map(|r| Circle::new(at(r), 5, c.filled())))
+            .draw_series(rows.iter().filter(|r| r.knob == knob).map(|r| Circle::new(at(r), 5, style(r))))
             .map_err(err)?
             .label(knob.name())
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, c.filled()));
     }
+    let labelled = rows.iter().enumerate().filter(|(i, r)| r.anchor || front.contains(i)).map(|(_, r)| r);
     chart
-        .draw_series(rows.iter().map(|r| {
+        .draw_series(labelled.map(|r| {
             let label = if r.anchor { format!("{} (anchor)", r.setting.key()) } else { r.setting.key() };
-            Text::new(label, at(r), ("sans-serif", 11).into_font().color(&BLACK.mix(0.7)))
+            Text::new(label, at(r), ("sans-serif", 12).into_font().color(&BLACK.mix(0.75)))
         }))
         .map_err(err)?;
     chart

@@ -118,8 +118,7 @@ pub fn run(args: &[String]) -> Result<()> {
             passed_peak: o.passed_peak,
         })
         .collect();
-    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.wall, r.error)).collect();
-    let front = pareto::front(&points);
+    let front = pareto::front(&points(&rows));
     std::fs::write(out.join("tradeoff.csv"), csv(&rows))?;
     let profile = if quick { "quick" } else { "full" };
     figure::draw(
@@ -133,6 +132,13 @@ pub fn run(args: &[String]) -> Result<()> {
     println!("report: {}", out.join("report.md").display());
     println!("{} runs, {wall:.0} s", rows.len());
     Ok(())
+}
+
+/// `(wall time, error)` of every run for the front and the budgets; a run
+/// that never passed its peak has an unknown error (its peak is a lower
+/// bound) and counts as infinitely wrong.
+fn points(rows: &[Row]) -> Vec<(f64, f64)> {
+    rows.iter().map(|r| (r.wall, if r.passed_peak { r.error } else { f64::INFINITY })).collect()
 }
 
 /// The rows as CSV, one per run.
@@ -218,13 +224,13 @@ fn report(rows: &[Row], front: &[usize], plan: &Plan, profile: &str, wall: f64) 
         );
     }
     md.push_str("\n![error against wall time](tradeoff.png)\n\n## Pareto front\n\n");
-    md.push_str("Runs no other run beats on both wall time and error, cheapest first:\n\n");
+    md.push_str("Runs no other run beats on both wall time and error, cheapest first (runs with no peak, marked above, left out):\n\n");
     for &i in front {
         let r = &rows[i];
         let _ = writeln!(md, "- `{}`: {:.1} s, error {:.2}%", r.setting.key(), r.wall, 100.0 * r.error);
     }
     md.push_str("\n## Cheapest run within an error budget on the peak load\n\n| budget | run | wall (s) | error | speed-up over the anchor |\n|---|---|---|---|---|\n");
-    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.wall, r.error)).collect();
+    let points = points(rows);
     let anchor_wall = rows.iter().find(|r| r.anchor).map_or(f64::NAN, |r| r.wall);
     for b in BUDGETS {
         match pareto::cheapest_within(&points, b) {

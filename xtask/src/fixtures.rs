@@ -1,6 +1,8 @@
-//! `cargo xtask fixtures`: regenerates the Gmsh-written test fixture and the
-//! paper cases' unstructured meshes with Gmsh's Python API. Tests and cases
-//! never need Gmsh: they read the committed files.
+//! `cargo xtask fixtures`: regenerates the Gmsh-written test fixtures (the
+//! ASCII `gmsh_two_volumes.msh` and its binary twin
+//! `gmsh_two_volumes_binary.msh`) and the paper cases' unstructured meshes
+//! with Gmsh's Python API. Tests and cases never need Gmsh: they read the
+//! committed files.
 
 use std::process::Command;
 

@@ -11,8 +11,8 @@
 //!   kernel of the step (needs valgrind; `docs/performance.md`).
 //! - `map [--seed N] [--out FILE] [--width W] [--height H]`: a seeded
 //!   layered fracture map in the trace-file format (`map.rs`).
-//! - `fixtures`: regenerates the Gmsh test fixture and the paper cases' meshes
-//!   (needs `pip install gmsh`).
+//! - `fixtures`: regenerates the Gmsh test fixtures (ASCII and binary) and
+//!   the paper cases' meshes (needs `pip install gmsh`).
 
 mod bench;
 mod fixtures;

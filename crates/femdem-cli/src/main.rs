@@ -32,6 +32,11 @@ enum Command {
         /// Worker threads (overrides `[solver] threads`; default: all cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// Override a value of the case, e.g. `--set solver.end_time=1e-3`
+        /// or `--set materials.0.young=30e9` (repeatable; the value is a
+        /// TOML value: quote strings). Checked as a value in the file is.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
     },
     /// Run a case to its end time, writing VTU frames, a PVD series and a
     /// CSV history.
@@ -45,6 +50,12 @@ enum Command {
         /// cores). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
+        /// Override a value of the case, e.g. `--set solver.end_time=1e-3`
+        /// or `--set materials.0.young=30e9` (repeatable; the value is a
+        /// TOML value: quote strings). Checked as a value in the file is.
+        /// `--resume` needs the same overrides as the run it continues.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
         /// Continue from the latest complete checkpoint in DIR (default:
         /// the output directory), after a signal or a crash; the results
         /// are those of an uninterrupted run. The case must be the one
@@ -55,6 +66,10 @@ enum Command {
         /// checkpoint, the last frame, a non-zero exit status).
         #[arg(long, value_name = "N", hide = true)]
         stop_after_steps: Option<u64>,
+        /// For tests: seconds of wall time between plain progress lines
+        /// (when stderr is not a terminal; default 10).
+        #[arg(long, value_name = "SECONDS", hide = true)]
+        progress_interval: Option<f64>,
         /// Run even if the mesh's estimated memory exceeds what is available.
         #[arg(long)]
         force: bool,
@@ -64,10 +79,12 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Check { case, json, threads } => commands::check::run(&case, json, threads),
-        Command::Run { case, out, threads, resume, stop_after_steps, force } => {
-            commands::memory::refuse_if_too_big(&case, force).and_then(|()| {
-                commands::run::run(&case, commands::run::RunOptions { out, threads, resume, stop_after_steps })
+        Command::Check { case, json, threads, set } => commands::check::run(&case, json, threads, &set),
+        Command::Run { case, out, threads, set, resume, stop_after_steps, progress_interval, force } => {
+            commands::memory::refuse_if_too_big(&case, &set, force).and_then(|()| {
+                let options =
+                    commands::run::RunOptions { out, threads, set, resume, stop_after_steps, progress_interval };
+                commands::run::run(&case, options)
             })
         }
     };

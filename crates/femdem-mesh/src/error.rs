@@ -16,11 +16,24 @@ pub enum MeshError {
     /// The 2D triangulation failed (e.g. a self-intersecting outline).
     #[error("2D triangulation failed: {0}")]
     Triangulation(String),
-    /// A malformed Gmsh MSH file.
+    /// A malformed Gmsh MSH file: an ASCII one, or the text head of a
+    /// binary one (up to the file type in `$MeshFormat`).
     #[error("MSH line {line}: {message}")]
     Msh {
         /// 1-based line number in the file.
         line: usize,
+        /// What is wrong there.
+        message: String,
+    },
+    /// A malformed binary Gmsh MSH file, past its `$MeshFormat` line.
+    #[error("MSH binary file, byte {offset}{}: {message}", in_section(.section))]
+    MshBinary {
+        /// 0-based byte offset in the file of the first problem: the value
+        /// that is wrong, or where the file ends too soon.
+        offset: usize,
+        /// The section it is in (`"Nodes"` for `$Nodes`), empty between
+        /// sections.
+        section: String,
         /// What is wrong there.
         message: String,
     },
@@ -84,4 +97,9 @@ pub enum MeshError {
     /// Arrays of the mesh that disagree with each other.
     #[error("inconsistent mesh: {0}")]
     Inconsistent(String),
+}
+
+/// `" in $Nodes"` for `"Nodes"`, nothing for no section.
+fn in_section(section: &str) -> String {
+    if section.is_empty() { String::new() } else { format!(" in ${section}") }
 }

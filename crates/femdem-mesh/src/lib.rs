@@ -17,7 +17,8 @@
 //! - [`generate`]: the jittered Freudenthal box (`generate_box`), the
 //!   constrained-Delaunay extrusion of a 2D outline with fracture traces
 //!   (`generate_extrusion`), and rigid platens (`generate_platen`).
-//! - [`msh`]: Gmsh MSH 4.1 (ASCII) `read_msh` and `write_msh`.
+//! - [`msh`]: Gmsh MSH 4.1 `read_msh` (ASCII and binary, either byte
+//!   order) and `write_msh` (ASCII).
 //! - [`check`](mod@check): what a mesh must satisfy to be simulated;
 //!   [`stats`](mod@stats) ([`MeshStats`]): counts, edge lengths, quality,
 //!   volumes per region.

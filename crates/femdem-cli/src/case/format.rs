@@ -419,7 +419,7 @@ pub enum PartSpec {
         /// Target element size, m.
         element_size: f64,
     },
-    /// `kind = "msh"`: a Gmsh MSH 4.1 ASCII file.
+    /// `kind = "msh"`: a Gmsh MSH 4.1 file, ASCII or binary.
     Msh {
         /// Part name (default: the file stem).
         name: Option<String>,

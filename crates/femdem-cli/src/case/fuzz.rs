@@ -14,6 +14,12 @@
 //! one-off run of 1500 cases per base found the two bugs kept below as
 //! regression tests (`femdem-mesh` `a_trace_point_outside_the_outline_is_refused`
 //! and [`a_joint_insertion_error_names_the_file`]).
+//!
+//! The same mutations given as `--set key.path=value` to the unmutated
+//! base (a removal cannot be) must be checked as the file's value is: the
+//! case loads with both, or both are refused with the same message, only
+//! its place differing (`--set ARG` for `file:line:col`); 200 cases per
+//! base.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -163,7 +169,7 @@ fn work_dir() -> &'static Path {
 fn load_names_the_file(text: &str, name: &str) -> Result<(), TestCaseError> {
     let path = work_dir().join(name);
     std::fs::write(&path, text).unwrap();
-    if let Err(e) = prepare(&path, None) {
+    if let Err(e) = prepare(&path, None, &[]) {
         let message = format!("{e:#}");
         prop_assert!(
             message.contains(&path.display().to_string()),
@@ -189,6 +195,85 @@ fn mutated(base: &str, edits: &[(prop::sample::Index, Mutation)]) -> String {
     }
 }
 
+/// The key path and the TOML value of `path` in `doc`, as `--set` takes
+/// them.
+fn set_argument(doc: &mut Value, path: &[Step]) -> Option<String> {
+    let keys: Vec<String> = path
+        .iter()
+        .map(|s| match s {
+            Step::Key(k) => k.clone(),
+            Step::Index(i) => i.to_string(),
+        })
+        .collect();
+    let value = get_mut(doc, path)?.to_string();
+    Some(format!("{}={value}", keys.join(".")))
+}
+
+/// The message of an error of case `path`, without its place: the path and
+/// a `:line:col` or a `--set ARG`, without the note naming `--set ARG`,
+/// and with `path` named `CASE` wherever else it appears (with any
+/// `:line:col` after it).
+fn message_of(error: &str, path: &str, set: &str) -> String {
+    let rest = error.strip_prefix(path).unwrap_or(error);
+    let rest = rest.trim_start_matches(|c: char| c == ':' || c.is_ascii_digit()).trim_start();
+    let rest = rest.strip_prefix(&format!("--set {set}: ")).unwrap_or(rest);
+    let rest = rest.split(&format!(" (this table also has --set {set})")).next().unwrap_or(rest);
+    let mut out = String::new();
+    let mut pieces = rest.split(path);
+    out.push_str(pieces.next().unwrap_or_default());
+    for piece in pieces {
+        out.push_str("CASE");
+        out.push_str(piece.trim_start_matches(|c: char| c == ':' || c.is_ascii_digit()));
+    }
+    out
+}
+
+/// One mutation of `base` (named `name`), in the file and as a `--set`
+/// argument to the unmutated base: both load, or both are refused with
+/// the same message.
+fn set_is_checked_as_the_file(
+    base: &str,
+    name: &str,
+    at: prop::sample::Index,
+    m: Mutation,
+) -> Result<(), TestCaseError> {
+    if matches!(m, Mutation::Remove) {
+        return Ok(());
+    }
+    let mut doc = Value::Table(base.parse::<Table>().expect("the base parses"));
+    let mut all = Vec::new();
+    paths(&doc, &mut Vec::new(), &mut all);
+    let path = all[at.index(all.len())].clone();
+    if path.is_empty() {
+        return Ok(());
+    }
+    apply(&mut doc, &path, m);
+    let Some(set) = set_argument(&mut doc, &path) else { return Ok(()) };
+    let text = match &doc {
+        Value::Table(t) => toml::to_string(t).unwrap_or_default(),
+        _ => unreachable!("the root is a table"),
+    };
+    if text.is_empty() {
+        return Ok(());
+    }
+    let in_file = work_dir().join(format!("{name}_file.toml"));
+    let by_set = work_dir().join(format!("{name}_set.toml"));
+    std::fs::write(&in_file, &text).unwrap();
+    std::fs::write(&by_set, base).unwrap();
+    let file_result = prepare(&in_file, None, &[]).map(|_| ()).map_err(|e| format!("{e:#}"));
+    let set_result = prepare(&by_set, None, std::slice::from_ref(&set)).map(|_| ()).map_err(|e| format!("{e:#}"));
+    match (file_result, set_result) {
+        (Ok(()), Ok(())) => {}
+        (Err(f), Err(s)) => {
+            let f_message = message_of(&f, &in_file.display().to_string(), &set);
+            let s_message = message_of(&s, &by_set.display().to_string(), &set);
+            prop_assert_eq!(f_message, s_message, "--set {}\nfile: {}\nset:  {}", set, f, s);
+        }
+        (f, s) => prop_assert!(false, "--set {}: the file gives {:?}, the --set {:?}", set, f, s),
+    }
+    Ok(())
+}
+
 const BOX: &str = include_str!("fuzz/box.toml");
 const EXTRUSION: &str = include_str!("fuzz/extrusion.toml");
 
@@ -197,7 +282,7 @@ fn the_bases_load() {
     for (name, text) in [("base_box.toml", BOX), ("base_extrusion.toml", EXTRUSION)] {
         let path = work_dir().join(name);
         std::fs::write(&path, text).unwrap();
-        let prepared = prepare(&path, None).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let prepared = prepare(&path, None, &[]).unwrap_or_else(|e| panic!("{name}: {e:#}"));
         assert!(prepared.run.is_some(), "{name} must reach the time step, where most checks are");
     }
 }
@@ -211,7 +296,7 @@ fn a_joint_insertion_error_names_the_file() {
     let text = EXTRUSION.replacen("element_size = 0.005", "element_size = 9223372036854775807", 1);
     let path = work_dir().join("joint_insertion.toml");
     std::fs::write(&path, &text).unwrap();
-    let message = format!("{:#}", prepare(&path, None).err().expect("the case is refused"));
+    let message = format!("{:#}", prepare(&path, None, &[]).err().expect("the case is refused"));
     assert!(message.starts_with(&path.display().to_string()), "{message}");
     assert!(message.contains("inserting the joints failed"), "{message}");
 }
@@ -225,10 +310,10 @@ fn a_huge_thread_count_is_refused() {
     let huge = 100_000_000_000_000usize;
     let path = work_dir().join("threads.toml");
     std::fs::write(&path, EXTRUSION.replacen("threads = 1", &format!("threads = {huge}"), 1)).unwrap();
-    let message = format!("{:#}", prepare(&path, None).err().expect("refused"));
+    let message = format!("{:#}", prepare(&path, None, &[]).err().expect("refused"));
     assert!(message.starts_with(&format!("{}:", path.display())), "{message}");
     assert!(message.contains(&format!("threads = {huge} is more than the {MAX_THREADS}")), "{message}");
-    let message = format!("{:#}", prepare(&path, Some(huge)).err().expect("refused"));
+    let message = format!("{:#}", prepare(&path, Some(huge), &[]).err().expect("refused"));
     assert!(message.contains(&format!("--threads {huge} is more than the {MAX_THREADS}")), "{message}");
 }
 
@@ -247,5 +332,19 @@ proptest! {
         edits in prop::collection::vec((any::<prop::sample::Index>(), mutation()), 1..4),
     ) {
         load_names_the_file(&mutated(EXTRUSION, &edits), "extrusion.toml")?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_set_on_the_box_base_is_checked_as_the_file(at in any::<prop::sample::Index>(), m in mutation()) {
+        set_is_checked_as_the_file(BOX, "box", at, m)?;
+    }
+
+    #[test]
+    fn a_set_on_the_extrusion_base_is_checked_as_the_file(at in any::<prop::sample::Index>(), m in mutation()) {
+        set_is_checked_as_the_file(EXTRUSION, "extrusion", at, m)?;
     }
 }

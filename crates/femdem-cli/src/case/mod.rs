@@ -5,6 +5,7 @@ pub mod format;
 #[cfg(test)]
 mod fuzz;
 pub mod mesh;
+pub mod overrides;
 pub mod setup;
 pub mod traces;
 
@@ -12,7 +13,10 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+use serde::Deserialize;
+
 pub use format::{CASE_VERSION, Case};
+pub use overrides::Overrides;
 
 /// An error located in a case file.
 #[derive(Debug)]
@@ -38,18 +42,22 @@ impl std::error::Error for CaseError {}
 
 /// A parsed case with its source, for locating later errors.
 pub struct LoadedCase {
-    /// The case.
+    /// The case, with the `--set` overrides applied.
     pub case: Case,
     /// Where it was read from.
     pub path: PathBuf,
     /// Its text.
     pub source: String,
+    /// The `--set` overrides.
+    pub overrides: Overrides,
 }
 
 impl LoadedCase {
-    /// An error at byte range `span` of the source.
+    /// An error at byte range `span` of the source, or of a `--set`
+    /// argument (see [`Overrides::blame`]), which it then names instead of
+    /// a line.
     pub fn error_at(&self, span: Range<usize>, message: impl Into<String>) -> CaseError {
-        CaseError { path: self.path.clone(), at: Some(line_col(&self.source, span.start)), message: message.into() }
+        located(&self.path, &self.source, &self.overrides, span, message.into())
     }
 
     /// The directory that relative paths in the case are taken from.
@@ -90,23 +98,65 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
     span.start
 }
 
-/// Reads and parses `path`, checking the format version.
+/// An error at byte range `span` of `source` (a line and column of the
+/// file) or of a `--set` argument of `overrides` (named before the
+/// message, with no line).
+fn located(path: &Path, source: &str, overrides: &Overrides, span: Range<usize>, message: String) -> CaseError {
+    match overrides.blame(&span, &message) {
+        Some(arg) => CaseError { path: path.to_path_buf(), at: None, message: format!("--set {arg}: {message}") },
+        None => CaseError {
+            path: path.to_path_buf(),
+            at: Some(line_col(source, span.start)),
+            message: overrides.noted(&span, message),
+        },
+    }
+}
+
+/// Reads and parses `path`, applies the `--set` arguments `sets` (each
+/// `key.path=value`, see [`overrides`]) to the parsed document, and
+/// deserialises it, checking the format version.
 ///
 /// # Errors
-/// A [`CaseError`] for an unreadable file, bad TOML, an unknown key, a
-/// missing key, or an unsupported version.
-pub fn load(path: &Path) -> Result<LoadedCase, CaseError> {
-    let source = std::fs::read_to_string(path).map_err(|e| CaseError {
-        path: path.to_path_buf(),
-        at: None,
-        message: format!("cannot read the case file: {e}"),
+/// A [`CaseError`] for an unreadable file, bad TOML, a malformed `--set`
+/// argument, an unknown key, a missing key, a value of the wrong type, or
+/// an unsupported version; one that comes from a `--set` argument names
+/// it.
+pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
+    let error = |message: String| CaseError { path: path.to_path_buf(), at: None, message };
+    let source = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read the case file: {e}")))?;
+    let mut overrides = Overrides::parse(sets, source.len()).map_err(error)?;
+    let (case, applied) = {
+        let document = toml::de::DeTable::parse(&source).map_err(|e| {
+            let at = e.span().map(|s| line_col(&source, key_offset(&source, s, e.message())));
+            CaseError { path: path.to_path_buf(), at, message: e.message().trim_end().to_string() }
+        })?;
+        let (document, applied) = overrides.apply(document).map_err(error)?;
+        (Case::deserialize(toml::de::Deserializer::from(document)), applied)
+    };
+    overrides.record(applied);
+    let case = case.map_err(|e| {
+        let message = e.message().trim_end().to_string();
+        let Some(s) = e.span() else { return error(message) };
+        if overrides.blame(&s, &message).is_some() {
+            return located(path, &source, &overrides, s, message);
+        }
+        if !overrides.is_empty() {
+            // Serde reports some errors at a table, naming no key: they
+            // are the overrides' if the file alone does not give them.
+            let alone = toml::from_str::<Case>(&source);
+            let same =
+                alone.as_ref().err().is_some_and(|a| a.message().trim_end() == message && a.span() == Some(s.clone()));
+            if !same {
+                let near = overrides.in_table(&s);
+                let args =
+                    if near.is_empty() { overrides.args() } else { near.into_iter().map(String::from).collect() };
+                return error(format!("--set {}: {message}", args.join(" --set ")));
+            }
+        }
+        let at = Some(line_col(&source, key_offset(&source, s.clone(), &message)));
+        CaseError { path: path.to_path_buf(), at, message: overrides.noted(&s, message) }
     })?;
-    let case: Case = toml::from_str(&source).map_err(|e| CaseError {
-        path: path.to_path_buf(),
-        at: e.span().map(|s| line_col(&source, key_offset(&source, s, e.message()))),
-        message: e.message().trim_end().to_string(),
-    })?;
-    let loaded = LoadedCase { case, path: path.to_path_buf(), source };
+    let loaded = LoadedCase { case, path: path.to_path_buf(), source, overrides };
     if *loaded.case.version.get_ref() != CASE_VERSION {
         return Err(loaded.error_at(
             loaded.case.version.span(),

@@ -1,4 +1,5 @@
-//! `femdem check CASE.toml [--json]`: build the mesh with joints and report.
+//! `femdem check CASE.toml [--json] [--set KEY.PATH=VALUE]...`: build the
+//! mesh with joints and report.
 
 use std::path::Path;
 
@@ -29,6 +30,8 @@ struct GroupReport {
 #[derive(Serialize)]
 struct CheckReport {
     case: String,
+    /// The `--set` arguments, as given.
+    overrides: Vec<String>,
     title: String,
     tets: usize,
     nodes: usize,
@@ -68,8 +71,8 @@ struct TimeStepReport {
 }
 
 /// Runs the command.
-pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
-    let prepared = prepare(path, threads)?;
+pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> Result<()> {
+    let prepared = prepare(path, threads, sets)?;
     let (loaded, mesh, jointed) = (&prepared.case, &prepared.mesh, &prepared.jointed);
     let s = stats(mesh);
 
@@ -87,6 +90,7 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
 
     let report = CheckReport {
         case: path.display().to_string(),
+        overrides: loaded.overrides.args(),
         title: loaded.case.title.clone(),
         tets: s.tets,
         nodes: jointed.mesh.num_nodes(),
@@ -135,6 +139,9 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>) -> Result<()> {
 
 fn print_text(r: &CheckReport) {
     println!("case      {}", r.case);
+    for o in &r.overrides {
+        println!("  --set   {o}");
+    }
     if !r.title.is_empty() {
         println!("title     {}", r.title);
     }

@@ -6,7 +6,8 @@
 //! row times, the post-peak watch) and how far the output had got
 //! ([`Marks`]: the byte lengths of `history.csv` and `failures.csv`, the
 //! times of the frames of both `.pvd` series), with the [`Identity`] of the
-//! case that wrote it (hashes of the case text and of the jointed mesh).
+//! case that wrote it (hashes of the case text and of the jointed mesh, and
+//! its `--set` overrides).
 //!
 //! File `checkpoint_{step:012}.femdem-ckpt` in the output directory,
 //! little-endian:
@@ -18,6 +19,9 @@
 //! checksum u64      FNV-1a 64 of the payload
 //! payload           identity, schedule, marks, solver snapshot
 //! ```
+//!
+//! Version 2 added the `--set` overrides to the identity; a version 1 file
+//! (from before `--set`) is read as one written without overrides.
 //!
 //! It is written atomically: to `.checkpoint.tmp` in the same directory,
 //! flushed to disk (`fsync`), then renamed over its name, and the directory
@@ -34,10 +38,13 @@ use anyhow::{Context, Result, bail};
 use femdem_mesh::TetMesh;
 use femdem_solver::snapshot::{Decoder, Encoder};
 
+use crate::case::LoadedCase;
+
 /// The first bytes of every checkpoint file.
 pub const MAGIC: &[u8; 8] = b"FEMDEMCK";
-/// The layout version written; others are refused.
-pub const FORMAT_VERSION: u32 = 1;
+/// The layout version written; others but 1 (read as written without
+/// `--set` overrides) are refused.
+pub const FORMAT_VERSION: u32 = 2;
 /// Checkpoints kept in the output directory (the newest ones).
 pub const KEEP: usize = 2;
 const PREFIX: &str = "checkpoint_";
@@ -78,12 +85,17 @@ pub struct Identity {
     pub case_hash: u64,
     /// FNV-1a of the jointed mesh (coordinates by their bits, tets).
     pub mesh_hash: u64,
+    /// The `--set` overrides, in their canonical form
+    /// ([`crate::case::Overrides::canonical`]: sorted, values as TOML
+    /// writes them).
+    pub overrides: Vec<String>,
 }
 
 impl Identity {
-    /// The identity of case `path` with text `source` and jointed mesh
-    /// `mesh`.
-    pub fn of(path: &Path, source: &str, mesh: &TetMesh) -> Identity {
+    /// The identity of `case` (its file, its text and its `--set`
+    /// overrides) with jointed mesh `mesh`.
+    pub fn of(case: &LoadedCase, mesh: &TetMesh) -> Identity {
+        let (path, source) = (&case.path, &case.source);
         let mut h = Fnv::new();
         for c in &mesh.coords {
             c.iter().for_each(|x| h.write(&x.to_bits().to_le_bytes()));
@@ -92,21 +104,43 @@ impl Identity {
             t.iter().for_each(|n| h.write(&n.to_le_bytes()));
         }
         let case_path = fs::canonicalize(path).unwrap_or_else(|_| path.to_owned()).display().to_string();
-        Identity { case_path, case_hash: fnv1a(source.as_bytes()), mesh_hash: h.0 }
+        let overrides = case.overrides.canonical();
+        Identity { case_path, case_hash: fnv1a(source.as_bytes()), mesh_hash: h.0, overrides }
     }
 
     /// Fails, naming both cases, unless checkpoint `file` (of identity
     /// `self`) belongs to the case of identity `now`.
     pub fn check(&self, now: &Identity, file: &Path) -> Result<()> {
-        let what = match (self.case_hash == now.case_hash, self.mesh_hash == now.mesh_hash) {
-            (true, true) => return Ok(()),
-            (false, true) => "its case text differs",
-            (true, false) => "its mesh differs (an MSH file it reads changed?)",
-            (false, false) => "its case text and mesh differ",
+        let mut what = match (self.case_hash == now.case_hash, self.mesh_hash == now.mesh_hash) {
+            (true, true) => String::new(),
+            (false, true) => "its case text differs".to_owned(),
+            (true, false) => "its mesh differs (an MSH file it reads changed?)".to_owned(),
+            (false, false) => "its case text and mesh differ".to_owned(),
         };
+        if self.overrides != now.overrides {
+            let list = |o: &[String]| {
+                if o.is_empty() {
+                    "none".to_owned()
+                } else {
+                    o.iter().map(|s| format!("--set {s}")).collect::<Vec<_>>().join(" ")
+                }
+            };
+            if !what.is_empty() {
+                what.push_str("; ");
+            }
+            what.push_str(&format!(
+                "its --set overrides differ (the checkpoint's: {}; this run's: {})",
+                list(&self.overrides),
+                list(&now.overrides)
+            ));
+        }
+        if what.is_empty() {
+            return Ok(());
+        }
         bail!(
             "checkpoint {} was written by case {} (text {:016x}, mesh {:016x}), not by {} (text {:016x}, mesh {:016x}): \
-             {what}; resume with the case that wrote it, or run without --resume to start again",
+             {what}; resume with the case that wrote it and its --set arguments, or run without --resume to start \
+             again",
             file.display(),
             self.case_path,
             self.case_hash,
@@ -167,6 +201,10 @@ impl Checkpoint {
         e.bytes(id.case_path.as_bytes());
         e.u64(id.case_hash);
         e.u64(id.mesh_hash);
+        e.u64(id.overrides.len() as u64);
+        for o in &id.overrides {
+            e.bytes(o.as_bytes());
+        }
         let s = &self.schedule;
         e.u64(s.next_step);
         e.f64(s.next_frame);
@@ -198,8 +236,8 @@ impl Checkpoint {
             return Err("not a femdem checkpoint (no magic number)".into());
         }
         let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
-        if version != FORMAT_VERSION {
-            return Err(format!("format version {version}; this femdem reads version {FORMAT_VERSION}"));
+        if version != FORMAT_VERSION && version != 1 {
+            return Err(format!("format version {version}; this femdem reads versions 1 and {FORMAT_VERSION}"));
         }
         let length = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
         let checksum = u64::from_le_bytes(bytes[20..28].try_into().expect("8 bytes"));
@@ -212,7 +250,14 @@ impl Checkpoint {
         }
         let read = |d: &mut Decoder<'_>| -> Result<Checkpoint, femdem_solver::SolverError> {
             let case_path = String::from_utf8_lossy(d.bytes()?).into_owned();
-            let identity = Identity { case_path, case_hash: d.u64()?, mesh_hash: d.u64()? };
+            let (case_hash, mesh_hash) = (d.u64()?, d.u64()?);
+            let mut overrides = Vec::new();
+            if version >= 2 {
+                for _ in 0..d.count()? {
+                    overrides.push(String::from_utf8_lossy(d.bytes()?).into_owned());
+                }
+            }
+            let identity = Identity { case_path, case_hash, mesh_hash, overrides };
             let (next_step, next_frame, next_row, ended_past_peak) = (d.u64()?, d.f64()?, d.f64()?, d.bool()?);
             let has_peak = d.bool()?;
             let peak = (d.f64()?, d.f64()?);
@@ -323,7 +368,12 @@ mod tests {
 
     fn sample() -> Checkpoint {
         Checkpoint {
-            identity: Identity { case_path: "a.toml".into(), case_hash: 1, mesh_hash: 2 },
+            identity: Identity {
+                case_path: "a.toml".into(),
+                case_hash: 1,
+                mesh_hash: 2,
+                overrides: vec!["solver.end_time=0.001".into()],
+            },
             schedule: Schedule {
                 next_step: 7,
                 next_frame: 0.1 + 0.2,
@@ -349,6 +399,29 @@ mod tests {
             bad[at] ^= 0x10;
             assert!(Checkpoint::from_bytes(&bad).is_err(), "flipped byte {at}");
         }
+    }
+
+    /// A checkpoint from before `--set` (format version 1: no overrides
+    /// in the identity) is read as one written without overrides.
+    #[test]
+    fn a_version_1_checkpoint_reads_as_one_without_overrides() {
+        let mut c = sample();
+        c.identity.overrides.clear();
+        let v2 = c.to_bytes();
+        // Version 1's payload lacks the overrides' count (a u64 0) after
+        // the case path (u64 length and bytes) and the two hashes.
+        let count_at = HEADER + 8 + c.identity.case_path.len() + 16;
+        let mut payload = v2[HEADER..].to_vec();
+        assert_eq!(payload.drain(count_at - HEADER..count_at - HEADER + 8).collect::<Vec<_>>(), [0; 8]);
+        let mut v1 = MAGIC.to_vec();
+        v1.extend_from_slice(&1u32.to_le_bytes());
+        v1.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        v1.extend_from_slice(&fnv1a(&payload).to_le_bytes());
+        v1.extend_from_slice(&payload);
+        assert_eq!(Checkpoint::from_bytes(&v1).unwrap(), c);
+        let mut v3 = v2.clone();
+        v3[8..12].copy_from_slice(&3u32.to_le_bytes());
+        assert!(Checkpoint::from_bytes(&v3).unwrap_err().contains("format version 3"));
     }
 
     #[test]

@@ -215,14 +215,15 @@ pub fn refusal(path: &Path, estimate: &Estimate, available: f64) -> Option<Strin
     })
 }
 
-/// Before `femdem run` builds anything: refuses a case whose estimate
-/// exceeds the available memory, unless `force`. A case that does not load
-/// or cannot be sized is left to the run, which reports why.
-pub fn refuse_if_too_big(path: &Path, force: bool) -> Result<()> {
+/// Before `femdem run` builds anything: refuses a case (with its `--set`
+/// arguments `sets`) whose estimate exceeds the available memory, unless
+/// `force`. A case that does not load or cannot be sized is left to the
+/// run, which reports why.
+pub fn refuse_if_too_big(path: &Path, sets: &[String], force: bool) -> Result<()> {
     if force {
         return Ok(());
     }
-    let (Ok(loaded), Some(available)) = (case::load(path), available_memory()) else {
+    let (Ok(loaded), Some(available)) = (case::load(path, sets), available_memory()) else {
         return Ok(());
     };
     if let Some(message) = estimate(&loaded).and_then(|e| refusal(path, &e, available)) {
@@ -249,7 +250,7 @@ mod tests {
             [("tests/cases/small_brazilian.toml", 0.1, 0.15), ("tests/cases/bad/crushed_cube.toml", 0.0, 0.0)]
         {
             let path = root.join(file);
-            let loaded = case::load(&path).unwrap();
+            let loaded = case::load(&path, &[]).unwrap();
             let e = estimate(&loaded).expect("the case can be sized");
             let mesh = case::mesh::build_mesh(&loaded).unwrap();
             let jointed = femdem_mesh::insert_joints(&mesh).unwrap();

@@ -47,12 +47,13 @@ pub struct Runnable {
     pub load_strain: Option<case::setup::LoadStrain>,
 }
 
-/// Loads the case, builds the mesh and joints, and, if the case has a
-/// `[solver]`, the model, the loads and the time step. `threads` (the
-/// command line's `--threads`) overrides `[solver] threads`; either is set
-/// before any parallel work, meshing included.
-pub fn prepare(path: &std::path::Path, threads: Option<usize>) -> Result<Prepared> {
-    let loaded = case::load(path)?;
+/// Loads the case with the command line's `--set` arguments `sets`
+/// applied, builds the mesh and joints, and, if the case has a `[solver]`,
+/// the model, the loads and the time step. `threads` (the command line's
+/// `--threads`) overrides `[solver] threads`; either is set before any
+/// parallel work, meshing included.
+pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) -> Result<Prepared> {
+    let loaded = case::load(path, sets)?;
     let from_case = loaded.case.solver.as_ref().and_then(|s| s.get_ref().threads.map(|n| (n, s.span())));
     match (threads, from_case) {
         (Some(0), _) => bail!("--threads must be ≥ 1"),

@@ -1,4 +1,7 @@
 //! Progress reporting: a bar on a terminal, periodic plain lines otherwise.
+//! Both show the steps, the simulated time, the joints failed so far, the
+//! load `F` of Eq. 21 where `[output.load_strain]` defines it, and the
+//! element-steps per second.
 
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
@@ -8,11 +11,36 @@ use indicatif::{ProgressBar, ProgressStyle};
 /// Seconds between plain progress lines when stderr is not a terminal.
 const PLAIN_INTERVAL: Duration = Duration::from_secs(10);
 
-/// Reports steps, simulated time, element-steps per second and ETA.
+/// The state of the model a progress report shows, besides steps and
+/// time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Status {
+    /// Joints failed so far.
+    pub failed_joints: usize,
+    /// The load `F` of Eq. 21 at the last step, N, with `[output.load_strain]`.
+    pub load: Option<f64>,
+}
+
+impl Status {
+    /// `"12 joints failed  load 2.512e3 N"`.
+    fn text(&self) -> String {
+        let joints = if self.failed_joints == 1 { "joint" } else { "joints" };
+        let mut s = format!("{} {joints} failed", self.failed_joints);
+        if let Some(load) = self.load {
+            s.push_str(&format!("  load {load:.4e} N"));
+        }
+        s
+    }
+}
+
+/// Reports steps, simulated time, failures, load, element-steps per
+/// second and ETA.
 pub struct Progress {
     bar: Option<ProgressBar>,
     start: Instant,
     last_line: Instant,
+    /// Time between plain lines.
+    interval: Duration,
     total: u64,
     elements: u64,
     /// The step this run started from (not 0 after `--resume`).
@@ -32,7 +60,7 @@ impl Progress {
             b
         });
         let now = Instant::now();
-        Progress { bar, start: now, last_line: now, total, elements, first: 0 }
+        Progress { bar, start: now, last_line: now, interval: PLAIN_INTERVAL, total, elements, first: 0 }
     }
 
     /// The same reporter for a run that starts at step `first` (a resumed
@@ -41,28 +69,31 @@ impl Progress {
         Progress { first, ..self }
     }
 
+    /// The same reporter writing a plain line every `interval` (instead of
+    /// every 10 s) when stderr is not a terminal.
+    pub fn every(self, interval: Duration) -> Progress {
+        Progress { interval, ..self }
+    }
+
     /// Element-steps per second so far, `steps` being the steps done
     /// since step 0.
     pub fn throughput(&self, steps: u64) -> f64 {
         steps.saturating_sub(self.first) as f64 * self.elements as f64 / self.start.elapsed().as_secs_f64().max(1e-9)
     }
 
-    /// Reports that `steps` steps are done at simulated time `time`.
-    pub fn update(&mut self, steps: u64, time: f64) {
+    /// Reports that `steps` steps are done at simulated time `time`;
+    /// `status` is asked for only when a report is due.
+    pub fn update(&mut self, steps: u64, time: f64, status: impl FnOnce() -> Status) {
         if let Some(b) = &self.bar {
             if steps % 64 == 0 || steps == self.total {
                 b.set_position(steps);
-                b.set_message(format!("{time:.4e} s  {:.2e} el-steps/s", self.throughput(steps)));
+                b.set_message(format!("{time:.4e} s  {}  {:.2e} el-steps/s", status().text(), self.throughput(steps)));
             }
-        } else if self.last_line.elapsed() >= PLAIN_INTERVAL {
+        } else if self.last_line.elapsed() >= self.interval {
             self.last_line = Instant::now();
             let rate = steps.saturating_sub(self.first) as f64 / self.start.elapsed().as_secs_f64().max(1e-9);
             let eta = (self.total - steps) as f64 / rate.max(1e-9);
-            eprintln!(
-                "step {steps}/{}  t = {time:.4e} s  {:.3e} element-steps/s  eta {eta:.0} s",
-                self.total,
-                self.throughput(steps)
-            );
+            eprintln!("{}", plain_line(steps, self.total, time, &status(), self.throughput(steps), eta));
         }
     }
 
@@ -76,5 +107,32 @@ impl Progress {
     /// Wall time since the start.
     pub fn elapsed(&self) -> Duration {
         self.start.elapsed()
+    }
+}
+
+/// One plain progress line.
+fn plain_line(steps: u64, total: u64, time: f64, status: &Status, throughput: f64, eta: f64) -> String {
+    format!(
+        "step {steps}/{total}  t = {time:.4e} s  {}  {throughput:.3e} element-steps/s  eta {eta:.0} s",
+        status.text()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_plain_line_carries_the_failed_joints_and_the_load_where_defined() {
+        let with_load = Status { failed_joints: 12, load: Some(2512.3) };
+        assert_eq!(
+            plain_line(100, 200, 1.5e-5, &with_load, 1.2e6, 3.0),
+            "step 100/200  t = 1.5000e-5 s  12 joints failed  load 2.5123e3 N  1.200e6 element-steps/s  eta 3 s"
+        );
+        let without = Status { failed_joints: 1, load: None };
+        assert_eq!(
+            plain_line(5, 10, 0.0, &without, 0.0, 0.0),
+            "step 5/10  t = 0.0000e0 s  1 joint failed  0.000e0 element-steps/s  eta 0 s"
+        );
     }
 }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
 use femdem_solver::{Solver, Want};
@@ -15,7 +15,7 @@ use femdem_solver::{Solver, Want};
 use super::checkpoint::{self, Checkpoint, Identity, Schedule};
 use super::output::Output;
 use super::prepare::prepare;
-use super::progress::Progress;
+use super::progress::{Progress, Status};
 use crate::case::setup::LoadStrain;
 
 /// What `femdem run` was asked for, beyond the case file.
@@ -25,18 +25,23 @@ pub struct RunOptions {
     pub out: Option<PathBuf>,
     /// `--threads`.
     pub threads: Option<usize>,
+    /// `--set key.path=value` arguments.
+    pub set: Vec<String>,
     /// `--resume [DIR]`: continue from the latest complete checkpoint in
     /// `DIR` (`Some(None)`: in the usual output directory).
     pub resume: Option<Option<PathBuf>>,
     /// `--stop-after-steps N` (for tests): stop as a signal would once `N`
     /// steps are done, writing a checkpoint.
     pub stop_after_steps: Option<u64>,
+    /// `--progress-interval SECONDS` (for tests): wall time between plain
+    /// progress lines (default 10 s).
+    pub progress_interval: Option<f64>,
 }
 
 /// Runs the command.
 pub fn run(path: &Path, options: RunOptions) -> Result<()> {
-    let RunOptions { out, threads, resume, stop_after_steps } = options;
-    let prepared = prepare(path, threads)?;
+    let RunOptions { out, threads, set, resume, stop_after_steps, progress_interval } = options;
+    let prepared = prepare(path, threads, &set)?;
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
     };
@@ -54,7 +59,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     let (interval, history_interval) = (spec.interval, spec.history_interval);
     let written = (spec.fields, spec.compression);
     let checkpoints = spec.checkpoint;
-    let identity = Identity::of(&prepared.case.path, &prepared.case.source, &prepared.jointed.mesh);
+    let identity = Identity::of(&prepared.case, &prepared.jointed.mesh);
     let solver = &mut run.solver;
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
@@ -92,6 +97,9 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     }
 
     let elements = solver.model.num_deformable_tets() as u64;
+    if !prepared.case.overrides.is_empty() {
+        eprintln!("femdem: with --set {}", prepared.case.overrides.args().join(" --set "));
+    }
     eprintln!(
         "femdem: {} tets ({} deformable), {} joints, {} nodes; dt = {:.4e} s ({:.2} of the critical {:.4e} s), {} steps",
         solver.model.tets.len(),
@@ -105,6 +113,9 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     );
     let first = schedule.next_step;
     let mut progress = Progress::new(run.steps, elements).starting_at(first);
+    if let Some(seconds) = progress_interval {
+        progress = progress.every(Duration::from_secs_f64(seconds.max(0.0)));
+    }
     let dt = solver.dt();
     let Schedule { mut next_frame, mut next_row, mut ended_past_peak, .. } = schedule;
     let mut interrupted = false;
@@ -149,7 +160,13 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
                 output.pvd().display()
             );
         }
-        progress.update(n + 1, solver.state.time);
+        progress.update(n + 1, solver.state.time, || Status {
+            failed_joints: solver.failures().len(),
+            load: run.load_strain.map(|ls| {
+                let r = solver.record();
+                ls.evaluate(&r.drive_forces, &r.drive_displacements).0
+            }),
+        });
         if ended_past_peak {
             break;
         }
@@ -192,9 +209,10 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     if interrupted {
         bail!(
             "interrupted by a signal (Ctrl-C, SIGTERM or SIGHUP); the state at t = {:.6e} s was written, and a \
-             checkpoint to continue from: femdem run {} --resume {}",
+             checkpoint to continue from: femdem run {}{} --resume {}",
             solver.state.time,
             path.display(),
+            prepared.case.overrides.args().iter().map(|a| format!(" --set '{a}'")).collect::<String>(),
             dir.display()
         );
     }

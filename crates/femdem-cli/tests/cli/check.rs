@@ -97,6 +97,54 @@ fn gmsh_case_joints_the_breakable_matrix_and_its_interface() {
     assert_eq!(r["joints"].as_u64().unwrap(), r["interior_faces"].as_u64().unwrap() + 66);
 }
 
+/// The Gmsh fixture's binary twin (the part's path set by `--set`) gives
+/// the mesh the ASCII file gives: the same counts, and volumes to the
+/// rounding of the ASCII file's 16-digit coordinates.
+#[test]
+fn gmsh_case_reads_the_binary_twin_alike() {
+    let case = "crates/femdem-cli/tests/cases/gmsh_inclusion.toml";
+    let ascii = check_json(case);
+    let set = "mesh.parts.0.path=\"../../../femdem-mesh/tests/data/gmsh_two_volumes_binary.msh\"";
+    let out = femdem(&["check", case, "--json", "--set", set]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let binary: Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["tets", "nodes", "vertices", "joints", "interface_joints", "interior_faces"] {
+        assert_eq!(binary[key], ascii[key], "{key}");
+    }
+    for name in ["matrix", "inclusion"] {
+        let (a, b) = (region(&ascii, name), region(&binary, name));
+        assert_eq!(a["tets"], b["tets"]);
+        let (va, vb) = (a["volume"].as_f64().unwrap(), b["volume"].as_f64().unwrap());
+        assert!((va - vb).abs() <= 1e-12 * va, "{name}: volume {va} vs {vb}");
+    }
+    // The groups are named after the part, whose name is the file stem.
+    let faces = |r: &Value| -> Vec<(String, u64)> {
+        let groups = r["boundary_groups"].as_array().unwrap();
+        let suffix = |g: &Value| g["name"].as_str().unwrap().rsplit('.').next().unwrap().to_owned();
+        groups.iter().map(|g| (suffix(g), g["faces"].as_u64().unwrap())).collect()
+    };
+    assert_eq!(faces(&binary), faces(&ascii));
+}
+
+/// A truncated binary MSH file is refused naming the file, the section and
+/// the byte.
+#[test]
+fn a_truncated_binary_msh_names_the_file_and_section() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("truncated-binary-msh");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bytes = std::fs::read(root().join("crates/femdem-mesh/tests/data/gmsh_two_volumes_binary.msh")).unwrap();
+    let cut = dir.join("cut.msh");
+    std::fs::write(&cut, &bytes[..bytes.len() / 4]).unwrap();
+    let set = format!("mesh.parts.0.path={:?}", cut.to_str().unwrap());
+    let out = femdem(&["check", "crates/femdem-cli/tests/cases/gmsh_inclusion.toml", "--set", &set]);
+    assert!(!out.status.success());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("cut.msh: MSH binary file, byte") && err.contains("in $Nodes: file ends inside $Nodes"),
+        "{err}"
+    );
+}
+
 #[test]
 fn traces_become_initial_contact_faces() {
     let r = check_json("crates/femdem-cli/tests/cases/traces.toml");

@@ -3,5 +3,7 @@
 
 mod check;
 mod memory;
+mod overrides;
+mod progress;
 mod resume;
 mod run;

@@ -1,4 +1,4 @@
-//! Gmsh MSH 4.1 import and export (ASCII only).
+//! Gmsh MSH 4.1 import (ASCII and binary) and export (ASCII).
 //!
 //! [`read_msh`] turns a Gmsh mesh into a [`TetMesh`](crate::TetMesh):
 //!
@@ -26,13 +26,31 @@
 //! names, and all its regions breakable: MSH stores neither the breakable
 //! flag nor [`TetMesh::fracture_faces`](crate::TetMesh::fracture_faces).
 //!
-//! Binary MSH and versions other than 4.1 are refused with a message that
-//! names the Gmsh option to change (`Mesh.Binary = 0`,
-//! `Mesh.MshFileVersion = 4.1`). Partitioned meshes are not supported.
+//! Binary files (`Mesh.Binary = 1`) are read as Gmsh writes them: in the
+//! byte order of the machine that wrote them (the `int` 1 after the
+//! `$MeshFormat` line says which), `size_t` values of the header's data
+//! size (4 or 8 bytes); they give the same mesh as the ASCII file of the
+//! same mesh, save that the ASCII file rounds coordinates to the 16 digits
+//! Gmsh prints. In a binary file, elements of a type that
+//! [`element_type_name`] does not know cannot be skipped (their node count
+//! is unknown) and are refused. Errors in a binary file name the byte
+//! offset and the section ([`MeshError::MshBinary`](crate::MeshError::MshBinary)).
+//! Versions other than 4.1 are refused with a message that names the Gmsh
+//! option to change (`Mesh.MshFileVersion = 4.1`). Partitioned meshes are
+//! not supported.
+//!
+//! Reading is split by concept: `lex.rs` (the ASCII tokenizer: lines and
+//! fields), `binary.rs` (the binary tokenizer: raw `int`, `size_t` and
+//! `double` in the file's byte order), `source.rs` (the interface both give
+//! the section parsers), `read.rs` (`$MeshFormat`, then the section
+//! parsers, written once for both encodings) and `read/assemble.rs` (the
+//! mesh from what was read).
 
+mod binary;
 mod lex;
 mod read;
 mod report;
+mod source;
 mod write;
 
 pub use read::{read_msh, read_msh_report};

@@ -1,18 +1,22 @@
-//! The ASCII MSH 4.1 reader.
+//! The MSH 4.1 reader, ASCII and binary.
 //!
-//! The file is read line by line: Gmsh writes one record per line, so a
-//! record with too few or too many fields is reported on its own line
-//! instead of shifting every later record. Counts given by headers are
-//! checked against what follows, but never trusted for allocation.
+//! `$MeshFormat` says which: [`read_msh_report`] reads it as text, then
+//! hands the rest of the file to the section parsers below through a
+//! [`Source`] — [`Ascii`], line by line (Gmsh writes one record per line,
+//! so a record with too few or too many fields is reported on its own line
+//! instead of shifting every later record), or [`Binary`], value by value
+//! in the file's byte order. Counts given by headers are checked against
+//! what follows, but never trusted for allocation.
 
 use std::collections::hash_map::Entry;
 use std::collections::{BTreeSet, HashMap};
 
 mod assemble;
 
-use super::lex::{Fields, Lines, err_at};
+use super::binary::{Binary, Endian};
+use super::lex::{Ascii, Fields, Lines};
 use super::report::MshReport;
-use super::report::element_type_nodes;
+use super::source::{At, Source};
 use crate::{MeshError, TetMesh};
 
 /// Gmsh element type of the 3-node triangle.
@@ -22,13 +26,16 @@ const TET: u32 = 4;
 /// Name of the region that takes tets of volumes in no physical group.
 const UNNAMED: &str = "unnamed";
 
-/// Reads an ASCII Gmsh MSH 4.1 file; see the [module docs](super) for what
-/// is kept. Use [`read_msh_report`] to also learn what was skipped.
+/// Reads a Gmsh MSH 4.1 file, ASCII or binary (either byte order); see the
+/// [module docs](super) for what is kept. Use [`read_msh_report`] to also
+/// learn what was skipped.
 ///
 /// # Errors
-/// [`MeshError::Msh`] with the 1-based line of the first problem, for any
-/// malformed input, a binary file, a version other than 4.1, or a file with
-/// no 4-node tets.
+/// For any malformed input, a version other than 4.1, or a file with no
+/// 4-node tets: [`MeshError::Msh`] with the 1-based line of the first
+/// problem in an ASCII file (and in the `$MeshFormat` line of any file);
+/// [`MeshError::MshBinary`] with its byte offset and section in a binary
+/// one.
 pub fn read_msh(bytes: &[u8]) -> Result<TetMesh, MeshError> {
     read_msh_report(bytes).map(|(mesh, _)| mesh)
 }
@@ -39,7 +46,74 @@ pub fn read_msh(bytes: &[u8]) -> Result<TetMesh, MeshError> {
 /// # Errors
 /// As [`read_msh`].
 pub fn read_msh_report(bytes: &[u8]) -> Result<(TetMesh, MshReport), MeshError> {
-    Reader::new(bytes).read()
+    let mut lines = Lines::new(bytes);
+    match mesh_format(&mut lines)? {
+        None => Reader::new(Ascii::new(lines), bytes.len()).read(),
+        Some((endian, size_t)) => Reader::new(Binary::new(lines, endian, size_t), bytes.len()).read(),
+    }
+}
+
+/// Reads the `$MeshFormat` header and its line `version file-type
+/// data-size`, and in a binary file the `int` 1 after it; stops before
+/// `$EndMeshFormat`. Returns the byte order and the size of a `size_t` of
+/// a binary file, `None` for an ASCII one.
+fn mesh_format(lines: &mut Lines<'_>) -> Result<Option<(Endian, usize)>, MeshError> {
+    const S: &str = "MeshFormat";
+    let header = loop {
+        match lines.next_line("")? {
+            None => return Err(lines.err("", "empty file: no $MeshFormat section")),
+            Some(l) if l.trim().is_empty() => {}
+            Some(l) => break l.trim(),
+        }
+    };
+    if header != "$MeshFormat" {
+        return Err(
+            lines.err("", format!("expected $MeshFormat first, found `{}` (not a Gmsh MSH file?)", shown(header)))
+        );
+    }
+    let mut f = lines.record(S, || "`version file-type data-size`".into())?;
+    let version = f.token("version")?;
+    if version != "4.1" {
+        return Err(f.err(format!(
+            "MSH version {version} is not supported: femdem reads MSH 4.1 \
+             (in Gmsh, save with `Mesh.MshFileVersion = 4.1`)"
+        )));
+    }
+    let file_type = f.count("file type")?;
+    if file_type > 1 {
+        return Err(f.err(format!("bad file type {file_type}: expected 0 (ASCII) or 1 (binary)")));
+    }
+    let data_size = f.count("data size")?;
+    f.end("the data size")?;
+    if file_type == 0 {
+        return Ok(None);
+    }
+    if data_size != 4 && data_size != 8 {
+        return Err(f.err(format!(
+            "bad data size {data_size} for a binary file: expected 4 or 8 (the bytes of a `size_t` on the \
+             machine that wrote it)"
+        )));
+    }
+    let at = At::Byte(lines.offset());
+    let one = lines.take(4).ok_or_else(|| {
+        at.err(S, "file ends inside $MeshFormat: expected the binary integer 1 that gives the byte order")
+    })?;
+    let one: [u8; 4] = one.try_into().expect("4 bytes");
+    let endian = Endian::of_one(one).ok_or_else(|| {
+        at.err(
+            S,
+            format!(
+                "expected the binary integer 1 that gives the byte order, found the bytes {one:02x?} \
+                 (is this an ASCII file with file type 1?)"
+            ),
+        )
+    })?;
+    Ok(Some((endian, data_size)))
+}
+
+/// At most 60 characters of `s`, escaped: a header in a message.
+fn shown(s: &str) -> String {
+    s.chars().take(60).collect::<String>().escape_debug().to_string()
 }
 
 /// Node tag → index into the file's node list.
@@ -88,15 +162,15 @@ impl TagMap {
 }
 
 /// A triangle waiting for the tets: file node indices, its surface entity,
-/// and its line.
+/// and where it is.
 struct RawTriangle {
     nodes: [u32; 3],
     entity: i32,
-    line: usize,
+    at: At,
 }
 
-struct Reader<'a> {
-    lines: Lines<'a>,
+struct Reader<S> {
+    src: S,
     /// Bound on any count worth allocating for: the file's size.
     file_len: usize,
     report: MshReport,
@@ -107,33 +181,33 @@ struct Reader<'a> {
     /// Surface entity → physical tags.
     surfaces: HashMap<i32, Vec<i32>>,
     coords: Vec<[f64; 3]>,
-    /// Line of each node's coordinates.
-    coord_lines: Vec<usize>,
+    /// Where each node's coordinates are.
+    coord_at: Vec<At>,
     tags: Option<TagMap>,
     /// Tets in file node indices, with the physical tag of their volume.
     tets: Vec<[u32; 4]>,
     tet_phys: Vec<Option<i32>>,
     triangles: Vec<RawTriangle>,
-    /// Line of the `$Elements` header, once read.
-    elements_line: Option<usize>,
+    /// Where the `$Elements` header is, once read.
+    elements_at: Option<At>,
 }
 
-impl<'a> Reader<'a> {
-    fn new(bytes: &'a [u8]) -> Self {
+impl<'a, S: Source<'a>> Reader<S> {
+    fn new(src: S, file_len: usize) -> Self {
         Reader {
-            lines: Lines { rest: bytes, line: 0 },
-            file_len: bytes.len(),
+            src,
+            file_len,
             report: MshReport::default(),
             names: HashMap::new(),
             volumes: None,
             surfaces: HashMap::new(),
             coords: Vec::new(),
-            coord_lines: Vec::new(),
+            coord_at: Vec::new(),
             tags: None,
             tets: Vec::new(),
             tet_phys: Vec::new(),
             triangles: Vec::new(),
-            elements_line: None,
+            elements_at: None,
         }
     }
 
@@ -143,105 +217,61 @@ impl<'a> Reader<'a> {
         n.min(self.file_len / 2)
     }
 
+    /// Reads the sections after `$MeshFormat`'s line, from its `$End`.
     fn read(mut self) -> Result<(TetMesh, MshReport), MeshError> {
-        let mut seen_format = false;
-        let mut seen = BTreeSet::new();
-        while let Some(line) = self.lines.next_line()? {
+        self.src.end_of("MeshFormat")?;
+        let mut seen = BTreeSet::from(["MeshFormat".to_owned()]);
+        while let Some(line) = self.src.lines().next_line("")? {
             let header = line.trim();
             if header.is_empty() {
                 continue;
             }
+            let at = self.src.lines().at();
             let Some(name) = header.strip_prefix('$') else {
-                return Err(self.lines.err(format!("expected a section header such as $Nodes, found `{header}`")));
+                return Err(at.err("", format!("expected a section header such as $Nodes, found `{}`", shown(header))));
             };
             if name.starts_with("End") {
-                return Err(self.lines.err(format!("`{header}` closes no open section")));
-            }
-            if !seen_format && name != "MeshFormat" {
-                return Err(self
-                    .lines
-                    .err(format!("expected $MeshFormat first, found `{header}` (not a Gmsh MSH file?)")));
+                return Err(at.err("", format!("`{}` closes no open section", shown(header))));
             }
             let known = matches!(name, "MeshFormat" | "PhysicalNames" | "Entities" | "Nodes" | "Elements");
             if known && !seen.insert(name.to_owned()) {
-                return Err(self.lines.err(format!("second ${name} section")));
+                return Err(at.err(name, format!("second ${name} section")));
             }
             match name {
-                "MeshFormat" => {
-                    self.mesh_format()?;
-                    seen_format = true;
-                }
                 "PhysicalNames" => self.physical_names()?,
                 "Entities" => {
-                    if self.elements_line.is_some() {
-                        return Err(self.lines.err("$Entities must come before $Elements"));
+                    if self.elements_at.is_some() {
+                        return Err(at.err(name, "$Entities must come before $Elements"));
                     }
                     self.entities()?;
                 }
                 "Nodes" => self.nodes()?,
                 "Elements" => self.elements()?,
                 "PartitionedEntities" => {
-                    return Err(self.lines.err("partitioned meshes are not supported: save without partitions"));
+                    return Err(at.err(name, "partitioned meshes are not supported: save without partitions"));
                 }
-                _ => self.skip_section(name)?,
+                _ => self.src.lines().skip_section(name, at)?,
             }
         }
-        if !seen_format {
-            return Err(self.lines.err("empty file: no $MeshFormat section"));
-        }
-        if self.elements_line.is_none() {
-            return Err(self.lines.err("file ends without an $Elements section"));
+        if self.elements_at.is_none() {
+            return Err(self.src.lines().err("", "file ends without an $Elements section"));
         }
         self.assemble()
     }
 
-    fn skip_section(&mut self, name: &str) -> Result<(), MeshError> {
-        let start = self.lines.line;
-        let end = format!("$End{name}");
-        while let Some(l) = self.lines.next_line()? {
-            if l.trim() == end {
-                return Ok(());
-            }
-        }
-        Err(err_at(start, format!("section ${name} is never closed by {end}")))
-    }
-
-    fn mesh_format(&mut self) -> Result<(), MeshError> {
-        let mut f = self.lines.record("MeshFormat", || "`version file-type data-size`".into())?;
-        let version = f.token("version")?;
-        if version != "4.1" {
-            return Err(f.err(format!(
-                "MSH version {version} is not supported: femdem reads MSH 4.1 \
-                 (in Gmsh, save with `Mesh.MshFileVersion = 4.1`)"
-            )));
-        }
-        let file_type = f.count("file type")?;
-        match file_type {
-            0 => {}
-            1 => {
-                return Err(f.err(
-                    "binary MSH files are not supported: save as ASCII \
-                     (in Gmsh, `Mesh.Binary = 0`)",
-                ));
-            }
-            other => return Err(f.err(format!("bad file type {other}: expected 0 (ASCII)"))),
-        }
-        f.count("data size")?;
-        f.end("the data size")?;
-        self.lines.end_of("MeshFormat")
-    }
-
+    /// `$PhysicalNames`: text in both encodings.
     fn physical_names(&mut self) -> Result<(), MeshError> {
         const S: &str = "PhysicalNames";
-        let mut f = self.lines.record(S, || "the number of physical names".into())?;
+        let lines = self.src.lines();
+        let mut f = lines.record(S, || "the number of physical names".into())?;
         let n = f.count("number of physical names")?;
         f.end("the number of physical names")?;
         for i in 0..n {
-            let f = self.lines.record(S, || format!("physical name {} of {n}", i + 1))?;
+            let f = lines.record(S, || format!("physical name {} of {n}", i + 1))?;
             // `dim tag "name"`; the name may hold any run of spaces.
             let raw = f.raw;
             let (head, quoted) = raw.split_at(raw.find('"').unwrap_or(raw.len()));
-            let mut h = Fields { raw: head, it: head.split_ascii_whitespace(), line: f.line };
+            let mut h = Fields { raw: head, it: head.split_ascii_whitespace(), at: f.at, section: S };
             let dim = h.int("dimension")?;
             let tag = h.int("physical tag")?;
             h.end("the physical tag")?;
@@ -255,43 +285,44 @@ impl<'a> Reader<'a> {
             }
             self.names.insert((dim, tag), name.to_owned());
         }
-        self.lines.end_of(S)
+        lines.end_of(S)
     }
 
     fn entities(&mut self) -> Result<(), MeshError> {
         const S: &str = "Entities";
-        let mut f = self.lines.record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
+        let src = &mut self.src;
+        src.record(S, || "`numPoints numCurves numSurfaces numVolumes`".into())?;
         let mut counts = [0usize; 4];
         for (c, name) in counts.iter_mut().zip(["points", "curves", "surfaces", "volumes"]) {
-            *c = f.count(&format!("number of {name}"))?;
+            *c = src.count(&format!("number of {name}"))?;
         }
-        f.end("the number of volumes")?;
+        src.end("the number of volumes")?;
         let mut volumes = HashMap::new();
         for (dim, &n) in counts.iter().enumerate() {
             let kind = ["point", "curve", "surface", "volume"][dim];
             let mut tags_seen = BTreeSet::new();
             for i in 0..n {
-                let mut f = self.lines.record(S, || format!("{kind} entity {} of {n}", i + 1))?;
-                let tag = f.int(&format!("{kind} tag"))?;
+                src.record(S, || format!("{kind} entity {} of {n}", i + 1))?;
+                let tag = src.int(&format!("{kind} tag"))?;
                 if !tags_seen.insert(tag) {
-                    return Err(f.err(format!("{kind} entity {tag} listed twice")));
+                    return Err(src.err(format!("{kind} entity {tag} listed twice")));
                 }
                 let n_coords = if dim == 0 { 3 } else { 6 };
                 for _ in 0..n_coords {
-                    f.real("bounding-box coordinate")?;
+                    src.real("bounding-box coordinate")?;
                 }
-                let n_phys = f.count("number of physical tags")?;
+                let n_phys = src.count("number of physical tags")?;
                 let mut phys = Vec::with_capacity(n_phys.min(16));
                 for _ in 0..n_phys {
-                    phys.push(f.int("physical tag")?);
+                    phys.push(src.int("physical tag")?);
                 }
                 if dim > 0 {
-                    let n_bound = f.count("number of bounding entities")?;
+                    let n_bound = src.count("number of bounding entities")?;
                     for _ in 0..n_bound {
-                        f.int("bounding entity tag")?;
+                        src.int("bounding entity tag")?;
                     }
                 }
-                f.end(&format!("the {kind} entity"))?;
+                src.end(&format!("the {kind} entity"))?;
                 match dim {
                     2 => {
                         self.surfaces.insert(tag, phys);
@@ -304,25 +335,25 @@ impl<'a> Reader<'a> {
             }
         }
         self.volumes = Some(volumes);
-        self.lines.end_of(S)
+        src.end_of(S)
     }
 
     fn nodes(&mut self) -> Result<(), MeshError> {
         const S: &str = "Nodes";
-        let mut f = self.lines.record(S, || "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into())?;
-        let n_blocks = f.count("number of entity blocks")?;
-        let n_nodes = f.count("number of nodes")?;
+        self.src.record(S, || "`numEntityBlocks numNodes minNodeTag maxNodeTag`".into())?;
+        let n_blocks = self.src.count("number of entity blocks")?;
+        let n_nodes = self.src.count("number of nodes")?;
         let (min, max) = if n_nodes == 0 {
-            (f.count("minimum node tag")? as u64, f.count("maximum node tag")? as u64)
+            (self.src.count("minimum node tag")? as u64, self.src.count("maximum node tag")? as u64)
         } else {
-            (f.node_tag("minimum node tag")?, f.node_tag("maximum node tag")?)
+            (self.src.node_tag("minimum node tag")?, self.src.node_tag("maximum node tag")?)
         };
-        f.end("the maximum node tag")?;
+        self.src.end("the maximum node tag")?;
         if n_nodes > 0 && max < min {
-            return Err(f.err(format!("maximum node tag {max} is below the minimum {min}")));
+            return Err(self.src.err(format!("maximum node tag {max} is below the minimum {min}")));
         }
         if u32::try_from(n_nodes).is_err() {
-            return Err(f.err(format!("{n_nodes} nodes are more than femdem can index")));
+            return Err(self.src.err(format!("{n_nodes} nodes are more than femdem can index")));
         }
         let range = max.saturating_sub(min).saturating_add(1);
         let dense_limit = 2 * self.capacity(n_nodes) as u64 + 1024;
@@ -332,169 +363,168 @@ impl<'a> Reader<'a> {
             TagMap::Sparse(HashMap::with_capacity(self.capacity(n_nodes)))
         };
         self.coords = Vec::with_capacity(self.capacity(n_nodes));
+        self.coord_at = Vec::with_capacity(self.capacity(n_nodes));
         for b in 0..n_blocks {
-            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
-            let dim = f.int("entity dimension")?;
-            f.int("entity tag")?;
-            let parametric = f.count("parametric flag")?;
-            let n = f.count("number of nodes in block")?;
-            f.end("the number of nodes in the block")?;
+            self.src.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let dim = self.src.int("entity dimension")?;
+            self.src.int("entity tag")?;
+            let parametric = self.src.uint("parametric flag")?;
+            let n = self.src.count("number of nodes in block")?;
+            self.src.end("the number of nodes in the block")?;
             if !(0..=3).contains(&dim) {
-                return Err(f.err(format!("bad entity dimension {dim}: expected 0 to 3")));
+                return Err(self.src.err(format!("bad entity dimension {dim}: expected 0 to 3")));
             }
             if parametric > 1 {
-                return Err(f.err(format!("bad parametric flag {parametric}: expected 0 or 1")));
+                return Err(self.src.err(format!("bad parametric flag {parametric}: expected 0 or 1")));
             }
             let base = self.coords.len();
             if n > n_nodes - base {
-                return Err(f.err(format!("blocks hold more nodes than the {n_nodes} announced by the $Nodes header")));
+                return Err(self
+                    .src
+                    .err(format!("blocks hold more nodes than the {n_nodes} announced by the $Nodes header")));
             }
-            let header_line = self.lines.line;
-            // A wrong count in the block header shows as a record of the
-            // wrong shape: say so, rather than what the misread field is.
-            let miscount = |f: &super::lex::Fields<'_>, expected: &str, found: usize| {
-                f.err(format!(
-                    "{found} number(s) where {expected} was expected: does the block header on line {header_line} \
-                     announce the right number of nodes ({n})?"
+            let header_at = self.src.at();
+            // A wrong count in the block header of an ASCII file shows as a
+            // record of the wrong shape: say so, rather than what the
+            // misread field is.
+            let miscount = |src: &S, expected: &str, found: usize| {
+                src.err(format!(
+                    "{found} number(s) where {expected} was expected: does the block header on {} \
+                     announce the right number of nodes ({n})?",
+                    header_at.describe()
                 ))
             };
             for i in 0..n {
-                let mut f = self.lines.record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
-                let fields = f.raw.split_ascii_whitespace().count();
-                if fields != 1 {
-                    return Err(miscount(&f, &format!("the tag of node {} of block {}", i + 1, b + 1), fields));
+                self.src.record(S, || format!("tag of node {} of block {}", i + 1, b + 1))?;
+                if let Some(fields) = self.src.fields().filter(|&f| f != 1) {
+                    return Err(miscount(&self.src, &format!("the tag of node {} of block {}", i + 1, b + 1), fields));
                 }
-                let tag = f.node_tag("node tag")?;
-                f.end("the node tag")?;
+                let tag = self.src.node_tag("node tag")?;
+                self.src.end("the node tag")?;
                 if !(min..=max).contains(&tag) {
-                    return Err(f.err(format!("node tag {tag} is outside the header's range {min}..={max}")));
+                    return Err(self.src.err(format!("node tag {tag} is outside the header's range {min}..={max}")));
                 }
                 // `base + i < n_nodes`, which fits in u32 (checked above).
                 if !tags.insert(tag, (base + i) as u32) {
-                    return Err(f.err(format!("node tag {tag} appears twice")));
+                    return Err(self.src.err(format!("node tag {tag} appears twice")));
                 }
             }
             let extra = if parametric == 1 { dim as usize } else { 0 };
             for i in 0..n {
-                let mut f = self.lines.record(S, || format!("coordinates of node {} of block {}", i + 1, b + 1))?;
-                let fields = f.raw.split_ascii_whitespace().count();
-                if fields < 3 {
+                self.src.record(S, || format!("coordinates of node {} of block {}", i + 1, b + 1))?;
+                if let Some(fields) = self.src.fields().filter(|&f| f < 3) {
                     let what = format!("the coordinates of node {} of block {}", i + 1, b + 1);
-                    return Err(miscount(&f, &what, fields));
+                    return Err(miscount(&self.src, &what, fields));
                 }
-                let x = f.real("x coordinate")?;
-                let y = f.real("y coordinate")?;
-                let z = f.real("z coordinate")?;
+                let x = self.src.real("x coordinate")?;
+                let y = self.src.real("y coordinate")?;
+                let z = self.src.real("z coordinate")?;
                 for _ in 0..extra {
-                    f.real("parametric coordinate")?;
+                    self.src.real("parametric coordinate")?;
                 }
-                f.end("the node coordinates")?;
+                self.src.end("the node coordinates")?;
                 self.coords.push([x, y, z]);
-                self.coord_lines.push(self.lines.line);
+                self.coord_at.push(self.src.at());
             }
         }
         if self.coords.len() != n_nodes {
-            // Report on the line that should have been a block header.
-            self.lines.next_line()?;
-            return Err(self
-                .lines
-                .err(format!("the $Nodes header announces {n_nodes} nodes, the blocks hold {}", self.coords.len())));
+            // Report where the next block header should have been.
+            let at = self.src.next_at(S)?;
+            return Err(at.err(
+                S,
+                format!("the $Nodes header announces {n_nodes} nodes, the blocks hold {}", self.coords.len()),
+            ));
         }
         self.tags = Some(tags);
-        self.lines.end_of(S)
+        self.src.end_of(S)
     }
 
     fn elements(&mut self) -> Result<(), MeshError> {
         const S: &str = "Elements";
-        self.elements_line = Some(self.lines.line);
+        let header_at = self.src.lines().at();
+        self.elements_at = Some(header_at);
         let Some(tags) = self.tags.take() else {
-            return Err(self.lines.err("$Elements must come after $Nodes"));
+            return Err(header_at.err(S, "$Elements must come after $Nodes"));
         };
-        let mut f = self.lines.record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
-        let n_blocks = f.count("number of entity blocks")?;
-        let n_elements = f.count("number of elements")?;
-        f.count("minimum element tag")?;
-        f.count("maximum element tag")?;
-        f.end("the maximum element tag")?;
+        self.src.record(S, || "`numEntityBlocks numElements minTag maxTag`".into())?;
+        let n_blocks = self.src.count("number of entity blocks")?;
+        let n_elements = self.src.count("number of elements")?;
+        self.src.count("minimum element tag")?;
+        self.src.count("maximum element tag")?;
+        self.src.end("the maximum element tag")?;
         let mut total = 0usize;
         for b in 0..n_blocks {
-            let mut f = self.lines.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
-            let dim = f.int("entity dimension")?;
-            let entity = f.int("entity tag")?;
-            let ty: u32 = f.parse("element type", "a positive integer")?;
-            let n = f.count("number of elements in block")?;
-            f.end("the number of elements in the block")?;
+            self.src.record(S, || format!("entity block {} of {n_blocks}", b + 1))?;
+            let dim = self.src.int("entity dimension")?;
+            let entity = self.src.int("entity tag")?;
+            let ty = self.src.uint("element type")?;
+            let n = self.src.count("number of elements in block")?;
+            self.src.end("the number of elements in the block")?;
             total = total.saturating_add(n);
             if total > n_elements {
-                return Err(f.err(format!(
+                return Err(self.src.err(format!(
                     "blocks hold more elements than the {n_elements} announced by the \
                      $Elements header"
                 )));
             }
+            let block_at = self.src.at();
             match ty {
-                TET => self.tet_block(&tags, dim, entity, n, f.line)?,
-                TRIANGLE => self.triangle_block(&tags, dim, entity, n, f.line)?,
+                TET => self.tet_block(&tags, dim, entity, n, block_at)?,
+                TRIANGLE => self.triangle_block(&tags, dim, entity, n, block_at)?,
                 _ => {
                     *self.report.skipped_elements.entry(ty).or_insert(0) += n;
                     for i in 0..n {
-                        let mut f = self.lines.record(S, || format!("element {} of block {}", i + 1, b + 1))?;
-                        f.node_tag("element tag")?;
-                        let nodes = f.it.by_ref().count();
-                        let ok = match element_type_nodes(ty) {
-                            Some(k) => nodes == k,
-                            None => nodes > 0,
-                        };
-                        if !ok {
-                            let k = element_type_nodes(ty).unwrap_or(0);
-                            return Err(f.err(format!("element of type {ty} has {nodes} node tags, expected {k}")));
-                        }
+                        self.src.record(S, || format!("element {} of block {}", i + 1, b + 1))?;
+                        self.src.node_tag("element tag")?;
+                        self.src.skip_element_nodes(ty)?;
                     }
                 }
             }
         }
         if total != n_elements {
-            self.lines.next_line()?;
-            return Err(self
-                .lines
-                .err(format!("the $Elements header announces {n_elements} elements, the blocks hold {total}")));
+            let at = self.src.next_at(S)?;
+            return Err(
+                at.err(S, format!("the $Elements header announces {n_elements} elements, the blocks hold {total}"))
+            );
         }
         self.tags = Some(tags);
-        self.lines.end_of(S)
+        self.src.end_of(S)
     }
 
-    /// Reads the `K` node tags of one element line as file node indices.
+    /// Reads the `K` node tags of one element record as file node indices.
     fn element<const K: usize>(
         &mut self,
         tags: &TagMap,
         what: impl FnOnce() -> String,
-    ) -> Result<([u32; K], usize), MeshError> {
-        let mut f = self.lines.record("Elements", what)?;
-        f.node_tag("element tag")?;
+    ) -> Result<([u32; K], At), MeshError> {
+        self.src.record("Elements", what)?;
+        self.src.node_tag("element tag")?;
         let mut nodes = [0u32; K];
         for v in &mut nodes {
-            let tag = f.node_tag("node tag")?;
-            *v = tags.get(tag).ok_or_else(|| f.err(format!("node tag {tag} is not in $Nodes")))?;
+            let tag = self.src.node_tag("node tag")?;
+            *v = tags.get(tag).ok_or_else(|| self.src.err(format!("node tag {tag} is not in $Nodes")))?;
         }
-        let line = f.line;
-        f.end("the node tags")?;
-        Ok((nodes, line))
+        let at = self.src.at();
+        self.src.end("the node tags")?;
+        Ok((nodes, at))
     }
 
-    fn tet_block(&mut self, tags: &TagMap, dim: i32, entity: i32, n: usize, line: usize) -> Result<(), MeshError> {
+    fn tet_block(&mut self, tags: &TagMap, dim: i32, entity: i32, n: usize, at: At) -> Result<(), MeshError> {
+        const S: &str = "Elements";
         if dim != 3 {
-            return Err(err_at(line, format!("tets (type 4) on an entity of dimension {dim}")));
+            return Err(at.err(S, format!("tets (type 4) on an entity of dimension {dim}")));
         }
         let phys = match &self.volumes {
             None => None,
             Some(v) => match v.get(&entity).map(Vec::as_slice) {
                 None => {
-                    return Err(err_at(line, format!("volume entity {entity} is not listed in $Entities")));
+                    return Err(at.err(S, format!("volume entity {entity} is not listed in $Entities")));
                 }
                 Some([]) => None,
                 Some([p]) => Some(*p),
                 Some(many) => {
-                    return Err(err_at(
-                        line,
+                    return Err(at.err(
+                        S,
                         format!(
                             "volume entity {entity} is in {} physical volumes {many:?}; \
                              a tet can belong to one region only",
@@ -515,15 +545,16 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    fn triangle_block(&mut self, tags: &TagMap, dim: i32, entity: i32, n: usize, line: usize) -> Result<(), MeshError> {
+    fn triangle_block(&mut self, tags: &TagMap, dim: i32, entity: i32, n: usize, at: At) -> Result<(), MeshError> {
+        const S: &str = "Elements";
         if dim != 2 {
-            return Err(err_at(line, format!("triangles (type 2) on an entity of dimension {dim}")));
+            return Err(at.err(S, format!("triangles (type 2) on an entity of dimension {dim}")));
         }
         let grouped = match &self.volumes {
             None => false,
             Some(_) => match self.surfaces.get(&entity) {
                 None => {
-                    return Err(err_at(line, format!("surface entity {entity} is not listed in $Entities")));
+                    return Err(at.err(S, format!("surface entity {entity} is not listed in $Entities")));
                 }
                 Some(p) => !p.is_empty(),
             },
@@ -534,9 +565,9 @@ impl<'a> Reader<'a> {
             self.report.ungrouped_triangles += n;
         }
         for i in 0..n {
-            let (nodes, line) = self.element::<3>(tags, || format!("triangle {} of {n} on surface {entity}", i + 1))?;
+            let (nodes, at) = self.element::<3>(tags, || format!("triangle {} of {n} on surface {entity}", i + 1))?;
             if grouped {
-                self.triangles.push(RawTriangle { nodes, entity, line });
+                self.triangles.push(RawTriangle { nodes, entity, at });
             }
         }
         Ok(())

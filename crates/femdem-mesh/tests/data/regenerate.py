@@ -1,8 +1,11 @@
-"""Regenerates gmsh_two_volumes.msh from gmsh_two_volumes.geo and prints the
-counts that tests/msh.rs asserts (elements per physical group, by type,
-and the volume of each physical volume from Gmsh's own node coordinates).
-The numbers measured with Gmsh 4.15.2 are recorded in the header of
-gmsh_two_volumes.geo and in tests/msh.rs.
+"""Regenerates gmsh_two_volumes.msh (ASCII) and its binary twin
+gmsh_two_volumes_binary.msh (the same mesh, written by Gmsh in binary, in
+this machine's byte order: little-endian on x86 and ARM) from
+gmsh_two_volumes.geo, and prints the counts that tests/msh.rs asserts
+(elements per physical group, by type, and the volume of each physical
+volume from Gmsh's own node coordinates). The numbers measured with Gmsh
+4.15.2 are recorded in the header of gmsh_two_volumes.geo and in
+tests/msh.rs. The tests check that both files read into the same mesh.
 
 Needs Gmsh from PyPI (`pip install gmsh`; on Debian also
 `apt-get install libglu1-mesa libxcursor1 libxft2 libxinerama1 libgl1 libgomp1`).
@@ -19,9 +22,12 @@ gmsh.option.setNumber("General.Terminal", 0)
 gmsh.open(os.path.join(here, "gmsh_two_volumes.geo"))
 gmsh.model.mesh.generate(3)
 gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-gmsh.option.setNumber("Mesh.Binary", 0)
 gmsh.option.setNumber("Mesh.SaveAll", 0)  # only elements of physical groups
+gmsh.option.setNumber("Mesh.Binary", 0)
 gmsh.write(os.path.join(here, "gmsh_two_volumes.msh"))
+gmsh.option.setNumber("Mesh.Binary", 1)
+gmsh.write(os.path.join(here, "gmsh_two_volumes_binary.msh"))
+gmsh.option.setNumber("Mesh.Binary", 0)
 
 print("gmsh", gmsh.__version__)
 tags, xyz, _ = gmsh.model.mesh.getNodes()

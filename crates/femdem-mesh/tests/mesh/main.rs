@@ -4,4 +4,5 @@
 mod generators;
 mod joints;
 mod msh;
+mod msh_binary;
 mod msh_fuzz;

@@ -503,20 +503,29 @@ fn unknown_node_tag_in_an_element_names_its_line() {
     assert!(message.contains("node tag 41"), "{message}");
 }
 
+/// An ASCII file whose header says binary (file type 1): the reader looks
+/// for the binary integer 1 after the header line and finds `$End`. (Binary
+/// files themselves are read: `msh_binary.rs`.)
 #[test]
-fn binary_file_type_is_refused_with_the_option_to_change() {
-    let (text, n) = small_with("4.1 0 8", Some("4.1 1 8"));
-    let (line, message) = msh_error(&text);
-    assert_eq!((line, n), (2, 2));
-    assert!(message.contains("binary") && message.contains("Mesh.Binary = 0"), "{message}");
+fn an_ascii_file_that_says_binary_is_refused_at_the_byte_order_check() {
+    let (text, _) = small_with("4.1 0 8", Some("4.1 1 8"));
+    match read_msh(text.as_bytes()) {
+        Err(MeshError::MshBinary { offset, section, message }) => {
+            assert_eq!((offset, section.as_str()), ("$MeshFormat\n4.1 1 8\n".len(), "MeshFormat"));
+            assert!(message.contains("byte order") && message.contains("ASCII file with file type 1"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]
-fn binary_payload_is_never_read() {
-    // A real binary file has raw bytes after the header line.
-    let mut bytes = b"$MeshFormat\n4.1 1 8\n".to_vec();
-    bytes.extend_from_slice(&[1, 0, 0, 0, b'\n', 0xff, 0xfe]);
-    assert!(matches!(read_msh(&bytes), Err(MeshError::Msh { line: 2, .. })));
+fn bad_file_type_and_binary_data_size_name_the_format_line() {
+    for (format, expected) in [("4.1 2 8", "bad file type 2"), ("4.1 1 2", "bad data size 2")] {
+        let (text, _) = small_with("4.1 0 8", Some(format));
+        let (line, message) = msh_error(&text);
+        assert_eq!(line, 2, "{format}");
+        assert!(message.contains(expected), "{message}");
+    }
 }
 
 #[test]

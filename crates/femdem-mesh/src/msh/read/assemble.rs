@@ -7,16 +7,17 @@ use std::collections::{BTreeSet, HashMap};
 
 use femdem_core::tet::signed_volume;
 
-use super::super::lex::err_at;
 use super::super::report::MshReport;
+use super::super::source::{At, Source};
 use super::{Reader, UNNAMED};
 use crate::faces::{face_key, sorted_face_keys};
 use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
 
-impl Reader<'_> {
+impl<'a, S: Source<'a>> Reader<S> {
     /// Builds the mesh from what was read.
     pub(super) fn assemble(mut self) -> Result<(TetMesh, MshReport), MeshError> {
-        let elements_line = self.elements_line.unwrap_or(1);
+        let elements_at = self.elements_at.unwrap_or(At::Line(1));
+        let err_elements = |message: String| elements_at.err("Elements", message);
         if self.tets.is_empty() {
             let mut message = String::from("no 4-node tetrahedra (element type 4) in the file");
             if !self.report.skipped_elements.is_empty() {
@@ -26,7 +27,7 @@ impl Reader<'_> {
                     self.report
                 ));
             }
-            return Err(err_at(elements_line, message));
+            return Err(err_elements(message));
         }
 
         // Keep the nodes that tets use, in file order.
@@ -64,7 +65,7 @@ impl Reader<'_> {
                 return Ok(i as u16);
             }
             let i = u16::try_from(regions.len())
-                .map_err(|_| err_at(elements_line, "more than 65536 regions (physical volumes)"))?;
+                .map_err(|_| err_elements("more than 65536 regions (physical volumes)".into()))?;
             regions.push(Region { name, breakable: true });
             Ok(i)
         };
@@ -95,7 +96,7 @@ impl Reader<'_> {
         for tri in &self.triangles {
             let nodes = tri.nodes.map(|v| new_index[v as usize]);
             let face = match_face(&mesh, &keys, nodes).ok_or_else(|| {
-                err_at(tri.line, format!("triangle on surface {} is not a face of any tet", tri.entity))
+                tri.at.err("Elements", format!("triangle on surface {} is not a face of any tet", tri.entity))
             })?;
             for p in self.surfaces.get(&tri.entity).into_iter().flatten() {
                 if let Some(&g) = group_of.get(p) {
@@ -108,7 +109,7 @@ impl Reader<'_> {
 
     /// Refuses two nodes that tets use at one point: they would split the
     /// tets that use them with no joint between them (a hidden crack that
-    /// nothing holds and contact does not see). The error names both lines.
+    /// nothing holds and contact does not see). The error names both places.
     fn refuse_coincident_nodes(&self, used: &[bool]) -> Result<(), MeshError> {
         let mut order: Vec<usize> = (0..self.coords.len()).filter(|&i| used[i]).collect();
         let key = |i: &usize| self.coords[*i];
@@ -119,14 +120,17 @@ impl Reader<'_> {
         if let Some(w) = order.windows(2).find(|w| self.coords[w[0]] == self.coords[w[1]]) {
             let (first, second) = (w[0].min(w[1]), w[0].max(w[1]));
             let c = self.coords[second];
-            return Err(err_at(
-                self.coord_lines[second],
+            return Err(self.coord_at[second].err(
+                "Nodes",
                 format!(
-                    "the node at ({}, {}, {}) coincides with the node on line {}: two nodes at one point would \
+                    "the node at ({}, {}, {}) coincides with the node on {}: two nodes at one point would \
                      split the tets that use them with no joint between them (a hidden crack that nothing holds \
                      and contact does not see); merge them (in Gmsh, `Coherence;`) or model the fracture \
                      another way",
-                    c[0], c[1], c[2], self.coord_lines[first]
+                    c[0],
+                    c[1],
+                    c[2],
+                    self.coord_at[first].describe()
                 ),
             ));
         }

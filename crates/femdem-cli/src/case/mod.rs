@@ -7,6 +7,7 @@ mod fuzz;
 pub mod mesh;
 pub mod setup;
 pub mod traces;
+pub mod zones;
 
 use std::fmt;
 use std::ops::Range;

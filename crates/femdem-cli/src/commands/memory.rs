@@ -26,7 +26,7 @@ use anyhow::{Result, bail};
 use femdem_core::{Mat3, Vec3};
 
 use crate::case::format::PartSpec;
-use crate::case::zones::{sampled_share, zones_of};
+use crate::case::zones::{centroid_share, sampled_share, zones_of};
 use crate::case::{self, LoadedCase};
 
 /// Bytes per node after joint insertion: positions in the mesh, the
@@ -187,16 +187,7 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
                     let jointed = match (breakable(&region.name), zones_of(section, &region.name)) {
                         (false, _) => 0.0,
                         (true, None) => 1.0,
-                        (true, Some(zones)) => {
-                            let inside = of_region
-                                .iter()
-                                .filter(|&&t| {
-                                    let c = femdem_core::tet::centroid(&mesh.tet_points(t));
-                                    zones.iter().any(|z| z.contains([c[0], c[1], c[2]]))
-                                })
-                                .count();
-                            inside as f64 / tets.max(1.0)
-                        }
+                        (true, Some(zones)) => centroid_share(&zones, &mesh, &of_region),
                     };
                     out.add(tets, share * mesh.num_nodes() as f64, jointed);
                 }

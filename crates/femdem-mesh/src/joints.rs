@@ -20,6 +20,14 @@
 //! unbreakable neighbours). Faces listed in [`TetMesh::fracture_faces`]
 //! (pre-existing fractures) get no joint and are returned as initial
 //! contact face pairs instead.
+//!
+//! [`insert_joints_within`] confines the joints of breakable regions to a
+//! *joint zone*, a per-tet mask: a tet of a breakable region outside the
+//! zone keeps shared nodes like an unbreakable one (the rest of the region
+//! is a plain elastic continuum), and a face on the zone's edge, between a
+//! tet inside and one outside, is jointed like a face between a breakable
+//! and an unbreakable tet. How the mask is drawn (boxes, spheres, …) is the
+//! caller's business.
 
 use std::collections::HashSet;
 
@@ -44,7 +52,9 @@ pub struct JointedMesh {
     /// Face pairs on pre-existing fractures: no joint, in contact from the
     /// start.
     pub initial_contacts: Vec<(FaceRef, FaceRef)>,
-    /// How many of the joints lie between a breakable and an unbreakable tet.
+    /// How many of the joints lie between a tet that owns its nodes and one
+    /// that shares them: a breakable and an unbreakable tet, or a tet inside
+    /// and one outside the joint zone of [`insert_joints_within`].
     pub interface_joints: usize,
 }
 
@@ -66,8 +76,38 @@ impl JointedMesh {
 /// [`MeshError::BadFractureFace`] for a fracture face that is not interior
 /// or lies between two unbreakable tets.
 pub fn insert_joints(mesh: &TetMesh) -> Result<JointedMesh, MeshError> {
+    insert(mesh, |_| true)
+}
+
+/// Like [`insert_joints`], with the joints confined to the tets `zone`
+/// marks: tet `t` owns its nodes when its region is breakable *and*
+/// `zone[t]`; every other tet shares its nodes with its unsplit neighbours.
+/// A joint sits on each interior face with at least one split tet, so the
+/// zone's edge is jointed on its inside (counted in
+/// [`JointedMesh::interface_joints`]). With `zone` all true this is
+/// [`insert_joints`].
+///
+/// # Errors
+/// As [`insert_joints`] (a fracture face between two unsplit tets of a
+/// breakable region is refused: its shared nodes could never part), and
+/// [`MeshError::Inconsistent`] when `zone` does not have one entry per tet.
+pub fn insert_joints_within(mesh: &TetMesh, zone: &[bool]) -> Result<JointedMesh, MeshError> {
+    if zone.len() != mesh.tets.len() {
+        return Err(MeshError::Inconsistent(format!(
+            "the joint zone has {} entries for {} tets",
+            zone.len(),
+            mesh.tets.len()
+        )));
+    }
+    insert(mesh, |t| zone[t as usize])
+}
+
+/// Joint insertion where a tet of a breakable region is split only if
+/// `in_zone(t)`.
+fn insert(mesh: &TetMesh, in_zone: impl Fn(u32) -> bool) -> Result<JointedMesh, MeshError> {
     let breakable: Vec<bool> = mesh.regions.iter().map(|r| r.breakable).collect();
-    let is_breakable = |t: u32| breakable[mesh.tet_region[t as usize] as usize];
+    let region_breakable = |t: u32| breakable[mesh.tet_region[t as usize] as usize];
+    let is_breakable = |t: u32| region_breakable(t) && in_zone(t);
 
     // 1. Nodes: four fresh ones per breakable tet, shared ones otherwise.
     let mut coords = Vec::with_capacity(mesh.tets.len() * 4);
@@ -101,11 +141,12 @@ pub fn insert_joints(mesh: &TetMesh) -> Result<JointedMesh, MeshError> {
         let on_fracture = !fracture.is_empty() && fracture.contains(&face_key(fa.nodes(&mesh.tets)));
         if on_fracture {
             if !ba && !bb {
-                return Err(MeshError::BadFractureFace {
-                    tet: fa.tet,
-                    local: fa.local,
-                    reason: "lies between two unbreakable tets, whose shared nodes cannot separate",
-                });
+                let reason = if region_breakable(fa.tet) || region_breakable(fb.tet) {
+                    "lies between two tets outside the joint zone, whose shared nodes cannot separate"
+                } else {
+                    "lies between two unbreakable tets, whose shared nodes cannot separate"
+                };
+                return Err(MeshError::BadFractureFace { tet: fa.tet, local: fa.local, reason });
             }
             matched_fractures += 1;
             out.initial_contacts.push((fa, fb));

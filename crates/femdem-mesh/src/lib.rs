@@ -24,7 +24,9 @@
 //!   volumes per region.
 //! - [`joints`]: [`insert_joints`] and [`JointedMesh`] — split nodes, the
 //!   joints `N1…N6`, each node's `origin`, and the initial contacts of
-//!   pre-existing fractures.
+//!   pre-existing fractures; [`insert_joints_within`] confines the joints
+//!   of breakable regions to the tets of a mask (a joint zone), the rest
+//!   keeping shared nodes.
 //! - [`MeshError`] (`error.rs`): every failure of the above.
 //!
 //! # Conventions
@@ -96,6 +98,6 @@ pub mod stats;
 
 pub use error::MeshError;
 pub use faces::{FaceAdjacency, face_adjacency};
-pub use joints::{JointedMesh, insert_joints};
+pub use joints::{JointedMesh, insert_joints, insert_joints_within};
 pub use mesh::{BoundaryGroup, FaceRef, Region, TetMesh};
 pub use stats::{MeshStats, RegionStats, stats};

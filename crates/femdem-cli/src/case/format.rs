@@ -356,6 +356,48 @@ pub struct RegionSpec {
     pub name: String,
     /// Whether joints are inserted so the region can fracture.
     pub breakable: bool,
+    /// Confines a breakable region's joints to these zones: a tet is
+    /// jointed when its centroid lies in one of them (boundary included);
+    /// the rest of the region is a plain elastic continuum with shared
+    /// nodes. Default: joints everywhere in the region.
+    pub joints_within: Option<Vec<Spanned<ZoneSpec>>>,
+}
+
+/// One zone of `joints_within`: `{ box = { … } }`, `{ sphere = { … } }` or
+/// `{ cylinder = { … } }`, in the mesh's coordinates, m.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(rename_all = "lowercase", deny_unknown_fields)]
+pub enum ZoneSpec {
+    /// An axis-aligned box, `min < max` on every axis.
+    Box(BoxSpec),
+    /// A ball.
+    Sphere(SphereSpec),
+    /// A finite round cylinder (flat ends).
+    Cylinder(CylinderSpec),
+}
+
+/// `sphere = { center = [x, y, z], radius = r }`, m.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    /// Centre.
+    pub center: [f64; 3],
+    /// Radius, > 0.
+    pub radius: f64,
+}
+
+/// `cylinder = { from = [x, y, z], to = [x, y, z], radius = r }`, m: the
+/// points within `radius` of the segment `from`–`to` whose projection on
+/// its line falls between them.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderSpec {
+    /// Centre of one end.
+    pub from: [f64; 3],
+    /// Centre of the other end (not `from`).
+    pub to: [f64; 3],
+    /// Radius, > 0.
+    pub radius: f64,
 }
 
 /// `[[mesh.parts]]`, told apart by `kind`.

@@ -8,6 +8,7 @@ pub mod mesh;
 pub mod overrides;
 pub mod setup;
 pub mod traces;
+pub mod zones;
 
 use std::fmt;
 use std::ops::Range;

@@ -8,6 +8,7 @@ use femdem_mesh::{face_adjacency, faces::face_key, stats};
 use serde::Serialize;
 
 use super::prepare::prepare;
+use crate::case;
 
 /// One region in the report.
 #[derive(Serialize)]
@@ -16,6 +17,11 @@ struct RegionReport {
     tets: usize,
     volume: f64,
     breakable: bool,
+    /// Tets that own their nodes and carry joints: all of a breakable
+    /// region's, or those in its `joints_within` zones; 0 if unbreakable.
+    jointed_tets: usize,
+    /// Whether `joints_within` confines the region's joints.
+    zoned: bool,
 }
 
 /// One boundary group in the report.
@@ -76,16 +82,18 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> 
     let (loaded, mesh, jointed) = (&prepared.case, &prepared.mesh, &prepared.jointed);
     let s = stats(mesh);
 
-    // Counted from the face adjacency of the unsplit mesh, independently of
-    // joint insertion, so `joints == interior_faces` is a real check.
+    // Counted from the face adjacency of the unsplit mesh and the joint
+    // zone, independently of joint insertion, so `joints == interior_faces`
+    // (+ `interface_joints`) is a real check.
     let fracture: std::collections::HashSet<u128> =
         mesh.fracture_faces.iter().map(|f| face_key(f.nodes(&mesh.tets))).collect();
-    let breakable = |t: u32| mesh.regions[mesh.tet_region[t as usize] as usize].breakable;
+    let zone = &prepared.zone;
+    let is_jointed = |t: u32| mesh.regions[mesh.tet_region[t as usize] as usize].breakable && zone[t as usize];
     let interior_faces = face_adjacency(mesh)
         .map_err(|e| anyhow::anyhow!("{}: mesh: {e}", path.display()))?
         .interior
         .iter()
-        .filter(|(a, b)| breakable(a.tet) && breakable(b.tet) && !fracture.contains(&face_key(a.nodes(&mesh.tets))))
+        .filter(|(a, b)| is_jointed(a.tet) && is_jointed(b.tet) && !fracture.contains(&face_key(a.nodes(&mesh.tets))))
         .count();
 
     let report = CheckReport {
@@ -110,7 +118,17 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> 
         regions: s
             .regions
             .iter()
-            .map(|r| RegionReport { name: r.name.clone(), tets: r.tets, volume: r.volume, breakable: r.breakable })
+            .enumerate()
+            .map(|(i, r)| RegionReport {
+                name: r.name.clone(),
+                tets: r.tets,
+                volume: r.volume,
+                breakable: r.breakable,
+                jointed_tets: (0..mesh.num_tets())
+                    .filter(|&t| mesh.tet_region[t] as usize == i && is_jointed(t as u32))
+                    .count(),
+                zoned: case::zones::zones_of(&loaded.case.mesh, &r.name).is_some(),
+            })
             .collect(),
         boundary_groups: mesh
             .boundary
@@ -146,9 +164,12 @@ fn print_text(r: &CheckReport) {
         println!("title     {}", r.title);
     }
     println!("tets      {}", r.tets);
-    println!("nodes     {} (from {} vertices; tets of breakable regions own their nodes)", r.nodes, r.vertices);
-    println!("joints    {} ({} on breakable/unbreakable interfaces)", r.joints, r.interface_joints);
-    println!("interior faces (breakable|breakable, not pre-fractured)  {}", r.interior_faces);
+    println!("nodes     {} (from {} vertices; jointed tets own their nodes)", r.nodes, r.vertices);
+    println!(
+        "joints    {} ({} on interfaces: breakable/unbreakable, or a joints_within zone's edge)",
+        r.joints, r.interface_joints
+    );
+    println!("interior faces (jointed|jointed, not pre-fractured)       {}", r.interior_faces);
     println!("initial contact faces (pre-existing fractures)            {}", r.initial_contact_faces);
     println!("volume    {:.6e} m³   min tet volume {:.3e} m³", r.volume, r.min_volume);
     println!("edges     min {:.4e} m   mean {:.4e} m", r.min_edge, r.mean_edge);
@@ -165,7 +186,11 @@ fn print_text(r: &CheckReport) {
     }
     println!("regions");
     for g in &r.regions {
-        let kind = if g.breakable { "breakable" } else { "unbreakable" };
+        let kind = match (g.breakable, g.zoned) {
+            (false, _) => "unbreakable".to_string(),
+            (true, false) => "breakable".to_string(),
+            (true, true) => format!("breakable, joints in {} tets (joints_within)", g.jointed_tets),
+        };
         println!("  {:<20} {:>9} tets  {:.6e} m³  {kind}", g.name, g.tets, g.volume);
     }
     if let Some(t) = &r.time_stepping {

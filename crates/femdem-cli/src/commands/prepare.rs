@@ -25,6 +25,9 @@ pub struct Prepared {
     pub case: LoadedCase,
     /// The mesh before joint insertion.
     pub mesh: TetMesh,
+    /// The joint zone: false for the tets that `joints_within` leaves
+    /// without joints (`case::zones::joint_zone`).
+    pub zone: Vec<bool>,
     /// The mesh with joints.
     pub jointed: JointedMesh,
     /// The solver, its time step set, when the case can run.
@@ -68,14 +71,16 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         }
         (None, None) => {}
     }
+    case::zones::check(&loaded)?;
     let mesh = case::mesh::build_mesh(&loaded)?;
-    let jointed = femdem_mesh::insert_joints(&mesh).map_err(|e| case::CaseError {
+    let zone = case::zones::joint_zone(&loaded, &mesh)?;
+    let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).map_err(|e| case::CaseError {
         path: loaded.path.clone(),
         at: None,
         message: format!("mesh: inserting the joints failed: {e}"),
     })?;
     let Some(spec) = &loaded.case.solver else {
-        return Ok(Prepared { case: loaded, mesh, jointed, run: None });
+        return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None });
     };
     let s = spec.get_ref();
     let at = |msg: String| loaded.error_at(spec.span(), format!("solver: {msg}"));
@@ -131,6 +136,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     Ok(Prepared {
         case: loaded,
         mesh,
+        zone,
         jointed,
         run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain }),
     })

@@ -145,6 +145,46 @@ fn a_truncated_binary_msh_names_the_file_and_section() {
     );
 }
 
+/// `joints_within` by hand count: a bar of four regular cells (six
+/// Freudenthal tets each; 6 interior faces in a cell, 2 between two
+/// cells) jointed in cells 0, 1 and 3 by a box, a sphere and a cylinder.
+/// Fully jointed it would have 4·6 + 3·2 = 30 joints and 24·4 = 96 nodes;
+/// zoned: 18 jointed tets (72 nodes) and the 8 vertices of cell 2 = 80
+/// nodes; joints inside cells 0, 1, 3 (18), between cells 0 and 1 (2), and
+/// on the zone's edge between cells 1–2 and 2–3 (2 + 2 interface) = 24.
+#[test]
+fn joints_within_confines_the_joints_to_its_zones() {
+    let r = check_json("crates/femdem-cli/tests/cases/zoned_bar.toml");
+    assert_eq!(r["tets"], 24);
+    assert_eq!(r["nodes"], 80);
+    assert_eq!(r["joints"], 24);
+    assert_eq!(r["interface_joints"], 4);
+    assert_eq!(r["interior_faces"], 20);
+    let rock = region(&r, "rock");
+    assert_eq!(rock["breakable"], true);
+    assert_eq!(rock["zoned"], true);
+    assert_eq!(rock["jointed_tets"], 18);
+    let text = String::from_utf8(femdem(&["check", "crates/femdem-cli/tests/cases/zoned_bar.toml"]).stdout).unwrap();
+    assert!(text.contains("joints in 18 tets (joints_within)"), "{text}");
+}
+
+/// The bundled band case: the disc of `brazilian-split.toml` jointed only
+/// in |x| ≤ 6 mm keeps its tets and saves more than half its joints and
+/// nodes.
+#[test]
+fn the_band_case_saves_joints_and_nodes() {
+    let full = check_json("cases/brazilian-split.toml");
+    let band = check_json("cases/brazilian-split-band.toml");
+    assert_eq!(full["tets"], band["tets"]);
+    let ratio = |key: &str| band[key].as_f64().unwrap() / full[key].as_f64().unwrap();
+    eprintln!("band/full: joints {:.3}, nodes {:.3}", ratio("joints"), ratio("nodes"));
+    assert!(ratio("joints") < 0.5 && ratio("nodes") < 0.5);
+    assert_eq!(
+        band["joints"].as_u64().unwrap(),
+        band["interior_faces"].as_u64().unwrap() + band["interface_joints"].as_u64().unwrap()
+    );
+}
+
 #[test]
 fn traces_become_initial_contact_faces() {
     let r = check_json("crates/femdem-cli/tests/cases/traces.toml");
@@ -176,6 +216,19 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("undeclared_physical_volume.toml", ":7:1:", "physical volume `inclusion`"),
         ("contact_pair_unknown_region.toml", ":24:1:", "contact.pairs[0]: `steel` is not a region"),
         ("load_strain_unknown_platen.toml", ":23:1:", "output.load_strain.upper: `platen_top` is not a platen"),
+        (
+            "zone_min_above_max.toml",
+            ":8:3:",
+            "mesh.regions[0].joints_within[1]: box: `min` [0.03, 0.0, 0.0] must be below",
+        ),
+        (
+            "zone_negative_radius.toml",
+            ":8:3:",
+            "joints_within[1]: sphere: `radius` must be finite and > 0 m, got -0.004",
+        ),
+        ("zone_holds_no_tet.toml", ":8:3:", "joints_within[1]: the cylinder holds no tet of region `rock`"),
+        ("zone_on_unbreakable.toml", ":3:1:", "region `rock` is not breakable: it has no joints to confine"),
+        ("zone_unknown_shape.toml", ":6:20:", "unknown variant `cube`, expected one of `box`, `sphere`, `cylinder`"),
         (
             "stop_below_peak_above_one.toml",
             ":55:1:",

@@ -3,7 +3,8 @@
 //! joint's node pairs N1–N6, N2–N5, N3–N4 start at the same point; every
 //! split node maps back to the vertex it came from; unbreakable regions keep
 //! shared nodes; faces on pre-existing fractures get no joint and become
-//! initial contacts.
+//! initial contacts; with a joint zone, only the zone's breakable tets are
+//! split and the rest of the region keeps shared nodes.
 
 use std::collections::{HashMap, HashSet};
 
@@ -11,7 +12,7 @@ use femdem_core::tet::centroid;
 use femdem_mesh::check::check;
 use femdem_mesh::faces::face_key;
 use femdem_mesh::generate::{BoxSpec, ExtrusionSpec, Outline, generate_box, generate_extrusion};
-use femdem_mesh::{JointedMesh, Region, TetMesh, face_adjacency, insert_joints};
+use femdem_mesh::{JointedMesh, Region, TetMesh, face_adjacency, insert_joints, insert_joints_within};
 use proptest::prelude::*;
 
 /// A jittered box whose tets left of `split` form an unbreakable region.
@@ -40,6 +41,13 @@ fn breakable(mesh: &TetMesh, t: u32) -> bool {
 
 /// Checks every invariant of `j` against its source `mesh`.
 fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
+    assert_zone_invariants(mesh, &vec![true; mesh.num_tets()], j);
+}
+
+/// Checks every invariant of `j`, made with the joint zone `zone`, against
+/// its source `mesh`: a tet is split when it is breakable and in the zone.
+fn assert_zone_invariants(mesh: &TetMesh, zone: &[bool], j: &JointedMesh) {
+    let split = |t: u32| breakable(mesh, t) && zone[t as usize];
     assert_eq!(check(&j.mesh), Ok(()), "the split mesh is valid");
     assert_eq!(j.mesh.tets.len(), mesh.tets.len());
     // Split nodes map back to their vertex, at the same position.
@@ -49,24 +57,24 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
             assert_eq!(j.mesh.coords[n as usize], mesh.coords[mesh.tets[t][k] as usize]);
         }
     }
-    // Breakable tets own their nodes; unbreakable ones share theirs.
+    // Split tets own their nodes; the others share theirs.
     let mut users: HashMap<u32, usize> = HashMap::new();
     for (t, tet) in j.mesh.tets.iter().enumerate() {
-        if breakable(mesh, t as u32) {
+        if split(t as u32) {
             for &n in tet {
                 *users.entry(n).or_default() += 1;
             }
         }
     }
-    assert!(users.values().all(|&c| c == 1), "a breakable tet's node is used by another tet");
+    assert!(users.values().all(|&c| c == 1), "a split tet's node is used by another tet");
     let unbreakable_vertices: HashSet<u32> = mesh
         .tets
         .iter()
         .enumerate()
-        .filter(|(t, _)| !breakable(mesh, *t as u32))
+        .filter(|(t, _)| !split(*t as u32))
         .flat_map(|(_, tet)| tet.iter().copied())
         .collect();
-    let n_breakable = (0..mesh.num_tets()).filter(|&t| breakable(mesh, t as u32)).count();
+    let n_breakable = (0..mesh.num_tets()).filter(|&t| split(t as u32)).count();
     assert_eq!(j.mesh.num_nodes(), 4 * n_breakable + unbreakable_vertices.len());
 
     // Exactly one joint per interior face that touches a breakable tet and is
@@ -76,7 +84,7 @@ fn assert_joint_invariants(mesh: &TetMesh, j: &JointedMesh) {
     let mut interface = 0;
     for (a, b) in face_adjacency(mesh).unwrap().interior {
         let key = face_key(a.nodes(&mesh.tets));
-        let (ba, bb) = (breakable(mesh, a.tet), breakable(mesh, b.tet));
+        let (ba, bb) = (split(a.tet), split(b.tet));
         if (ba || bb) && !fracture.contains(&key) {
             expected.insert(key);
             interface += usize::from(ba != bb);
@@ -121,6 +129,22 @@ proptest! {
         assert_joint_invariants(&mesh, &j);
     }
 
+    /// A joint zone (tets with centroid x in `[lo, lo + width]`) on the
+    /// two-region box: zone tets of the breakable region own their nodes,
+    /// the rest share them, and joints sit exactly on the faces with a
+    /// split tet on either side (the zone's edge counted as interface).
+    #[test]
+    fn joints_are_confined_to_the_zone(
+        h in 0.12f64..0.3, seed in any::<u64>(), split in -0.1f64..1.1, lo in -0.1f64..1.0, width in 0.0f64..0.8,
+    ) {
+        let mesh = two_region_box(h, 0.1, seed, split);
+        let zone: Vec<bool> = (0..mesh.num_tets())
+            .map(|t| (lo..=lo + width).contains(&centroid(&mesh.tet_points(t))[0]))
+            .collect();
+        let j = insert_joints_within(&mesh, &zone).unwrap();
+        assert_zone_invariants(&mesh, &zone, &j);
+    }
+
     #[test]
     fn fracture_traces_become_initial_contacts(y in -0.5f64..0.5, layers in 1usize..4) {
         let spec = ExtrusionSpec {
@@ -158,6 +182,42 @@ fn fracture_face_inside_an_unbreakable_region_is_refused() {
     let mesh = generate_extrusion(&spec).unwrap();
     let e = insert_joints(&mesh).unwrap_err().to_string();
     assert!(e.contains("unbreakable"), "{e}");
+}
+
+#[test]
+fn a_zone_of_every_tet_is_plain_joint_insertion() {
+    let mesh = two_region_box(0.2, 0.1, 3, 0.4);
+    let all = insert_joints_within(&mesh, &vec![true; mesh.num_tets()]).unwrap();
+    assert_eq!(all, insert_joints(&mesh).unwrap());
+    let none = insert_joints_within(&mesh, &vec![false; mesh.num_tets()]).unwrap();
+    assert!(none.joints.is_empty());
+    assert_eq!(none.mesh.num_nodes(), mesh.num_nodes());
+    let e = insert_joints_within(&mesh, &[true]).unwrap_err().to_string();
+    assert!(e.contains("1 entries for"), "{e}");
+}
+
+/// A pre-existing fracture needs a split tet on one side at least: one
+/// wholly outside the joint zone of a breakable region is refused, naming
+/// the zone; one with the zone on one side becomes an initial contact.
+#[test]
+fn fracture_face_outside_the_joint_zone_is_refused() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]),
+        traces: vec![vec![[-0.5, 0.0], [0.5, 0.0]]],
+        z0: 0.0,
+        thickness: 0.4,
+        element_size: 0.3,
+        layers: Some(1),
+        region: Region { name: "rock".into(), breakable: true },
+    };
+    let mesh = generate_extrusion(&spec).unwrap();
+    let far: Vec<bool> = (0..mesh.num_tets()).map(|t| centroid(&mesh.tet_points(t))[1] > 0.7).collect();
+    let e = insert_joints_within(&mesh, &far).unwrap_err().to_string();
+    assert!(e.contains("outside the joint zone"), "{e}");
+    let above: Vec<bool> = (0..mesh.num_tets()).map(|t| centroid(&mesh.tet_points(t))[1] > 0.0).collect();
+    let j = insert_joints_within(&mesh, &above).unwrap();
+    assert_eq!(j.initial_contacts.len(), mesh.fracture_faces.len());
+    assert_zone_invariants(&mesh, &above, &j);
 }
 
 /// A fracture map with both kinds of junction (issue 11): a persistent

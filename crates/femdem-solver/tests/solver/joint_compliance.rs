@@ -68,31 +68,32 @@
 //! - `q ≥ 1 − j²` (above), and the 1/p0 scaling of the excess to `j² + 10⁻³`.
 //! - Continuum: `|ε/ε_c − 1| ≤ 10⁻⁴` (exact up to the same small effects).
 
-use crate::common::{at_step, box_mesh, isotropic_compliance, joint_compliance, model, rock, stable};
+use crate::common::{at_step, box_mesh, isotropic_compliance, joint_compliance, joints, rock, stable};
 use femdem_material::{Law, Material};
+use femdem_mesh::{TetMesh, insert_joints_within};
 use femdem_solver::select::group_faces;
-use femdem_solver::{Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, Want};
+use femdem_solver::{Loads, Model, Ramp, RegionBehaviour, Solver, SurfaceKind, SurfaceLoad, Want};
 
 /// Lattice cell size, m.
-const H: f64 = 0.005;
+pub(crate) const H: f64 = 0.005;
 /// Block size in cells.
-const CELLS: [f64; 3] = [4.0, 4.0, 8.0];
+pub(crate) const CELLS: [f64; 3] = [4.0, 4.0, 8.0];
 /// Applied pressure, Pa.
-const SIGMA: f64 = 1e4;
+pub(crate) const SIGMA: f64 = 1e4;
 
 /// Strains of one relaxed block.
-struct Stretch {
+pub(crate) struct Stretch {
     /// Measured `|ε_zz|`.
-    measured: f64,
+    pub(crate) measured: f64,
     /// Continuum `σ/E`.
-    continuum: f64,
+    pub(crate) continuum: f64,
     /// Uniform-stress estimate `(1/E + S_j,zzzz) σ`.
-    estimate: f64,
+    pub(crate) estimate: f64,
 }
 
 impl Stretch {
     /// The fraction of the estimated joint strain that is measured.
-    fn q(&self) -> f64 {
+    pub(crate) fn q(&self) -> f64 {
         (self.measured - self.continuum) / (self.estimate - self.continuum)
     }
 }
@@ -115,11 +116,22 @@ fn mean_uz(s: &Solver, faces: &[[u32; 3]]) -> f64 {
 fn stretch(breakable: bool, p0: f64, jitter: f64) -> Stretch {
     let size = CELLS.map(|n| n * H);
     let mesh = box_mesh([0.0; 3], size, H, jitter, breakable);
+    relax(&mesh, &vec![true; mesh.num_tets()], p0).0
+}
+
+/// Relaxes the block `mesh` (`CELLS` cells of `H`; joints of penalty `p0`
+/// in the tets of `zone`, if its region is breakable) under the two
+/// pressures `SIGMA` on its z faces; returns its stretch and the solver
+/// at rest.
+pub(crate) fn relax(mesh: &TetMesh, zone: &[bool], p0: f64) -> (Stretch, Solver) {
+    let size = CELLS.map(|n| n * H);
     let mat: Material = rock(0.0);
-    let (jointed, m) = model(&mesh, Law::LinearElastic, mat, p0);
+    let jointed = insert_joints_within(mesh, zone).unwrap();
+    let behaviour = RegionBehaviour::Deformable { law: Law::LinearElastic, material: mat, joints: Some(joints(p0)) };
+    let m = Model::new(&jointed, &[behaviour], 1.0).unwrap();
 
     let s_tet = isotropic_compliance(&mat)[(2, 2)];
-    let s_j = if breakable { joint_compliance(&m, size.iter().product(), |_| true)[(2, 2)] } else { 0.0 };
+    let s_j = joint_compliance(&m, size.iter().product(), |_| true)[(2, 2)];
 
     let faces = ["zmin", "zmax"].map(|g| group_faces(&jointed, g).unwrap());
     let pressure = |name: &str, faces: &[[u32; 3]]| SurfaceLoad {
@@ -148,7 +160,7 @@ fn stretch(breakable: bool, p0: f64, jitter: f64) -> Stretch {
     let measured = strain(&s);
     let drift = (measured / at_four_fifths.unwrap() - 1.0).abs();
     assert!(drift < 1e-6, "not at rest: ε changed by {drift:e} over the last fifth");
-    Stretch { measured, continuum: s_tet * SIGMA, estimate: (s_tet + s_j) * SIGMA }
+    (Stretch { measured, continuum: s_tet * SIGMA, estimate: (s_tet + s_j) * SIGMA }, s)
 }
 
 #[test]

@@ -17,6 +17,7 @@ mod extremes;
 mod gravity;
 mod guard;
 mod joint_compliance;
+mod joint_zone;
 mod objectivity;
 mod patch;
 mod snapshot;

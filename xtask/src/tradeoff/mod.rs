@@ -85,6 +85,7 @@ pub fn run(args: &[String]) -> Result<()> {
         }
     }
     std::fs::create_dir_all(&out)?;
+    let load_before = load_average();
     let start = Instant::now();
     let femdem = Femdem::build()?;
     let base = Base::load()?;
@@ -128,10 +129,19 @@ pub fn run(args: &[String]) -> Result<()> {
         &front,
     )?;
     let wall = start.elapsed().as_secs_f64();
-    std::fs::write(out.join("report.md"), report(&rows, &front, &plan, profile, wall))?;
+    let load = format!("{} at the start, {} at the end", load_before, load_average());
+    std::fs::write(out.join("report.md"), report(&rows, &front, &plan, profile, wall, &load))?;
     println!("report: {}", out.join("report.md").display());
     println!("{} runs, {wall:.0} s", rows.len());
     Ok(())
+}
+
+/// The 1-minute load average (`/proc/loadavg`), or `unknown`.
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().map(str::to_owned))
+        .unwrap_or_else(|| "unknown".into())
 }
 
 /// `(wall time, error)` of every run for the front and the budgets; a run
@@ -180,10 +190,11 @@ fn csv(rows: &[Row]) -> String {
 }
 
 /// `report.md`: the table by knob, the Pareto front, the budgets.
-fn report(rows: &[Row], front: &[usize], plan: &Plan, profile: &str, wall: f64) -> String {
+fn report(rows: &[Row], front: &[usize], plan: &Plan, profile: &str, wall: f64, load: &str) -> String {
     let mut md = format!(
         "# Speed–accuracy trade of the Brazilian disc ({profile} profile)\n\n\
-         Made by `cargo xtask tradeoff{}`; {} runs, {wall:.0} s in all on {} cores.\n\n\
+         Made by `cargo xtask tradeoff{}`; {} runs, {wall:.0} s in all on {} cores \
+         (1-minute load average {load}; reused runs keep the wall time of the run that made them).\n\n\
          Reference: `{}`. Anchor (finest mesh, slowest rate): `{}`. \
          h: in-plane element size (mm), V: platen speed (m/s), p: p0/E, s: time-step safety, \
          m: mass scaling, b: contact buffer (mm). *vs ref*: peak load against the reference's; \

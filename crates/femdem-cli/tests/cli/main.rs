@@ -5,3 +5,4 @@ mod check;
 mod memory;
 mod resume;
 mod run;
+mod static_start;

@@ -24,8 +24,16 @@
 //!   under pressures on all faces): inertia relief, the rigid-body part of
 //!   the load taken out as a rigid acceleration and the rigid part of `u`
 //!   removed (`bodies.rs`);
-//! - the solution is refined until `‖K u − f_b‖ / ‖f_b‖` is below a
-//!   tolerance, which is checked and reported (`solve.rs`).
+//! - the solution is refined until `‖K u − f_b‖ / ‖f‖` is below a
+//!   tolerance, which is checked and reported (`solve.rs`);
+//! - then (by default) it is corrected to the explicit model's own
+//!   equilibrium — the neo-Hookean tets, the joints' hardening parabola
+//!   (softer than its initial tangent by `r/2` at `r = δ/δp`), the
+//!   pressures on the deformed faces — by modified Newton iterations with
+//!   the factorised initial tangent, accelerated by Anderson mixing
+//!   (`correction.rs`, `anderson.rs`), so that the explicit run starts at
+//!   rest; the loaded state must be elastic enough for that equilibrium to
+//!   exist, else the solve fails with [`StaticError::ModelNotConverged`].
 //!
 //! # Code map
 //!
@@ -35,15 +43,19 @@
 //!   [`joint_initial_stiffness`].
 //! - `assembly.rs`: the global stiffness on the unknowns.
 //! - `bodies.rs`: connected bodies, free rigid modes, inertia relief.
-//! - `sparse.rs`: the lower-triangle compressed-column matrix and faer's
-//!   sparse Cholesky (`Par::Seq`).
+//! - `sparse.rs`, `system.rs`: the lower-triangle compressed-column
+//!   matrix, faer's sparse Cholesky (`Par::Seq`) of `K` shifted on
+//!   floating bodies, and the corrections it gives.
+//! - `correction.rs`, `anderson.rs`: the explicit model's out-of-balance
+//!   force and the accelerated fixed-point iteration on it.
 //! - `dofs.rs`, `loads.rs`: the unknowns and the load vector.
 //!
 //! # Determinism
 //!
 //! Every stage is sequential (faer is built without its `rayon` feature
-//! and called with `Par::Seq`) and sums in a fixed order: the displacement
-//! is the same bit for bit for any thread count.
+//! and called with `Par::Seq`) and sums in a fixed order, except the
+//! correction's force evaluation, which is femdem-solver's force pass, the
+//! same bit for bit for any thread count: so is the displacement.
 //!
 //! # Limits
 //!
@@ -105,6 +117,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod anderson;
 mod assembly;
 mod bodies;
 mod correction;

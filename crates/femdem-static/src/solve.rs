@@ -20,8 +20,10 @@
 //!    unchecked;
 //! 5. with [`StaticOptions::correct`], modified Newton iterations from
 //!    there on the explicit model's out-of-balance force
-//!    (`crate::correction`), until it is below
-//!    `model_tolerance ‖f‖`, else [`StaticError::ModelNotConverged`].
+//!    (`crate::correction`), Anderson-mixed (`crate::anderson`; a mixed
+//!    step that doubles the residual restarts the mixing from the best
+//!    iterate), until it is below `model_tolerance ‖f‖` (or near the
+//!    model's round-off floor), else [`StaticError::ModelNotConverged`].
 //!
 //! Every step but the force evaluation of step 5 is sequential and sums in
 //! a fixed order; that evaluation is femdem-solver's force pass, the same
@@ -33,6 +35,7 @@ use femdem_core::{Real, Vec3};
 use femdem_solver::{Loads, Model, held_nodes};
 
 use crate::StaticError;
+use crate::anderson::Anderson;
 use crate::assembly::assemble;
 use crate::bodies::{FreeBody, connected_bodies, free_body};
 use crate::correction::{JointCount, ModelResidual};
@@ -104,6 +107,9 @@ pub struct StaticSolution {
     pub iterations: usize,
     /// Correction steps to the explicit model's equilibrium.
     pub corrections: usize,
+    /// The explicit model's relative out-of-balance force before each
+    /// correction and at the end (empty when not corrected).
+    pub correction_history: Vec<Real>,
     /// The explicit model's round-off floor relative to the load (see
     /// [`StaticOptions::model_tolerance`]); 0 when not corrected.
     pub model_floor: Real,
@@ -207,30 +213,50 @@ pub fn static_solve(
 
     let start = Instant::now();
     let (mut model_residual, mut corrections, mut joints, mut model_floor) = (None, 0, JointCount::default(), 0.0);
+    let mut correction_history = Vec::new();
     if options.correct && f_norm > 0.0 {
         let mut eval = ModelResidual::new(model, loads, &dofs);
         let floor = round_off_floor(&system, &gather(&dofs, &model.x0)) / f_norm;
         let accept = options.model_tolerance.max(FLOOR_MARGIN * floor);
         model_floor = floor;
+        let mut mixing = Anderson::default();
+        let mut best: Option<(Real, Vec<Real>, JointCount)> = None;
         loop {
             let (mut r, count) = eval.evaluate(&u);
             system.relieve(&mut r);
             let rel = relative(&r);
-            (model_residual, joints) = (Some(rel), count);
-            if rel <= accept {
+            correction_history.push(rel);
+            if !rel.is_finite() {
                 break;
             }
-            if corrections == options.max_iterations || !rel.is_finite() {
-                return Err(StaticError::ModelNotConverged {
-                    residual: rel,
-                    tolerance: accept,
-                    iterations: corrections,
-                    past_peak: count.past_peak,
-                });
+            if best.as_ref().is_none_or(|b| rel < b.0) {
+                best = Some((rel, u.clone(), count));
+            } else if rel > 2.0 * best.as_ref().map_or(rel, |b| b.0) {
+                // The mixed step made things worse: start again from the best.
+                mixing.restart();
+                let b = best.as_ref().expect("a best iterate");
+                u.clone_from(&b.1);
+                continue;
             }
-            system.correct(&mut r, &mut u);
+            if rel <= accept || corrections == options.max_iterations {
+                break;
+            }
+            system.solve(&mut r);
+            u = mixing.next(&u, &r);
+            system.remove_rigid(&mut u);
             corrections += 1;
         }
+        let (rel, best_u, count) = best.unwrap_or((Real::NAN, u.clone(), JointCount::default()));
+        (model_residual, joints) = (Some(rel), count);
+        if rel.is_nan() || rel > accept {
+            return Err(StaticError::ModelNotConverged {
+                residual: rel,
+                tolerance: accept,
+                iterations: corrections,
+                past_peak: count.past_peak,
+            });
+        }
+        u = best_u;
     }
     let correction = start.elapsed().as_secs_f64();
     Ok(StaticSolution {
@@ -246,6 +272,7 @@ pub fn static_solve(
         factor_entries: system.factor_entries(),
         iterations,
         corrections,
+        correction_history,
         model_floor,
         joints,
         seconds: Timings { assembly, factorisation, solve, correction },

@@ -57,6 +57,16 @@ impl System {
         for (ui, di) in u.iter_mut().zip(r.iter()) {
             *ui += di;
         }
+        self.remove_rigid(u);
+    }
+
+    /// `A⁻¹ r` in place.
+    pub fn solve(&self, r: &mut [Real]) {
+        self.chol.solve_in_place(r);
+    }
+
+    /// Removes the rigid part of `u` on the free bodies (mass metric).
+    pub fn remove_rigid(&self, u: &mut [Real]) {
         for body in &self.free {
             body.remove_rigid(u, &self.mass);
         }

@@ -36,8 +36,11 @@ use femdem_solver::forces::{Want, Workspace, internal_forces};
 use femdem_solver::loads::surface_forces;
 use femdem_solver::{Loads, Model};
 
+use crate::StaticError;
+use crate::anderson::Anderson;
 use crate::dofs::Dofs;
 use crate::loads::{gather, scatter};
+use crate::system::{System, norm};
 
 /// Joints the last evaluation found past their peak.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -96,4 +99,80 @@ impl<'a> ModelResidual<'a> {
         };
         (gather(self.dofs, &f), count)
     }
+}
+
+/// What the correction reached.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Correction {
+    /// The relative out-of-balance force at the returned displacement.
+    pub residual: Option<Real>,
+    /// Corrections taken.
+    pub iterations: usize,
+    /// The relative out-of-balance force before each correction and at
+    /// the end.
+    pub history: Vec<Real>,
+    /// The round-off floor relative to the load (set by the caller).
+    pub floor: Real,
+    /// Joints past their peak or failed at the returned displacement.
+    pub joints: JointCount,
+}
+
+/// Corrects `u` to the explicit model's equilibrium (module doc) until
+/// its relieved out-of-balance force is at most `accept · f_norm`; a mixed
+/// step that doubles the best residual restarts the mixing from the best
+/// iterate, and the best iterate is what is returned.
+///
+/// # Errors
+/// [`StaticError::ModelNotConverged`] after `max_iterations` corrections.
+pub fn correct(
+    system: &System,
+    eval: &mut ModelResidual<'_>,
+    u: &mut Vec<Real>,
+    f_norm: Real,
+    accept: Real,
+    max_iterations: usize,
+) -> Result<Correction, StaticError> {
+    let mut report = Correction::default();
+    let mut mixing = Anderson::default();
+    let mut best: Option<(Real, Vec<Real>, JointCount)> = None;
+    loop {
+        let (mut r, count) = eval.evaluate(u);
+        system.relieve(&mut r);
+        let rel = norm(&r) / f_norm;
+        report.history.push(rel);
+        if !rel.is_finite() {
+            break;
+        }
+        let best_rel = best.as_ref().map_or(Real::INFINITY, |b| b.0);
+        if rel < best_rel {
+            best = Some((rel, u.clone(), count));
+        } else if rel > 2.0 * best_rel {
+            mixing.restart();
+            u.clone_from(&best.as_ref().expect("a best iterate").1);
+            continue;
+        }
+        if rel <= accept || report.iterations == max_iterations {
+            break;
+        }
+        system.solve(&mut r);
+        *u = mixing.next(u, &r);
+        system.remove_rigid(u);
+        report.iterations += 1;
+    }
+    let (rel, best_u, count) = match best {
+        Some(b) if b.0 <= accept => b,
+        other => {
+            let (residual, past_peak) = other.map_or((Real::NAN, 0), |b| (b.0, b.2.past_peak));
+            return Err(StaticError::ModelNotConverged {
+                residual,
+                tolerance: accept,
+                iterations: report.iterations,
+                past_peak,
+            });
+        }
+    };
+    *u = best_u;
+    report.residual = Some(rel);
+    report.joints = count;
+    Ok(report)
 }

@@ -35,10 +35,9 @@ use femdem_core::{Real, Vec3};
 use femdem_solver::{Loads, Model, held_nodes};
 
 use crate::StaticError;
-use crate::anderson::Anderson;
 use crate::assembly::assemble;
 use crate::bodies::{FreeBody, connected_bodies, free_body};
-use crate::correction::{JointCount, ModelResidual};
+use crate::correction::{Correction, JointCount, ModelResidual, correct};
 use crate::dofs::Dofs;
 use crate::loads::{gather, nodal_loads, scatter};
 use crate::system::{System, norm};
@@ -190,79 +189,23 @@ pub fn static_solve(
     let unbalanced =
         if f_norm > 0.0 { norm(&f.iter().zip(&f_b).map(|(a, b)| a - b).collect::<Vec<_>>()) / f_norm } else { 0.0 };
     let accel: Vec<Real> = f.iter().zip(&f_b).zip(&system.mass).map(|((a, b), m)| (a - b) / m).collect();
-    let relative = |r: &[Real]| if f_norm > 0.0 { norm(r) / f_norm } else { 0.0 };
-    let mut u = vec![0.0; dofs.count];
-    let mut r = f_b.clone();
-    let mut residual = relative(&r);
-    let mut iterations = 0;
-    let mut ku = vec![0.0; dofs.count];
-    while residual > options.tolerance {
-        if iterations == options.max_iterations || !residual.is_finite() {
-            return Err(StaticError::NotConverged { residual, tolerance: options.tolerance, iterations });
-        }
-        system.relieve(&mut r);
-        system.correct(&mut r, &mut u);
-        system.k.mul(&u, &mut ku);
-        for ((ri, fi), kui) in r.iter_mut().zip(&f_b).zip(&ku) {
-            *ri = fi - kui;
-        }
-        residual = relative(&r);
-        iterations += 1;
-    }
+    let (mut u, residual, iterations) = system.refine(&f_b, f_norm, options.tolerance, options.max_iterations)?;
     let solve = start.elapsed().as_secs_f64();
 
     let start = Instant::now();
-    let (mut model_residual, mut corrections, mut joints, mut model_floor) = (None, 0, JointCount::default(), 0.0);
-    let mut correction_history = Vec::new();
+    let mut report = Correction::default();
     if options.correct && f_norm > 0.0 {
-        let mut eval = ModelResidual::new(model, loads, &dofs);
         let floor = round_off_floor(&system, &gather(&dofs, &model.x0)) / f_norm;
         let accept = options.model_tolerance.max(FLOOR_MARGIN * floor);
-        model_floor = floor;
-        let mut mixing = Anderson::default();
-        let mut best: Option<(Real, Vec<Real>, JointCount)> = None;
-        loop {
-            let (mut r, count) = eval.evaluate(&u);
-            system.relieve(&mut r);
-            let rel = relative(&r);
-            correction_history.push(rel);
-            if !rel.is_finite() {
-                break;
-            }
-            if best.as_ref().is_none_or(|b| rel < b.0) {
-                best = Some((rel, u.clone(), count));
-            } else if rel > 2.0 * best.as_ref().map_or(rel, |b| b.0) {
-                // The mixed step made things worse: start again from the best.
-                mixing.restart();
-                let b = best.as_ref().expect("a best iterate");
-                u.clone_from(&b.1);
-                continue;
-            }
-            if rel <= accept || corrections == options.max_iterations {
-                break;
-            }
-            system.solve(&mut r);
-            u = mixing.next(&u, &r);
-            system.remove_rigid(&mut u);
-            corrections += 1;
-        }
-        let (rel, best_u, count) = best.unwrap_or((Real::NAN, u.clone(), JointCount::default()));
-        (model_residual, joints) = (Some(rel), count);
-        if rel.is_nan() || rel > accept {
-            return Err(StaticError::ModelNotConverged {
-                residual: rel,
-                tolerance: accept,
-                iterations: corrections,
-                past_peak: count.past_peak,
-            });
-        }
-        u = best_u;
+        let mut eval = ModelResidual::new(model, loads, &dofs);
+        report = correct(&system, &mut eval, &mut u, f_norm, accept, options.max_iterations)?;
+        report.floor = floor;
     }
     let correction = start.elapsed().as_secs_f64();
     Ok(StaticSolution {
         displacement: scatter(&dofs, &u),
         residual,
-        model_residual,
+        model_residual: report.residual,
         unbalanced,
         rigid_acceleration: scatter(&dofs, &accel),
         bodies,
@@ -271,10 +214,10 @@ pub fn static_solve(
         matrix_entries: system.k.nnz(),
         factor_entries: system.factor_entries(),
         iterations,
-        corrections,
-        correction_history,
-        model_floor,
-        joints,
+        corrections: report.iterations,
+        correction_history: report.history,
+        model_floor: report.floor,
+        joints: report.joints,
         seconds: Timings { assembly, factorisation, solve, correction },
     })
 }

@@ -73,6 +73,44 @@ impl System {
     }
 }
 
+impl System {
+    /// Iterative refinement of `K u = f_b` from `u = 0` (`f_b` relieved):
+    /// `r = f_b − K u`, rigid part of `r` removed, `u ← u + A⁻¹ r`, until
+    /// `‖r‖ ≤ tolerance · f_norm`. Returns `u`, the relative residual and
+    /// the steps taken.
+    ///
+    /// # Errors
+    /// [`StaticError::NotConverged`] after `max_iterations` steps or on a
+    /// residual that is not finite.
+    pub fn refine(
+        &self,
+        f_b: &[Real],
+        f_norm: Real,
+        tolerance: Real,
+        max_iterations: usize,
+    ) -> Result<(Vec<Real>, Real, usize), StaticError> {
+        let relative = |r: &[Real]| if f_norm > 0.0 { norm(r) / f_norm } else { 0.0 };
+        let n = f_b.len();
+        let (mut u, mut r, mut ku) = (vec![0.0; n], f_b.to_vec(), vec![0.0; n]);
+        let mut residual = relative(&r);
+        let mut iterations = 0;
+        while residual > tolerance {
+            if iterations == max_iterations || !residual.is_finite() {
+                return Err(StaticError::NotConverged { residual, tolerance, iterations });
+            }
+            self.relieve(&mut r);
+            self.correct(&mut r, &mut u);
+            self.k.mul(&u, &mut ku);
+            for ((ri, fi), kui) in r.iter_mut().zip(f_b).zip(&ku) {
+                *ri = fi - kui;
+            }
+            residual = relative(&r);
+            iterations += 1;
+        }
+        Ok((u, residual, iterations))
+    }
+}
+
 /// The Euclidean norm.
 pub fn norm(v: &[Real]) -> Real {
     v.iter().map(|x| x * x).sum::<Real>().sqrt()

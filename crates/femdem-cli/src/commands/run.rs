@@ -78,8 +78,13 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         if run.start == Start::Static {
             let initial: Vec<(u32, u32)> =
                 prepared.jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
-            let solved =
-                start_static(solver, &initial).map_err(|e| anyhow::anyhow!("{}: static start: {e}", path.display()))?;
+            let solved = start_static(solver, &initial).map_err(|e| {
+                let span = prepared.case.case.solver.as_ref().map_or(0..0, |s| s.span());
+                prepared.case.error_at(
+                    span,
+                    format!("solver: `start = \"static\"`: {e}; `start = \"dynamic\"` ramps the loads instead"),
+                )
+            })?;
             report_static(&solved);
         }
         let output = Output::create(&dir, &stem, written, solver, pre_existing, run.load_strain)

@@ -1,6 +1,8 @@
 //! `[solver] start = "static"` end to end: the run reports its static
 //! solve, starts at rest under the held pressures (the ramp is ignored),
-//! and its energy account starts balanced; the default start is unchanged.
+//! and its energy account starts balanced; it is the same bit for bit on
+//! one thread or two, and when stopped and resumed (the resumed run does
+//! not solve again); the default start is unchanged.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -71,4 +73,37 @@ fn the_dynamic_start_is_the_default() {
         histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
     }
     assert_eq!(histories[0], histories[1]);
+}
+
+/// The history of the static case run with `extra` arguments into `name`.
+fn run_static(name: &str, extra: &[&str]) -> (String, String) {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&out);
+    let mut args = vec!["run", "crates/femdem-cli/tests/cases/static_start.toml", "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = femdem(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    (std::fs::read_to_string(out.join("history.csv")).unwrap(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+#[test]
+fn a_static_start_does_not_depend_on_the_thread_count() {
+    let (one, _) = run_static("static-start-1-thread", &["--threads", "1"]);
+    let (two, _) = run_static("static-start-2-threads", &["--threads", "2"]);
+    assert_eq!(one, two);
+}
+
+#[test]
+fn a_static_start_stopped_and_resumed_is_identical() {
+    let (whole, _) = run_static("static-start-whole", &[]);
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("static-start-stopped");
+    let _ = std::fs::remove_dir_all(&out);
+    let case = "crates/femdem-cli/tests/cases/static_start.toml";
+    let o = femdem(&["run", case, "--out", out.to_str().unwrap(), "--stop-after-steps", "30"]);
+    assert!(!o.status.success(), "a stopped run exits non-zero");
+    let o = femdem(&["run", case, "--resume", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(!stderr.contains("static start:"), "the resumed run solved again: {stderr}");
+    assert_eq!(std::fs::read_to_string(out.join("history.csv")).unwrap(), whole);
 }

@@ -78,7 +78,12 @@ fn a_statically_started_cube_under_balanced_pressures_stays_at_rest() {
     let m = model(&mesh, material);
     let solution = static_solve(&m, &held, &[], &StaticOptions::default()).unwrap();
     assert_eq!((solution.bodies, solution.free_bodies), (1, 1));
-    assert!(solution.residual < 1e-10 && solution.unbalanced < 1e-12, "{solution:?}");
+    assert!(
+        solution.residual < 1e-10 && solution.unbalanced < 1e-12,
+        "residual {:e}, unbalanced {:e}",
+        solution.residual,
+        solution.unbalanced
+    );
     let mut statik = solver(m, held, 0.9);
     assert_eq!(statik.dt(), dt);
     let stored = statik.start_displaced(&solution.displacement).unwrap();

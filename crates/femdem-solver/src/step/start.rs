@@ -67,7 +67,9 @@ impl Solver {
         let want = Want { energy: true, stress: false };
         let sums = internal_forces(&self.model, x, &self.state.v, &mut history, &mut scratch, want, false);
         let stored = sums.tet_energy + sums.joint_energy;
-        self.energies.external_work += sums.tet_energy + joint_work;
+        // Before the first step nothing else is booked: set, not added, so
+        // that a second call replaces the first.
+        self.energies.external_work = sums.tet_energy + joint_work;
         self.energies.tet_elastic = sums.tet_energy;
         self.energies.joint_elastic = sums.joint_energy;
         self.energies.fracture = sums.fracture;

@@ -75,6 +75,10 @@ pub enum SolverError {
         /// The node.
         node: u32,
     },
+    /// A displaced start ([`crate::Solver::start_displaced`]) that cannot
+    /// be taken.
+    #[error("initial displacement: {0}")]
+    InitialDisplacement(String),
     /// A snapshot that cannot be restored into this solver (see
     /// [`crate::Solver::restore`]).
     #[error("snapshot: {0}")]

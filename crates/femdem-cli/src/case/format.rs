@@ -260,6 +260,11 @@ pub struct SolverSpec {
     /// 0 turns the guard off).
     #[serde(default = "default_check_interval")]
     pub check_interval: u64,
+    /// How the run starts: `"dynamic"` (default: at rest in the reference
+    /// state, loads as their ramps say) or `"static"` (surface loads held
+    /// in full from t = 0, the body first put into equilibrium under them
+    /// and gravity by an implicit solve, `femdem-static`).
+    pub start: Option<String>,
 }
 
 fn default_check_interval() -> u64 {

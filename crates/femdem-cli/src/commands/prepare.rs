@@ -34,6 +34,26 @@ pub struct Prepared {
     pub run: Option<Runnable>,
 }
 
+/// How a run starts (`[solver] start`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Start {
+    /// At rest in the reference state; loads follow their ramps.
+    Dynamic,
+    /// Surface loads held from t = 0; a static solve
+    /// (`femdem_static::static_solve`) puts the body into equilibrium
+    /// before the first step ([`start_static`]).
+    Static,
+}
+
+/// `[solver] start`: `dynamic` or `static`.
+pub fn start(name: &str) -> Result<Start, String> {
+    match name {
+        "dynamic" => Ok(Start::Dynamic),
+        "static" => Ok(Start::Static),
+        _ => Err(format!("`start`: `{name}` is not one of dynamic, static")),
+    }
+}
+
 /// A solver ready to step.
 pub struct Runnable {
     /// The solver.
@@ -48,6 +68,8 @@ pub struct Runnable {
     pub output: case::setup::OutputSettings,
     /// The load–strain columns, if asked for.
     pub load_strain: Option<case::setup::LoadStrain>,
+    /// How the run starts.
+    pub start: Start,
 }
 
 /// Loads the case with the command line's `--set` arguments `sets`
@@ -90,8 +112,19 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     if !(s.safety > 0.0 && s.safety <= 1.0) {
         bail!(at(format!("safety must lie in (0, 1], got {}", s.safety)));
     }
+    let start = start(s.start.as_deref().unwrap_or("dynamic")).map_err(at)?;
+    if start == Start::Static && !jointed.initial_contacts.is_empty() {
+        bail!(at(format!(
+            "`start = \"static\"`: {} tet pairs start in contact across pre-existing fracture faces (traces), and the \
+             static start does not linearise contact; use `start = \"dynamic\"`",
+            jointed.initial_contacts.len()
+        )));
+    }
     let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
-    let loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
+    let mut loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
+    if start == Start::Static {
+        femdem_static::hold_surface_loads(&mut loads);
+    }
     let load_strain = case::setup::load_strain(&loaded, &loads)?;
     let held = held_nodes(&model, &loads).map_err(|e| at(e.to_string()))?;
     let contact = case::setup::contact(&loaded, &jointed)?;
@@ -138,6 +171,20 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         mesh,
         zone,
         jointed,
-        run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain }),
+        run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain, start }),
     })
+}
+
+/// The static start: solves for the equilibrium of `solver`'s model under
+/// its loads of t = 0 and moves it there at rest
+/// (`Solver::start_displaced`). `initial` are the tet pairs in contact
+/// from the start (refused by the solve). Returns the solve's report.
+pub fn start_static(
+    solver: &mut Solver,
+    initial: &[(u32, u32)],
+) -> Result<femdem_static::StaticSolution, femdem_static::StaticError> {
+    let options = femdem_static::StaticOptions::default();
+    let solution = femdem_static::static_solve(&solver.model, &solver.loads, initial, &options)?;
+    solver.start_displaced(&solution.displacement)?;
+    Ok(solution)
 }

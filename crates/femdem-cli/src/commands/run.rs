@@ -14,7 +14,7 @@ use femdem_solver::{Solver, Want};
 
 use super::checkpoint::{self, Checkpoint, Identity, Schedule};
 use super::output::Output;
-use super::prepare::prepare;
+use super::prepare::{Start, prepare, start_static};
 use super::progress::{Progress, Status};
 use crate::case::setup::LoadStrain;
 
@@ -80,6 +80,18 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         );
         (output, saved.schedule)
     } else {
+        if run.start == Start::Static {
+            let initial: Vec<(u32, u32)> =
+                prepared.jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
+            let solved = start_static(solver, &initial).map_err(|e| {
+                let span = prepared.case.case.solver.as_ref().map_or(0..0, |s| s.span());
+                prepared.case.error_at(
+                    span,
+                    format!("solver: `start = \"static\"`: {e}; `start = \"dynamic\"` ramps the loads instead"),
+                )
+            })?;
+            report_static(&solved);
+        }
         let output = Output::create(&dir, &stem, written, solver, pre_existing, run.load_strain)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;
@@ -260,5 +272,34 @@ impl PeakWatch {
         self.last = load;
         self.peak = self.peak.max(load);
         !solver.failures().is_empty() && self.peak > 0.0 && load < self.fraction * self.peak
+    }
+}
+
+/// One line on the static start: its size, its checks and its cost.
+fn report_static(s: &femdem_static::StaticSolution) {
+    let t = s.seconds;
+    eprintln!(
+        "femdem: static start: {} unknowns, {} bodies ({} free, load {:.1e} unbalanced); residual {:.1e}, explicit model {:.1e} \
+         after {} corrections; factor {:.1} MiB; {:.2} s (assembly {:.2}, factorisation {:.2}, solve {:.2}, correction {:.2})",
+        s.dofs,
+        s.bodies,
+        s.free_bodies,
+        s.unbalanced,
+        s.residual,
+        s.model_residual.unwrap_or(0.0),
+        s.corrections,
+        s.memory_bytes() as f64 / (1024.0 * 1024.0),
+        t.assembly + t.factorisation + t.solve + t.correction,
+        t.assembly,
+        t.factorisation,
+        t.solve,
+        t.correction
+    );
+    if s.joints.past_peak > 0 {
+        eprintln!(
+            "femdem: warning: the static start leaves {} joints past their peak ({} failed): the loaded state is not elastic \
+             everywhere, and the first step damages them at once",
+            s.joints.past_peak, s.joints.failed
+        );
     }
 }

@@ -7,3 +7,4 @@ mod overrides;
 mod progress;
 mod resume;
 mod run;
+mod static_start;

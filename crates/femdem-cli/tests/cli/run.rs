@@ -168,6 +168,8 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("negative_damping_ratio", ":23:", "`damping_ratio` must be finite and ≥ 0, got -0.5"),
         ("friction_angle_95", ":23:", "`friction_angle` must lie in [0°, 90°), got 95°"),
         ("zero_fracture_energy", ":23:", "`fracture_energy` must be finite and > 0 J/m², got 0 J/m²"),
+        ("unknown_start", ":64:", "solver: `start`: `quasi-static` is not one of dynamic, static"),
+        ("static_start_with_traces", ":39:", "start in contact across pre-existing fracture faces"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

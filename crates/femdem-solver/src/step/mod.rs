@@ -44,6 +44,7 @@ mod external;
 mod failures;
 mod prescribed;
 mod record;
+mod start;
 mod update;
 
 use femdem_core::{Real, Vec3};

@@ -1,0 +1,78 @@
+//! Starting from a displaced state at rest: the hand-over from a static
+//! solve (`femdem-static`) to the explicit run.
+
+use femdem_core::Vec3;
+use femdem_fracture::{JointHistory, joint_update};
+
+use super::Solver;
+use super::prescribed::FREE;
+use crate::SolverError;
+use crate::forces::{Want, Workspace, internal_forces};
+
+impl Solver {
+    /// Moves the nodes to `x0 + u` at rest (`v = 0`), before the first
+    /// step: the state a static solve found in equilibrium with the loads
+    /// of `t = 0`. Returns the elastic energy of that state, J.
+    ///
+    /// The energy account starts from it, as if a slow ramp had led there:
+    /// each joint is evaluated at `x0 + u` from an undamaged history and
+    /// keeps that evaluation (its last opening and stresses, any damage)
+    /// with the work done on it set to what it stores plus what it has
+    /// dissipated; the tets' elastic energy and that work are booked as
+    /// external work already done — the work of the loads on a quasi-static
+    /// path to that state — so `Energies::balance` starts at zero. A joint
+    /// that this evaluation fails is left intact and undamaged: the first
+    /// step fails it again and records the failure, as every failure is
+    /// recorded.
+    ///
+    /// # Errors
+    /// [`SolverError::InitialDisplacement`] after the first step, for a
+    /// displacement of the wrong length or not finite, or one that moves a
+    /// prescribed (fixed, driven or rigid) component.
+    pub fn start_displaced(&mut self, u: &[Vec3]) -> Result<f64, SolverError> {
+        let bad = |why: String| Err(SolverError::InitialDisplacement(why));
+        if self.state.step != 0 {
+            return bad(format!("the run is at step {}, not at its start", self.state.step));
+        }
+        if u.len() != self.model.num_nodes() {
+            return bad(format!("{} displacements for {} nodes", u.len(), self.model.num_nodes()));
+        }
+        if let Some(i) = u.iter().position(|d| !d.iter().all(|c| c.is_finite())) {
+            return bad(format!("node {i}: not finite"));
+        }
+        let table = &self.external.prescribed;
+        if let Some((i, c)) =
+            (0..u.len()).flat_map(|i| (0..3).map(move |c| (i, c))).find(|&(i, c)| table[i][c] != FREE && u[i][c] != 0.0)
+        {
+            return bad(format!("node {i} component {} is prescribed but displaced", ["x", "y", "z"][c]));
+        }
+        for ((x, x0), d) in self.state.x.iter_mut().zip(&self.model.x0).zip(u) {
+            *x = x0 + d;
+        }
+        self.state.v.iter_mut().for_each(|v| *v = Vec3::zeros());
+        let x = &self.state.x;
+        let mut joint_work = 0.0;
+        for ((history, nodes), joint) in self.state.joints.iter_mut().zip(&self.model.joints).zip(&self.model.joint_law)
+        {
+            let mut h = JointHistory::default();
+            let out = joint_update(joint, &mut h, &nodes.map(|n| x[n as usize]), true);
+            if !h.failed {
+                h.work = out.energy + h.dissipated;
+                joint_work += h.work;
+                *history = h;
+            }
+        }
+        let mut scratch = Workspace::new(&self.model);
+        let mut history = self.state.joints.clone();
+        let want = Want { energy: true, stress: false };
+        let sums = internal_forces(&self.model, x, &self.state.v, &mut history, &mut scratch, want, false);
+        let stored = sums.tet_energy + sums.joint_energy;
+        // Before the first step nothing else is booked: set, not added, so
+        // that a second call replaces the first.
+        self.energies.external_work = sums.tet_energy + joint_work;
+        self.energies.tet_elastic = sums.tet_energy;
+        self.energies.joint_elastic = sums.joint_energy;
+        self.energies.fracture = sums.fracture;
+        Ok(stored)
+    }
+}

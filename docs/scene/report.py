@@ -1,5 +1,5 @@
 """Summarises target/scene/out/<variant>-r<k>/ (docs/scene/run.sh) as the
-markdown table of docs/tradeoff-scene.md: one row per variant named on the
+markdown table of docs/tradeoff.md (section 3): one row per variant named on the
 command line (default: all), timings over its repetitions (mean, and
 min–max when more than one), results from the first repetition (runs are
 deterministic: the steps and the peak of every repetition are checked to

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes the scene variants of docs/tradeoff-scene.md into target/scene/:
+# Writes the scene variants of docs/tradeoff.md (section 3) into target/scene/:
 # the bundled cases with one modelling choice changed at a time. Run from
 # the repository root.
 set -euo pipefail

@@ -8,19 +8,7 @@ use plotters::prelude::*;
 
 use super::Row;
 use super::setting::Knob;
-use crate::validate::plot::{err, font};
-
-/// One colour per knob, in [`Knob`] order.
-const COLOURS: [RGBColor; 8] = [
-    RGBColor(0, 0, 0),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(31, 119, 180),
-    RGBColor(150, 150, 150),
-];
+use crate::validate::plot::{err, font, series_colour};
 
 /// Errors below this are drawn at it (the anchor's is zero by definition).
 pub const FLOOR: f64 = 1.0e-4;
@@ -62,7 +50,7 @@ pub fn draw(path: &Path, title: &str, rows: &[Row], front: &[usize]) -> Result<(
     knobs.sort();
     knobs.dedup();
     for knob in knobs {
-        let c = COLOURS[knob as usize % COLOURS.len()];
+        let c = series_colour(knob as usize);
         let style = |r: &Row| if r.passed_peak { c.filled() } else { c.stroke_width(2) };
         chart
             .draw_series(rows.iter().filter(|r| r.knob == knob).map(|r| Circle::new(at(r), 5, style(r))))

@@ -26,13 +26,15 @@ pub fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
 
 /// A qualitative colour for series `i`.
 pub fn series_colour(i: usize) -> RGBColor {
-    const C: [RGBColor; 6] = [
+    const C: [RGBColor; 8] = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
         RGBColor(44, 160, 44),
         RGBColor(214, 39, 40),
         RGBColor(148, 103, 189),
         RGBColor(140, 86, 75),
+        RGBColor(0, 0, 0),
+        RGBColor(150, 150, 150),
     ];
     C[i % C.len()]
 }

@@ -2,18 +2,10 @@
 //! the reference paper's set-up, and bad case files give errors that name
 //! the file, the line and the key.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
+use crate::common::{femdem, root};
 use serde_json::Value;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
-}
 
 fn check_json(case: &str) -> Value {
     let out = femdem(&["check", case, "--json"]);

@@ -2,6 +2,7 @@
 //! one test binary (one link instead of one per file).
 
 mod check;
+mod common;
 mod memory;
 mod overrides;
 mod progress;

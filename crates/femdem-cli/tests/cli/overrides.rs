@@ -4,19 +4,11 @@
 //! line, and `--resume` needs the overrides of the run it continues.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
+use crate::common::{femdem, root};
 use serde_json::Value;
 
 const CASE: &str = "crates/femdem-cli/tests/cases/small_brazilian.toml";
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
-}
 
 fn fresh(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);

@@ -4,12 +4,9 @@
 //! joints start failing at step ~760, they count up to the number of rows
 //! of `failures.csv`, and the last line's load is the last history row's.
 
-use std::path::{Path, PathBuf};
+use crate::common::root;
+use std::path::Path;
 use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 #[test]
 fn progress_lines_carry_the_failed_joints_and_the_load() {

@@ -9,20 +9,12 @@
 //! a partial temporary file), from the complete one before it; and a
 //! checkpoint is refused to another case, naming both.
 
+use crate::common::{femdem, root};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::OnceLock;
 
 const CASE: &str = "crates/femdem-cli/tests/cases/small_brazilian.toml";
 const STEM: &str = "small_brazilian";
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
-}
 
 fn fresh(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);

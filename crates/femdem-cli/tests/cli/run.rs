@@ -3,16 +3,9 @@
 //! whose energy account balances; bad solver settings are refused with the
 //! estimate or the parameter named.
 
-use std::path::{Path, PathBuf};
+use crate::common::{femdem, root};
+use std::path::Path;
 use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
-}
 
 #[test]
 fn elastic_bar_runs_and_writes_a_series_and_a_history() {

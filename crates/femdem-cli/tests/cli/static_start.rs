@@ -4,16 +4,8 @@
 //! one thread or two, and when stopped and resumed (the resumed run does
 //! not solve again); the default start is unchanged.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn femdem(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
-}
+use crate::common::{femdem, root};
+use std::path::Path;
 
 /// The history's rows by column name.
 fn history(dir: &Path) -> (Vec<String>, Vec<Vec<f64>>) {

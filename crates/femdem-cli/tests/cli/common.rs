@@ -1,0 +1,15 @@
+//! What every CLI test module needs: the workspace root and the `femdem`
+//! binary run from it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The workspace root, where the tests' case paths start.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Runs `femdem ARGS…` in the workspace root.
+pub fn femdem(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
+}

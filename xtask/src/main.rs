@@ -1,6 +1,6 @@
 //! `cargo xtask <task>`: project automation that needs nothing but cargo.
 //!
-//! - `validate [--profile quick|paper] [--case NAME] [--out DIR] [--sensitivity]`: runs the
+//! - `validate [--profile quick|paper] [--case NAME] [--rates LIST] [--out DIR] [--sensitivity]`: runs the
 //!   reference paper's examples and reports against its numbers
 //!   (`docs/validation.md`).
 //! - `tradeoff [--quick] [--out DIR]`: the speed–accuracy trade of the
@@ -37,9 +37,19 @@ fn main() -> Result<()> {
     }
 }
 
-/// The workspace root (the parent of this crate's directory).
+/// The workspace root: the parent of this crate's directory where it was
+/// built, or else the current directory when that holds the workspace (a
+/// prebuilt xtask binary run in a copy of the repository elsewhere).
 pub fn root() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace").to_path_buf()
+    let built = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
+    let is_workspace = |p: &std::path::Path| p.join("xtask").join("Cargo.toml").is_file();
+    if !is_workspace(built)
+        && let Ok(cwd) = std::env::current_dir()
+        && is_workspace(&cwd)
+    {
+        return cwd;
+    }
+    built.to_path_buf()
 }
 
 /// Runs a command in the workspace root, failing on a non-zero exit.

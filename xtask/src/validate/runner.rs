@@ -27,8 +27,18 @@ pub struct RunOutput {
 }
 
 impl Femdem {
-    /// Builds `femdem` in release mode and returns it.
+    /// Builds `femdem` in release mode and returns it; or, when the
+    /// environment names a prebuilt binary in `FEMDEM_BIN` (a machine
+    /// without cargo, a cluster node), returns that one unbuilt.
     pub fn build() -> Result<Femdem> {
+        if let Some(bin) = std::env::var_os("FEMDEM_BIN") {
+            let bin = PathBuf::from(bin);
+            if !bin.is_file() {
+                bail!("FEMDEM_BIN = {} is not a file", bin.display());
+            }
+            eprintln!("validate: using the prebuilt {} (FEMDEM_BIN)", bin.display());
+            return Ok(Femdem { bin });
+        }
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         crate::run_in_root(Command::new(cargo).args(["build", "--release", "--quiet", "-p", "femdem-cli"]))?;
         let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| crate::root().join("target"), PathBuf::from);

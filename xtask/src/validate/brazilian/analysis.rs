@@ -12,6 +12,27 @@ use crate::validate::runner::RunOutput;
 /// the diameter" (the issue's 5 mm), m.
 pub const BAND: f64 = 5.0e-3;
 
+/// Relative fall of the load that marks a load drop (a crushing event or
+/// the split): 5%, well above the few-per-mille ripple of the curves.
+pub const DROP: f64 = 0.05;
+
+/// The first local maximum of `load` after which the load falls by more
+/// than `drop` of it (ignoring maxima below a tenth of the largest load,
+/// the start-up ripple): its row. `None` when the load never drops so far.
+pub fn first_drop(load: &[f64], drop: f64) -> Option<usize> {
+    let floor = 0.1 * load.iter().copied().fold(0.0, f64::max);
+    let mut top = 0;
+    for (i, &f) in load.iter().enumerate() {
+        if f > load[top] {
+            top = i;
+        }
+        if load[top] > floor && f < (1.0 - drop) * load[top] {
+            return Some(top);
+        }
+    }
+    None
+}
+
 /// The measured outcome of one run.
 #[derive(Debug, Clone)]
 pub struct Outcome {
@@ -30,6 +51,10 @@ pub struct Outcome {
     /// Whether the load fell below 90% of the peak afterwards (the peak was
     /// passed, not cut off by the end time).
     pub passed_peak: bool,
+    /// The first load drop of [`DROP`] (Eq. 21's F before it, N, and its
+    /// time, s): the first crushing event under a platen when that comes
+    /// before the split.
+    pub first_drop: Option<(f64, f64)>,
     /// Largest |balance| / external work once the work reached 10% of its
     /// final value.
     pub energy_error: f64,
@@ -50,7 +75,9 @@ impl Outcome {
             load.iter().copied().enumerate().fold((0, f64::NEG_INFINITY), |a, (i, f)| if f > a.1 { (i, f) } else { a });
         let passed_peak = load[ipk..].iter().any(|&f| f < 0.9 * peak);
         let failures = Failure::read_all(&run.dir)?;
+        let first_drop = first_drop(&load, DROP).map(|i| (load[i], time[i]));
         Ok(Outcome {
+            first_drop,
             run,
             peak_time: time[ipk],
             time,
@@ -97,5 +124,21 @@ impl Outcome {
     /// All failures by mode.
     pub fn modes(&self) -> Modes {
         Modes::of(self.failures.iter())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_drop_is_the_maximum_before_the_first_fall_of_the_given_size() {
+        // Ripple of 2% at 2, a 10% drop after 5, the peak 7 later.
+        let load = [0.0, 1.0, 2.0, 1.96, 3.0, 5.0, 4.5, 6.0, 7.0, 1.0];
+        assert_eq!(first_drop(&load, 0.05), Some(5));
+        assert_eq!(first_drop(&load, 0.2), Some(8));
+        assert_eq!(first_drop(&load[..8], 0.2), None);
+        // Start-up ripple below a tenth of the largest load is not a drop.
+        assert_eq!(first_drop(&[0.0, 0.5, 0.2, 8.0, 9.0, 2.0], 0.05), Some(4));
     }
 }

@@ -23,7 +23,8 @@ def seconds(text, key):
 def one(d):
     text = (d / "summary.txt").read_text() + (d / "time.txt").read_text()
     head = re.search(r"femdem: (\d+) tets \((\d+) deformable\), (\d+) joints, (\d+) nodes", text)
-    rows = list(csv.DictReader(open(d / "history.csv")))
+    # history.csv starts with `#` lines naming the case: skip them.
+    rows = list(csv.DictReader(l for l in open(d / "history.csv") if not l.startswith("#")))
     load = [float(r["load"]) for r in rows] if "load" in rows[0] else [float("nan")]
     return dict(
         tets=int(head.group(2)),

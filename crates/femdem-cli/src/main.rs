@@ -73,6 +73,31 @@ enum Command {
         /// Run even if the mesh's estimated memory exceeds what is available.
         #[arg(long)]
         force: bool,
+        /// Remove the results of an earlier run from the output directory
+        /// first (only femdem's own files: history.csv, failures.csv,
+        /// .pvd series with their .vtu frames, checkpoints, plot_*.png;
+        /// anything else is kept). Without it, a run refuses a directory
+        /// holding such results.
+        #[arg(long, conflicts_with = "resume")]
+        overwrite: bool,
+    },
+    /// Plot columns of a run's history.csv into PNG files. Without --y:
+    /// the energies and the failed joints against time, and the load
+    /// against the strain when the run recorded them, as plot_*.png in
+    /// the results directory.
+    Plot {
+        /// The output directory of `femdem run` (or a history.csv).
+        results: PathBuf,
+        /// The column along x (default: time).
+        #[arg(long, value_name = "COL", requires = "y")]
+        x: Option<String>,
+        /// A column to draw against x (repeatable: one line each).
+        #[arg(long, value_name = "COL")]
+        y: Vec<String>,
+        /// The PNG file (default: plot_<y>_vs_<x>.png in the results
+        /// directory).
+        #[arg(long, value_name = "FILE", requires = "y")]
+        out: Option<PathBuf>,
     },
 }
 
@@ -80,12 +105,22 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads, set } => commands::check::run(&case, json, threads, &set),
-        Command::Run { case, out, threads, set, resume, stop_after_steps, progress_interval, force } => {
+        Command::Run { case, out, threads, set, resume, stop_after_steps, progress_interval, force, overwrite } => {
             commands::memory::refuse_if_too_big(&case, &set, force).and_then(|()| {
-                let options =
-                    commands::run::RunOptions { out, threads, set, resume, stop_after_steps, progress_interval };
+                let options = commands::run::RunOptions {
+                    out,
+                    threads,
+                    set,
+                    resume,
+                    stop_after_steps,
+                    progress_interval,
+                    overwrite,
+                };
                 commands::run::run(&case, options)
             })
+        }
+        Command::Plot { results, x, y, out } => {
+            commands::plot::run(&results, commands::plot::PlotOptions { x, y, out })
         }
     };
     match result {

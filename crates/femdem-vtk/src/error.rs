@@ -125,6 +125,12 @@ pub enum VtkError {
         /// Why it was rejected.
         reason: &'static str,
     },
+    /// A history comment line that holds a line break.
+    #[error("invalid history comment {text:?}: it holds a line break")]
+    InvalidComment {
+        /// The comment given.
+        text: String,
+    },
     /// A history row whose length differs from the number of columns.
     #[error("history row has {actual} values, but there are {expected} columns")]
     RowLength {

@@ -1,14 +1,16 @@
 //! Run histories (energies, loads, counts per step) as CSV.
 
 use std::fs::{self, File, OpenOptions};
-use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
+use std::io::{BufRead, BufReader, BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use crate::VtkError;
 use crate::file::push_f64;
 
 /// A CSV file with a header line and one row of numbers per call to
-/// [`row`](HistoryWriter::row).
+/// [`row`](HistoryWriter::row), optionally after comment lines that start
+/// with `#` (what the file is: see
+/// [`create_with_comments`](HistoryWriter::create_with_comments)).
 ///
 /// Every value is written with the fewest digits that parse back to the
 /// same `f64` (`0.1`, `1e-7`, `-2.5e300`, `NaN`, `inf`), so a reader such as
@@ -31,10 +33,27 @@ impl HistoryWriter {
     /// writes the header line.
     ///
     /// There must be at least one column; names must be non-empty and hold
-    /// no line break. Names with a comma or a double quote are quoted as in
-    /// RFC 4180.
+    /// no line break. Names with a comma or a double quote, or starting
+    /// with `#`, are quoted as in RFC 4180 (so that the header never reads
+    /// as a comment).
     pub fn create(path: &Path, columns: &[&str]) -> Result<Self, VtkError> {
+        HistoryWriter::create_with_comments(path, &[], columns)
+    }
+
+    /// [`create`](HistoryWriter::create), with a line `# {comment}` per
+    /// comment before the header: what the file is (a case, a title).
+    /// Readers skip them as comments (pandas `read_csv(comment="#")`, R
+    /// `read.csv(comment.char = "#")`); those that take the first line for
+    /// the header (Python's `csv`) need them dropped first.
+    ///
+    /// # Errors
+    /// [`VtkError::InvalidComment`] for a comment holding a line break, and
+    /// the errors of [`create`](HistoryWriter::create).
+    pub fn create_with_comments(path: &Path, comments: &[&str], columns: &[&str]) -> Result<Self, VtkError> {
         let header = header_line(columns)?;
+        if let Some(c) = comments.iter().find(|c| c.contains(['\n', '\r'])) {
+            return Err(VtkError::InvalidComment { text: (*c).to_owned() });
+        }
         if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
             fs::create_dir_all(parent).map_err(|e| VtkError::io(parent, e))?;
         }
@@ -46,6 +65,9 @@ impl HistoryWriter {
             line: String::with_capacity(32 * columns.len()),
             written: 0,
         };
+        for c in comments {
+            writer.write_line(&format!("# {c}\n"))?;
+        }
         writer.write_line(&header)?;
         Ok(writer)
     }
@@ -53,12 +75,13 @@ impl HistoryWriter {
     /// Reopens a history that an earlier writer of the same `columns` wrote
     /// to `path`, cut back to its first `len` bytes (a
     /// [`len`](HistoryWriter::len) taken then), to append rows after them:
-    /// the rows written after that point are dropped.
+    /// the rows written after that point are dropped. The comment lines
+    /// the file starts with are kept as they are.
     ///
     /// # Errors
-    /// [`VtkError::Resume`] if the file is shorter than `len` or does not
-    /// start with the header of `columns`; [`VtkError::Io`] if it cannot be
-    /// opened or cut.
+    /// [`VtkError::Resume`] if the file is shorter than `len` or its header
+    /// (after its comment lines) is not that of `columns`;
+    /// [`VtkError::Io`] if it cannot be opened or cut.
     pub fn resume(path: &Path, columns: &[&str], len: u64) -> Result<Self, VtkError> {
         let header = header_line(columns)?;
         let resume_error = |reason: String| VtkError::Resume { path: path.to_owned(), reason };
@@ -67,14 +90,25 @@ impl HistoryWriter {
         if on_disk < len {
             return Err(resume_error(format!("{on_disk} bytes on disk, {len} expected")));
         }
-        if len < header.len() as u64 {
+        // The comment lines, then the header: read no further than `len`.
+        let mut start = BufReader::new((&file).take(len));
+        let mut comments = 0u64;
+        let mut line = Vec::new();
+        loop {
+            line.clear();
+            let n = start.read_until(b'\n', &mut line).map_err(|e| VtkError::io(path, e))?;
+            if !line.starts_with(b"#") || !line.ends_with(b"\n") {
+                break;
+            }
+            comments += n as u64;
+        }
+        if len < comments + header.len() as u64 {
             return Err(resume_error(format!("{len} bytes is shorter than the header")));
         }
-        let mut start = vec![0; header.len()];
-        file.read_exact(&mut start).map_err(|e| VtkError::io(path, e))?;
-        if start != header.as_bytes() {
+        if line != header.as_bytes() {
             return Err(resume_error("its header is not that of this run's columns".into()));
         }
+        drop(start);
         file.set_len(len).map_err(|e| VtkError::io(path, e))?;
         file.seek(SeekFrom::Start(len)).map_err(|e| VtkError::io(path, e))?;
         Ok(HistoryWriter {
@@ -162,7 +196,7 @@ fn header_line(columns: &[&str]) -> Result<String, VtkError> {
         if i > 0 {
             header.push(',');
         }
-        if name.contains([',', '"']) || name.trim() != name {
+        if name.contains([',', '"']) || name.trim() != name || name.starts_with('#') {
             header.push('"');
             header.push_str(&name.replace('"', "\"\""));
             header.push('"');
@@ -226,6 +260,33 @@ mod tests {
             assert!(matches!(err, VtkError::Resume { .. }), "{err}");
             assert!(err.to_string().contains("resume.csv"), "{err}");
         }
+        clean(&path);
+    }
+
+    #[test]
+    fn comment_lines_come_before_the_header_and_a_resume_keeps_them() {
+        let path = temp_path("comments.csv");
+        let columns = ["time", "#x"];
+        let mut h = HistoryWriter::create_with_comments(&path, &["case: bar.toml", "title: a bar"], &columns).unwrap();
+        h.row(&[0.0, 1.0]).unwrap();
+        let at = h.len();
+        h.row(&[1.0, 2.0]).unwrap();
+        h.sync().unwrap();
+        drop(h);
+        let text = fs::read_to_string(&path).unwrap();
+        assert_eq!(text, "# case: bar.toml\n# title: a bar\ntime,\"#x\"\n0,1\n1,2\n");
+        let mut h = HistoryWriter::resume(&path, &columns, at).unwrap();
+        h.row(&[1.5, 3.0]).unwrap();
+        h.flush().unwrap();
+        assert_eq!(fs::read_to_string(&path).unwrap(), "# case: bar.toml\n# title: a bar\ntime,\"#x\"\n0,1\n1.5,3\n");
+        drop(h);
+        // Cut inside the comments or the header: refused.
+        for len in [5, 35] {
+            let err = HistoryWriter::resume(&path, &columns, len).unwrap_err();
+            assert!(err.to_string().contains("shorter than the header"), "{len}: {err}");
+        }
+        let err = HistoryWriter::create_with_comments(&path, &["two\nlines"], &columns).unwrap_err();
+        assert!(matches!(err, VtkError::InvalidComment { .. }), "{err}");
         clean(&path);
     }
 

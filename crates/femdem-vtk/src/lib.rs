@@ -13,8 +13,8 @@
 //!   one frame; [`VtuOptions`] choose the [`Compression`] (LZ4 by default).
 //! - [`SeriesWriter`] (`series.rs`) writes numbered frames and rewrites the
 //!   `.pvd` atomically after each, so an interrupted run stays viewable.
-//! - [`HistoryWriter`] (`history.rs`) writes a CSV header and rows of
-//!   round-trip-exact numbers.
+//! - [`HistoryWriter`] (`history.rs`) writes optional `#` comment lines, a
+//!   CSV header and rows of round-trip-exact numbers.
 //! - [`VtkError`] (`error.rs`): every failure, with the path concerned;
 //!   `file.rs` holds the atomic file replacement and number formatting.
 //!

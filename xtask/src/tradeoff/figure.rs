@@ -1,5 +1,6 @@
 //! The trade-off figure: peak-load error against wall time on log axes,
-//! one colour per knob, the Pareto front drawn as a line.
+//! one colour per knob, the Pareto front drawn as a line; font, palette
+//! and legend are femdem-plot's, as in every other figure.
 
 use std::path::Path;
 
@@ -8,7 +9,8 @@ use plotters::prelude::*;
 
 use super::Row;
 use super::setting::Knob;
-use crate::validate::plot::{err, font, series_colour};
+use crate::validate::plot::err;
+use femdem_plot::{register_font, series_colour};
 
 /// Errors below this are drawn at it (the anchor's is zero by definition).
 pub const FLOOR: f64 = 1.0e-4;
@@ -17,7 +19,7 @@ pub const FLOOR: f64 = 1.0e-4;
 /// into the PNG `path`. Runs that did not pass their peak (the error is a
 /// lower bound) are hollow; the front's runs and the anchor are labelled.
 pub fn draw(path: &Path, title: &str, rows: &[Row], front: &[usize]) -> Result<()> {
-    font();
+    register_font();
     let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let walls = rows.iter().map(|r| r.wall);
@@ -65,14 +67,7 @@ pub fn draw(path: &Path, title: &str, rows: &[Row], front: &[usize]) -> Result<(
             Text::new(label, at(r), ("sans-serif", 12).into_font().color(&BLACK.mix(0.75)))
         }))
         .map_err(err)?;
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()
-        .map_err(err)?;
+    femdem_plot::legend_box(&mut chart, SeriesLabelPosition::UpperRight, 14).map_err(err)?;
     root.present().map_err(err)?;
     Ok(())
 }

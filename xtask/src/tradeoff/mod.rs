@@ -62,12 +62,16 @@ pub struct Row {
     pub passed_peak: bool,
 }
 
-/// Deformable tets of a run, from the first line of its log
-/// (`femdem: N tets (M deformable), …`).
+/// Deformable tets of a run, from the line of its log that counts them
+/// (`femdem: N tets (M deformable), …`; other `femdem:` lines, such as
+/// `--overwrite`'s, may come first).
 fn deformable_tets(run: &RunOutput) -> Result<f64> {
     let log = run.dir.parent().context("run directory")?.join("run.log");
     let text = std::fs::read_to_string(&log).with_context(|| format!("reading {}", log.display()))?;
-    let line = text.lines().find(|l| l.starts_with("femdem: ")).context("no `femdem:` line in the run log")?;
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("femdem: ") && l.contains(" deformable), "))
+        .context("no `femdem: N tets (M deformable)` line in the run log")?;
     let inner = line.split('(').nth(1).and_then(|s| s.split(' ').next()).context("no deformable tet count")?;
     inner.parse().with_context(|| format!("{}: `{line}`", log.display()))
 }

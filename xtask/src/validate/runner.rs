@@ -74,6 +74,7 @@ impl Femdem {
             .arg(&case_path)
             .arg("--out")
             .arg(&out)
+            .arg("--overwrite")
             .stdout(log.try_clone()?)
             .stderr(log)
             .status()

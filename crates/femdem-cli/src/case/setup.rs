@@ -458,8 +458,6 @@ pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain
 /// What `[output]` resolves to for a run of `end_time` seconds.
 #[derive(Debug, Clone)]
 pub struct OutputSettings {
-    /// Output directory from the case (relative to the case file), if any.
-    pub dir: Option<String>,
     /// Simulated time between VTU frames, s.
     pub interval: f64,
     /// Simulated time between history rows, s.
@@ -529,7 +527,7 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
         });
     }
     let checkpoint = CheckpointSettings { interval_steps: cp.interval_steps.unwrap_or(0), interval_wall };
-    Ok(OutputSettings { dir: spec.dir.clone(), interval, history_interval, fields, compression, checkpoint })
+    Ok(OutputSettings { interval, history_interval, fields, compression, checkpoint })
 }
 
 /// `[output] compression`: `lz4` (read by VTK 8.1 and later, ParaView 5.5

@@ -49,7 +49,8 @@ pub const FORMAT_VERSION: u32 = 2;
 pub const KEEP: usize = 2;
 const PREFIX: &str = "checkpoint_";
 const SUFFIX: &str = ".femdem-ckpt";
-const TEMPORARY: &str = ".checkpoint.tmp";
+/// The file a checkpoint is written to before it is renamed.
+pub const TEMPORARY: &str = ".checkpoint.tmp";
 /// Bytes before the payload: magic, version, length, checksum.
 const HEADER: usize = 8 + 4 + 8 + 8;
 
@@ -278,6 +279,17 @@ fn file_name(step: u64) -> String {
     format!("{PREFIX}{step:012}{SUFFIX}")
 }
 
+/// The step of the checkpoint file called `name`, if it is one
+/// (`checkpoint_<step>.femdem-ckpt`).
+fn step_of(name: &str) -> Option<u64> {
+    name.strip_prefix(PREFIX)?.strip_suffix(SUFFIX)?.parse::<u64>().ok()
+}
+
+/// Whether `name` is a checkpoint's file name.
+pub fn is_checkpoint_name(name: &str) -> bool {
+    step_of(name).is_some()
+}
+
 /// The checkpoint files in `dir` with their steps, newest first.
 fn list(dir: &Path) -> Result<Vec<(u64, PathBuf)>> {
     let mut found = Vec::new();
@@ -285,8 +297,7 @@ fn list(dir: &Path) -> Result<Vec<(u64, PathBuf)>> {
     for entry in entries {
         let entry = entry.with_context(|| format!("reading directory {}", dir.display()))?;
         let name = entry.file_name();
-        let Some(step) = name.to_str().and_then(|n| n.strip_prefix(PREFIX)?.strip_suffix(SUFFIX)?.parse::<u64>().ok())
-        else {
+        let Some(step) = name.to_str().and_then(step_of) else {
             continue;
         };
         found.push((step, entry.path()));

@@ -3,7 +3,9 @@
 pub mod check;
 mod checkpoint;
 pub mod memory;
+mod outdir;
 mod output;
+pub mod plot;
 pub(crate) mod prepare;
 mod progress;
 pub mod run;

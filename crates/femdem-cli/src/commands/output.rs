@@ -9,6 +9,8 @@ use femdem_solver::{Solver, StepRecord};
 use femdem_vtk::{Compression, Field, Frame, HistoryWriter, SeriesWriter, VtuOptions};
 
 use super::checkpoint::Marks;
+use super::outdir::CASE_COMMENT;
+use crate::case::LoadedCase;
 use crate::case::setup::LoadStrain;
 
 /// Fields a case may ask for.
@@ -23,6 +25,27 @@ fn check_fields(fields: &[String]) -> Result<()> {
         bail!("output.fields: `{f}` is not one of {}", FIELDS.join(", "));
     }
     Ok(())
+}
+
+/// The comment lines `history.csv` starts with: the case file's name
+/// (`case: <name>`, what `--overwrite`'s refusal names), its title, the
+/// `--set` overrides in their canonical form and femdem's version; line
+/// breaks in the title become spaces. They do not depend on the output
+/// directory or the thread count, so a resumed run's history is the same
+/// byte for byte.
+pub fn history_comments(case: &LoadedCase) -> Vec<String> {
+    let name = case.path.file_name().map_or_else(|| case.path.display().to_string(), |n| n.to_string_lossy().into());
+    let mut lines = vec![format!("{CASE_COMMENT}{name}")];
+    let title = case.case.title.split(['\n', '\r']).map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>();
+    if !title.is_empty() {
+        lines.push(format!("title: {}", title.join(" ")));
+    }
+    let sets = case.overrides.canonical();
+    if !sets.is_empty() {
+        lines.push(format!("set: {}", sets.join(" ")));
+    }
+    lines.push(format!("femdem: {}", env!("CARGO_PKG_VERSION")));
+    lines
 }
 
 /// The columns of `history.csv`: energies and failure counts, each drive's
@@ -61,6 +84,13 @@ fn history_columns(solver: &Solver, load_strain: bool) -> Vec<String> {
     columns
 }
 
+/// How the output begins: afresh, `history.csv` with these comment lines,
+/// or where a checkpoint's marks left it.
+enum Begin<'a> {
+    Fresh(&'a [String]),
+    Resumed(&'a Marks),
+}
+
 /// The run's writers.
 pub struct Output {
     series: SeriesWriter,
@@ -74,7 +104,8 @@ pub struct Output {
 }
 
 impl Output {
-    /// Creates the writers in `dir`; `fields` are checked against
+    /// Creates the writers in `dir`, `history.csv` starting with the
+    /// `comments` lines ([`history_comments`]); `fields` are checked against
     /// [`FIELDS`].
     pub fn create(
         dir: &Path,
@@ -83,8 +114,9 @@ impl Output {
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
+        comments: &[String],
     ) -> Result<Output> {
-        Output::open(dir, stem, written, solver, pre_existing, load_strain, None)
+        Output::open(dir, stem, written, solver, pre_existing, load_strain, Begin::Fresh(comments))
     }
 
     /// Continues the output an earlier run of the same case left in `dir`
@@ -99,10 +131,10 @@ impl Output {
         load_strain: Option<LoadStrain>,
         marks: &Marks,
     ) -> Result<Output> {
-        Output::open(dir, stem, written, solver, pre_existing, load_strain, Some(marks))
+        Output::open(dir, stem, written, solver, pre_existing, load_strain, Begin::Resumed(marks))
     }
 
-    /// [`Output::create`] without `marks`, [`Output::resume`] with them.
+    /// [`Output::create`] and [`Output::resume`].
     fn open(
         dir: &Path,
         stem: &str,
@@ -110,7 +142,7 @@ impl Output {
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
         load_strain: Option<LoadStrain>,
-        marks: Option<&Marks>,
+        begin: Begin<'_>,
     ) -> Result<Output> {
         check_fields(&fields)?;
         let options = VtuOptions::default().with_compression(compression);
@@ -118,14 +150,18 @@ impl Output {
         let columns = history_columns(solver, load_strain.is_some());
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let (history_path, failures_path) = (dir.join("history.csv"), dir.join("failures.csv"));
-        let (series, fractures, history, failures) = match marks {
-            None => (
+        let (series, fractures, history, failures) = match begin {
+            Begin::Fresh(comments) => (
                 SeriesWriter::new(dir, stem)?,
                 SeriesWriter::new(dir, &fracture_stem)?,
-                HistoryWriter::create(&history_path, &names)?,
+                HistoryWriter::create_with_comments(
+                    &history_path,
+                    &comments.iter().map(String::as_str).collect::<Vec<_>>(),
+                    &names,
+                )?,
                 HistoryWriter::create(&failures_path, &FAILURE_COLUMNS)?,
             ),
-            Some(m) => (
+            Begin::Resumed(m) => (
                 SeriesWriter::resume(dir, stem, &m.frames)?,
                 SeriesWriter::resume(dir, &fracture_stem, &m.fracture_frames)?,
                 HistoryWriter::resume(&history_path, &names, m.history_len)?,

@@ -1,6 +1,8 @@
-//! `femdem run CASE.toml [--out DIR] [--resume [DIR]]`: integrate a case to
-//! its end time, writing VTU frames, a PVD series, a CSV history and
-//! checkpoints (`checkpoint.rs`); `--resume` continues from the latest
+//! `femdem run CASE.toml [--out DIR] [--overwrite] [--resume [DIR]]`:
+//! integrate a case to its end time, writing VTU frames, a PVD series, a
+//! CSV history and checkpoints (`checkpoint.rs`) into a directory checked
+//! first (`outdir.rs`: dangerous targets and earlier results are refused;
+//! `--overwrite` removes the latter); `--resume` continues from the latest
 //! complete checkpoint, and the results are those of an uninterrupted run.
 
 use std::path::{Path, PathBuf};
@@ -13,9 +15,11 @@ use anyhow::{Context, Result, bail};
 use femdem_solver::{Solver, Want};
 
 use super::checkpoint::{self, Checkpoint, Identity, Schedule};
-use super::output::Output;
+use super::outdir;
+use super::output::{Output, history_comments};
 use super::prepare::{Start, prepare, start_static};
 use super::progress::{Progress, Status};
+use crate::case;
 use crate::case::setup::LoadStrain;
 
 /// What `femdem run` was asked for, beyond the case file.
@@ -36,26 +40,28 @@ pub struct RunOptions {
     /// `--progress-interval SECONDS` (for tests): wall time between plain
     /// progress lines (default 10 s).
     pub progress_interval: Option<f64>,
+    /// `--overwrite`: remove the results of an earlier run from the output
+    /// directory (femdem's own files only) instead of refusing it.
+    pub overwrite: bool,
 }
 
 /// Runs the command.
 pub fn run(path: &Path, options: RunOptions) -> Result<()> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, progress_interval } = options;
+    let RunOptions { out, threads, set, resume, stop_after_steps, progress_interval, overwrite } = options;
+    let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
+    let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
+    // The output directory is checked before the mesh is built: a refusal
+    // costs nothing, and nothing is removed unless the case prepares.
+    let dir = outdir::resolve(&case::load(path, &set)?, &stem, out, &resume)?;
+    outdir::refuse_dangerous(&dir, path)?;
+    if resume.is_none() {
+        outdir::refuse_earlier_results(&dir, &stem, &case_name, overwrite)?;
+    }
     let prepared = prepare(path, threads, &set)?;
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
     };
     let spec = run.output.clone();
-    let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
-    let dir = match (&resume, out) {
-        (Some(Some(from)), Some(out)) if from != &out => {
-            bail!("--resume {} and --out {} name different directories", from.display(), out.display())
-        }
-        (Some(Some(from)), _) => from.clone(),
-        (_, out) => out
-            .or_else(|| spec.dir.as_ref().map(|d| prepared.case.dir().join(d)))
-            .unwrap_or_else(|| Path::new("out").join(&stem)),
-    };
     let (interval, history_interval) = (spec.interval, spec.history_interval);
     let written = (spec.fields, spec.compression);
     let checkpoints = spec.checkpoint;
@@ -92,7 +98,11 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             })?;
             report_static(&solved);
         }
-        let output = Output::create(&dir, &stem, written, solver, pre_existing, run.load_strain)
+        if overwrite {
+            outdir::clear(&dir, &stem)?;
+        }
+        let comments = history_comments(&prepared.case);
+        let output = Output::create(&dir, &stem, written, solver, pre_existing, run.load_strain, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;
         let schedule = Schedule { next_step: 0, next_frame: 0.0, next_row: 0.0, ended_past_peak: false, peak: None };

@@ -13,3 +13,11 @@ pub fn root() -> PathBuf {
 pub fn femdem(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_femdem")).args(args).current_dir(root()).output().expect("run femdem")
 }
+
+/// The text of the `history.csv` in `dir` without the comment lines
+/// `femdem run` writes before the header (`# case: …`): the header, then
+/// the rows.
+pub fn history_csv(dir: &Path) -> String {
+    let text = std::fs::read_to_string(dir.join("history.csv")).expect("read history.csv");
+    text.lines().skip_while(|l| l.starts_with('#')).map(|l| format!("{l}\n")).collect()
+}

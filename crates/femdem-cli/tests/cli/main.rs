@@ -4,7 +4,9 @@
 mod check;
 mod common;
 mod memory;
+mod outdir;
 mod overrides;
+mod plot;
 mod progress;
 mod resume;
 mod run;

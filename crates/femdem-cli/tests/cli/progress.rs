@@ -4,7 +4,7 @@
 //! joints start failing at step ~760, they count up to the number of rows
 //! of `failures.csv`, and the last line's load is the last history row's.
 
-use crate::common::root;
+use crate::common::{history_csv, root};
 use std::path::Path;
 use std::process::Command;
 
@@ -37,7 +37,7 @@ fn progress_lines_carry_the_failed_joints_and_the_load() {
     let (failed, load) = *lines.last().unwrap();
     assert!(failures > 0);
     assert_eq!(failed, failures, "the last line counts every failure");
-    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let history = history_csv(&out);
     let header: Vec<&str> = history.lines().next().unwrap().split(',').collect();
     let col = header.iter().position(|c| *c == "load").unwrap();
     let last: f64 = history.lines().last().unwrap().split(',').nth(col).unwrap().parse().unwrap();

@@ -3,7 +3,7 @@
 //! whose energy account balances; bad solver settings are refused with the
 //! estimate or the parameter named.
 
-use crate::common::{femdem, root};
+use crate::common::{femdem, history_csv, root};
 use std::path::Path;
 use std::process::Command;
 
@@ -24,7 +24,7 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
         assert!(out.join(f).is_file(), "{f} listed but missing");
     }
 
-    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let history = history_csv(&out);
     let mut lines = history.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     for col in ["time", "kinetic", "tet_elastic", "external_work", "balance", "piston_fz"] {
@@ -118,7 +118,7 @@ fn pulled_bar_writes_its_crack_and_closes_its_energy_account() {
     let cells: usize = vtu.split("NumberOfCells=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
     assert!(cells >= 16, "the crack has {cells} faces");
 
-    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let history = history_csv(&out);
     let mut lines = history.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
@@ -182,7 +182,7 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
     let stdout = String::from_utf8(o.stdout).unwrap();
     assert!(stdout.contains("ended       past the peak"), "{stdout}");
 
-    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let history = history_csv(&out);
     let mut lines = history.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
@@ -216,7 +216,7 @@ fn negative_pressure_pulls_on_its_side_only() {
     let _ = std::fs::remove_dir_all(&out);
     let o = femdem(&["run", "crates/femdem-cli/tests/cases/tensile_pressure.toml", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let history = history_csv(&out);
     let mut lines = history.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));

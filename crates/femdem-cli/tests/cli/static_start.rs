@@ -4,12 +4,12 @@
 //! one thread or two, and when stopped and resumed (the resumed run does
 //! not solve again); the default start is unchanged.
 
-use crate::common::{femdem, root};
+use crate::common::{femdem, history_csv, root};
 use std::path::Path;
 
 /// The history's rows by column name.
 fn history(dir: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    let text = history_csv(dir);
     let mut lines = text.lines();
     let header = lines.next().unwrap().split(',').map(str::to_string).collect();
     (header, lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect())
@@ -62,7 +62,8 @@ fn the_dynamic_start_is_the_default() {
         let o = femdem(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap()]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(!String::from_utf8_lossy(&o.stderr).contains("static start"));
-        histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
+        // The header and rows: the comment lines name each case file.
+        histories.push(history_csv(&out));
     }
     assert_eq!(histories[0], histories[1]);
 }

@@ -14,6 +14,9 @@
 //!   penalty-function potential contact between two tets (Eq. 17), on their
 //!   eight nodes; [`tet_tet_contact`] also returns the force-weighted
 //!   contact centre where it acts (for friction).
+//! - [`separated_by_face_plane`] (`separation.rs`): a narrow-phase filter
+//!   for detection — a face plane of one tet keeps the other more than a
+//!   gap away, so the pair cannot touch before the next detection.
 //!
 //! What needs history or a mesh — which pairs are excluded (still bonded by
 //! a joint, sharing a node), the activation on fracture (Eq. 14–16), the
@@ -59,7 +62,8 @@
 //!    current node positions of each candidate and add the forces to the
 //!    nodes. It returns zeros for tets that do not overlap; an
 //!    axis-aligned box test first is cheaper for the many candidates that
-//!    do not.
+//!    do not. At detection, [`separated_by_face_plane`] with gap `2m`
+//!    drops the candidates that cannot touch before the next one.
 //!
 //! # Example
 //!
@@ -99,6 +103,8 @@
 
 mod nbs;
 mod potential;
+mod separation;
 
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};
+pub use separation::separated_by_face_plane;

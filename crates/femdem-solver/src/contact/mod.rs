@@ -38,7 +38,8 @@
 //! vertex are candidates whenever both are contactable.
 //!
 //! Detection (NBS, O(N) in the contactable tets) keeps the pairs whose
-//! bounding spheres are less than the buffer `b` apart, and is repeated only
+//! bounding spheres are less than the buffer `b` apart and that no face
+//! plane of either keeps more than `b` apart, and is repeated only
 //! when some contactable node has moved more than `b/2` since the last
 //! detection, or when a joint failure changed the contactable set or the
 //! exclusions (`Contact::joint_failed` marks the candidates stale): any two
@@ -57,7 +58,7 @@ mod pair;
 mod settings;
 mod stars;
 
-use femdem_contact::Nbs;
+use femdem_contact::{Nbs, separated_by_face_plane};
 use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
@@ -381,11 +382,19 @@ impl Contact {
         for i in 0..n {
             self.by_first[self.first[i] as usize..self.first[i + 1] as usize].sort_unstable();
         }
+        // Pairs a face plane keeps more than the buffer apart cannot touch
+        // before the next detection (`separated_by_face_plane`): dropping
+        // them changes no force, and most sphere pairs of a mesh with
+        // pre-existing fractures are such neighbours a layer apart.
+        let gap = self.settings.buffer;
         for i in 0..n {
             let a = self.list[i];
+            let pa = model.tets[a as usize].map(|k| x[k as usize]);
             for &j in &self.by_first[self.first[i] as usize..self.first[i + 1] as usize] {
                 let b = self.list[j as usize];
-                if self.may_touch(model, a, b) {
+                if self.may_touch(model, a, b)
+                    && !separated_by_face_plane(&pa, &model.tets[b as usize].map(|k| x[k as usize]), gap)
+                {
                     candidates.push((a, b));
                 }
             }

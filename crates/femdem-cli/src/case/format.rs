@@ -192,6 +192,11 @@ pub struct PlatenDrive {
 pub enum LoadSpec {
     /// Zero velocity on the given components.
     Fixed {
+        /// Name in the history: when given, the support's reaction force
+        /// and mean displacement are recorded as `<name>_fx … <name>_uz`
+        /// (it is then a velocity drive of zero velocity, and its nodes may
+        /// not share a held component with another support or drive).
+        name: Option<String>,
         /// The nodes.
         nodes: NodeSpec,
         /// Components, letters of `"xyz"`.
@@ -301,6 +306,20 @@ pub struct OutputSpec {
     /// `[output.checkpoint]`: how often the run's state is saved for
     /// `femdem run --resume`.
     pub checkpoint: Option<Spanned<CheckpointSpec>>,
+    /// `[[output.probes]]`: points whose displacement, velocity and stress
+    /// go to the history.
+    pub probes: Option<Vec<Spanned<ProbeSpec>>>,
+}
+
+/// `[[output.probes]]`: a named point of the mesh, recorded in the history
+/// as `<name>_ux … <name>_sxy` (see `case::probes`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// The column prefix: letters, digits, `_`, `-` and `.`.
+    pub name: String,
+    /// The point in the reference (unloaded) configuration, m.
+    pub at: [f64; 3],
 }
 
 /// `[output.checkpoint]`: a checkpoint is written when either interval has

@@ -6,6 +6,7 @@ pub mod format;
 mod fuzz;
 pub mod mesh;
 pub mod overrides;
+pub mod probes;
 pub mod setup;
 pub mod traces;
 pub mod zones;

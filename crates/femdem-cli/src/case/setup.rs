@@ -235,13 +235,25 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
     for (i, l) in case.case.loads.iter().enumerate() {
         let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
         match l.get_ref() {
-            LoadSpec::Fixed { nodes, components: c } => {
+            LoadSpec::Fixed { name, nodes, components: c } => {
                 let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
                 }
                 let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
-                loads.fixed.push(Fixed { nodes, components });
+                match name {
+                    // A named support records its reaction: a drive holding
+                    // the components at zero velocity moves its nodes as the
+                    // constraint does (v = 0 on them, no work done).
+                    Some(name) => loads.drives.push(VelocityDrive {
+                        name: name.clone(),
+                        nodes,
+                        velocity: Vec3::zeros(),
+                        components,
+                        ramp: Ramp { ramp_time: 0.0, stop_time: None },
+                    }),
+                    None => loads.fixed.push(Fixed { nodes, components }),
+                }
             }
             LoadSpec::Velocity { name, nodes, velocity, components: c, ramp_time, stop_time } => {
                 let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;

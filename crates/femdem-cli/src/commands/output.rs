@@ -11,6 +11,7 @@ use femdem_vtk::{Compression, Field, Frame, HistoryWriter, SeriesWriter, VtuOpti
 use super::checkpoint::Marks;
 use super::outdir::CASE_COMMENT;
 use crate::case::LoadedCase;
+use crate::case::probes::Probe;
 use crate::case::setup::LoadStrain;
 
 /// Fields a case may ask for.
@@ -48,10 +49,19 @@ pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     lines
 }
 
+/// What the history records besides the energies and the loads' forces.
+#[derive(Clone, Debug, Default)]
+pub struct Recorded {
+    /// The load–strain pair of `[output.load_strain]`.
+    pub load_strain: Option<LoadStrain>,
+    /// The probes of `[[output.probes]]`.
+    pub probes: Vec<Probe>,
+}
+
 /// The columns of `history.csv`: energies and failure counts, each drive's
-/// force and displacement, each surface load's force, and the load–strain
-/// pair when asked for.
-fn history_columns(solver: &Solver, load_strain: bool) -> Vec<String> {
+/// force and displacement, each surface load's force, the load–strain pair
+/// when asked for, and each probe's twelve columns.
+fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
     let mut columns: Vec<String> = [
         "time",
         "step",
@@ -78,8 +88,11 @@ fn history_columns(solver: &Solver, load_strain: bool) -> Vec<String> {
     for s in &solver.loads.surfaces {
         columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", s.name)));
     }
-    if load_strain {
+    if recorded.load_strain.is_some() {
         columns.extend(["load".to_string(), "strain".to_string()]);
+    }
+    for p in &recorded.probes {
+        columns.extend(Probe::columns(&p.name));
     }
     columns
 }
@@ -100,7 +113,7 @@ pub struct Output {
     fields: Vec<String>,
     /// Pre-existing fracture faces (node triples of one side).
     pre_existing: Vec<[u32; 3]>,
-    load_strain: Option<LoadStrain>,
+    recorded: Recorded,
 }
 
 impl Output {
@@ -113,10 +126,10 @@ impl Output {
         written: (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
-        load_strain: Option<LoadStrain>,
+        recorded: Recorded,
         comments: &[String],
     ) -> Result<Output> {
-        Output::open(dir, stem, written, solver, pre_existing, load_strain, Begin::Fresh(comments))
+        Output::open(dir, stem, written, solver, pre_existing, recorded, Begin::Fresh(comments))
     }
 
     /// Continues the output an earlier run of the same case left in `dir`
@@ -128,10 +141,10 @@ impl Output {
         written: (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
-        load_strain: Option<LoadStrain>,
+        recorded: Recorded,
         marks: &Marks,
     ) -> Result<Output> {
-        Output::open(dir, stem, written, solver, pre_existing, load_strain, Begin::Resumed(marks))
+        Output::open(dir, stem, written, solver, pre_existing, recorded, Begin::Resumed(marks))
     }
 
     /// [`Output::create`] and [`Output::resume`].
@@ -141,13 +154,13 @@ impl Output {
         (fields, compression): (Vec<String>, Compression),
         solver: &Solver,
         pre_existing: Vec<[u32; 3]>,
-        load_strain: Option<LoadStrain>,
+        recorded: Recorded,
         begin: Begin<'_>,
     ) -> Result<Output> {
         check_fields(&fields)?;
         let options = VtuOptions::default().with_compression(compression);
         let fracture_stem = format!("{stem}_fractures");
-        let columns = history_columns(solver, load_strain.is_some());
+        let columns = history_columns(solver, &recorded);
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let (history_path, failures_path) = (dir.join("history.csv"), dir.join("failures.csv"));
         let (series, fractures, history, failures) = match begin {
@@ -169,7 +182,7 @@ impl Output {
             ),
         };
         let (series, fractures) = (series.with_options(options), fractures.with_options(options));
-        Ok(Output { series, fractures, history, failures, fields, pre_existing, load_strain })
+        Ok(Output { series, fractures, history, failures, fields, pre_existing, recorded })
     }
 
     /// How far the output has got, for a checkpoint; the history and the
@@ -198,8 +211,10 @@ impl Output {
         Ok(())
     }
 
-    /// Appends the history row of a step's record.
-    pub fn history_row(&mut self, r: &StepRecord) -> Result<()> {
+    /// Appends the history row of a step's record; the probes read the
+    /// solver's state at that step (positions as [`Output::frame`] writes
+    /// them, velocities `v_{n+½}`, the step's tet stresses).
+    pub fn history_row(&mut self, solver: &Solver, r: &StepRecord) -> Result<()> {
         let e = &r.energies;
         let mut row = vec![
             r.time,
@@ -224,9 +239,15 @@ impl Output {
         for f in &r.surface_forces {
             row.extend([f.x, f.y, f.z]);
         }
-        if let Some(ls) = &self.load_strain {
+        if let Some(ls) = &self.recorded.load_strain {
             let (load, strain) = ls.evaluate(&r.drive_forces, &r.drive_displacements);
             row.extend([load, strain]);
+        }
+        let m = &solver.model;
+        for p in &self.recorded.probes {
+            let u = |n: usize| solver.recorded_position(n) - m.x0[n];
+            let v = |n: usize| solver.state.v[n];
+            row.extend(p.values(&m.tets, u, v, &solver.workspace.stress));
         }
         self.history.row(&row)?;
         Ok(())

@@ -68,6 +68,8 @@ pub struct Runnable {
     pub output: case::setup::OutputSettings,
     /// The load–strain columns, if asked for.
     pub load_strain: Option<case::setup::LoadStrain>,
+    /// The probes of `[[output.probes]]`, placed.
+    pub probes: Vec<case::probes::Probe>,
     /// How the run starts.
     pub start: Start,
 }
@@ -166,12 +168,13 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     let end_time = s.end_time;
     let check_interval = s.check_interval;
     let output = case::setup::output(&loaded, end_time, &super::output::FIELDS)?;
+    let probes = case::probes::probes(&loaded, &solver.model, &solver.loads)?;
     Ok(Prepared {
         case: loaded,
         mesh,
         zone,
         jointed,
-        run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain, start }),
+        run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain, probes, start }),
     })
 }
 

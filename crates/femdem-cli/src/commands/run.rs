@@ -16,7 +16,7 @@ use femdem_solver::{Solver, Want};
 
 use super::checkpoint::{self, Checkpoint, Identity, Schedule};
 use super::outdir;
-use super::output::{Output, history_comments};
+use super::output::{Output, Recorded, history_comments};
 use super::prepare::{Start, prepare, start_static};
 use super::progress::{Progress, Status};
 use crate::case;
@@ -73,8 +73,9 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         let (file, saved) = checkpoint::latest(&dir)?;
         saved.identity.check(&identity, &file)?;
         solver.restore(&saved.solver).with_context(|| format!("checkpoint {}", file.display()))?;
-        let output = Output::resume(&dir, &stem, written, solver, pre_existing, run.load_strain, &saved.marks)
-            .with_context(|| {
+        let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
+        let output =
+            Output::resume(&dir, &stem, written, solver, pre_existing, columns, &saved.marks).with_context(|| {
                 format!("continuing the output in {} from checkpoint {}", dir.display(), file.display())
             })?;
         checkpoint::remove_after(&dir, Some(saved.schedule.next_step))?;
@@ -102,7 +103,8 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             outdir::clear(&dir, &stem)?;
         }
         let comments = history_comments(&prepared.case);
-        let output = Output::create(&dir, &stem, written, solver, pre_existing, run.load_strain, &comments)
+        let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
+        let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;
         let schedule = Schedule { next_step: 0, next_frame: 0.0, next_row: 0.0, ended_past_peak: false, peak: None };
@@ -159,13 +161,15 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         }
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
-        solver.step(Want { stress: frame_due, energy: row_due });
+        // Probes record stress in every history row.
+        let probing = row_due && !run.probes.is_empty();
+        solver.step(Want { stress: frame_due || probing, energy: row_due });
         let record = solver.record();
         if !record.new_failures.is_empty() {
             output.failure_rows(solver, record)?;
         }
         if row_due {
-            output.history_row(record)?;
+            output.history_row(solver, record)?;
             next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
         }
         if frame_due {

@@ -7,6 +7,7 @@ mod memory;
 mod outdir;
 mod overrides;
 mod plot;
+mod probes;
 mod progress;
 mod resume;
 mod run;

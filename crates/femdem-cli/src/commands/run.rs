@@ -149,7 +149,10 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         }
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
-        solver.step(Want { stress: frame_due, energy: row_due });
+        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
+        // The energy check reads the energies of the step it checks.
+        let energy_checked = checked && run.energy_tolerance.is_some();
+        solver.step(Want { stress: frame_due, energy: row_due || energy_checked });
         let record = solver.record();
         if !record.new_failures.is_empty() {
             output.failure_rows(solver, record)?;
@@ -162,9 +165,20 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             output.frames(solver, t)?;
             next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
         }
-        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
-        if let Some(trouble) = checked.then(|| solver.check(run.stable.critical).err()).flatten() {
-            // Keep what shows the trouble: the current frame and the history so far.
+        let trouble = checked
+            .then(|| {
+                solver
+                    .check(run.stable.critical)
+                    .err()
+                    .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
+            })
+            .flatten();
+        if let Some(trouble) = trouble {
+            // Keep what shows the trouble: the current frame and the history
+            // so far, with this step's row (its energies, if evaluated).
+            if !row_due && solver.record().energies_current {
+                output.history_row(solver.record())?;
+            }
             output.frames(solver, solver.state.time)?;
             progress.finish();
             bail!(

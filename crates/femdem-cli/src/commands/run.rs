@@ -33,6 +33,9 @@ pub struct RunOptions {
     /// `--stop-after-steps N` (for tests): stop as a signal would once `N`
     /// steps are done, writing a checkpoint.
     pub stop_after_steps: Option<u64>,
+    /// `--pause-checkpoint N` (for tests): the checkpoint of step `N`
+    /// pauses before its rename ([`checkpoint::write`]).
+    pub pause_checkpoint: Option<u64>,
     /// `--progress-interval SECONDS` (for tests): wall time between plain
     /// progress lines (default 10 s).
     pub progress_interval: Option<f64>,
@@ -40,7 +43,7 @@ pub struct RunOptions {
 
 /// Runs the command.
 pub fn run(path: &Path, options: RunOptions) -> Result<()> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, progress_interval } = options;
+    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, progress_interval } = options;
     let prepared = prepare(path, threads, &set)?;
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
@@ -145,7 +148,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             // The state to continue from: this step has not been taken, and
             // the frame and row the interruption adds below are not in it.
             let at = schedule_at(n, next_frame, next_row, ended_past_peak, &past_peak);
-            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver)?);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
         }
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
@@ -207,7 +210,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         let by_wall = checkpoints.interval_wall > 0.0 && saved_at.elapsed().as_secs_f64() >= checkpoints.interval_wall;
         if !last && (by_steps || by_wall) {
             let at = schedule_at(n + 1, next_frame, next_row, ended_past_peak, &past_peak);
-            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver)?);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
             saved_at = Instant::now();
         }
     }
@@ -256,11 +259,19 @@ fn schedule_at(n: u64, next_frame: f64, next_row: f64, ended: bool, watch: &Opti
     }
 }
 
-/// Writes a checkpoint of `solver` and `output` at `schedule` into `dir`;
-/// returns its file.
-fn save(dir: &Path, identity: &Identity, schedule: Schedule, output: &mut Output, solver: &Solver) -> Result<PathBuf> {
+/// Writes a checkpoint of `solver` and `output` at `schedule` into `dir`
+/// (pausing before the rename if its step is `pause`, for tests); returns
+/// its file.
+fn save(
+    dir: &Path,
+    identity: &Identity,
+    schedule: Schedule,
+    output: &mut Output,
+    solver: &Solver,
+    pause: Option<u64>,
+) -> Result<PathBuf> {
     let saved = Checkpoint { identity: identity.clone(), schedule, marks: output.marks()?, solver: solver.snapshot() };
-    checkpoint::write(dir, &saved)
+    checkpoint::write(dir, &saved, pause)
 }
 
 /// `[output.load_strain] stop_below_peak`: watches the load `F` of Eq. 21

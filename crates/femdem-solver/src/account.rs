@@ -22,8 +22,9 @@
 //! nothing has happened yet: at rest the elastic energy is round-off
 //! (about 10⁻¹² J on the 2,136 tets of the bundled Brazilian disc,
 //! changing by 10⁻¹³ J as the mesh starts to move), which would be a
-//! sizeable fraction of a scale made of round-off; the floor is 10⁶ times
-//! larger (3·10⁻⁷ J there) and 10⁻⁶ of the work that run does.
+//! sizeable fraction of a scale made of round-off; the floor is 10⁵ times
+//! that round-off (2.7·10⁻⁷ J there) and 2·10⁻⁶ of the work that run does
+//! (0.145 J).
 
 use femdem_core::Real;
 

@@ -66,6 +66,11 @@ enum Command {
         /// checkpoint, the last frame, a non-zero exit status).
         #[arg(long, value_name = "N", hide = true)]
         stop_after_steps: Option<u64>,
+        /// For tests: the checkpoint of step N stops between writing its
+        /// temporary file and renaming it, for a test to kill the run
+        /// there (`commands/checkpoint.rs`, `PAUSED`).
+        #[arg(long, value_name = "N", hide = true)]
+        pause_checkpoint: Option<u64>,
         /// For tests: seconds of wall time between plain progress lines
         /// (when stderr is not a terminal; default 10).
         #[arg(long, value_name = "SECONDS", hide = true)]
@@ -105,20 +110,30 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads, set } => commands::check::run(&case, json, threads, &set),
-        Command::Run { case, out, threads, set, resume, stop_after_steps, progress_interval, force, overwrite } => {
-            commands::memory::refuse_if_too_big(&case, &set, force).and_then(|()| {
-                let options = commands::run::RunOptions {
-                    out,
-                    threads,
-                    set,
-                    resume,
-                    stop_after_steps,
-                    progress_interval,
-                    overwrite,
-                };
-                commands::run::run(&case, options)
-            })
-        }
+        Command::Run {
+            case,
+            out,
+            threads,
+            set,
+            resume,
+            stop_after_steps,
+            pause_checkpoint,
+            progress_interval,
+            force,
+            overwrite,
+        } => commands::memory::refuse_if_too_big(&case, &set, force).and_then(|()| {
+            let options = commands::run::RunOptions {
+                out,
+                threads,
+                set,
+                resume,
+                stop_after_steps,
+                pause_checkpoint,
+                progress_interval,
+                overwrite,
+            };
+            commands::run::run(&case, options)
+        }),
         Command::Plot { results, x, y, out } => {
             commands::plot::run(&results, commands::plot::PlotOptions { x, y, out })
         }

@@ -208,6 +208,9 @@ pub fn joint_update_fast(
     let weight = k.frame.area / 3.0;
     let mut broken_points = 0;
     let mut mode = None;
+    // The halves of this step's work that end on this evaluation's
+    // tractions: taken back if the joint fails now (`JointHistory::work`).
+    let mut ending = 0.0;
     let mut for_stored = [ForStored::default(); 3];
     for (i, w) in GAUSS.iter().enumerate() {
         let slip = k.slip[i];
@@ -229,6 +232,7 @@ pub fn joint_update_fast(
         }
         let normal_work = 0.5 * (sigma_last + ps.sigma) * (k.opening[i] - ln);
         history.work += weight * (normal_work + 0.5 * traction.dot(&d_slip));
+        ending += weight * 0.5 * (ps.sigma * (k.opening[i] - ln) + shear.dot(&d_slip));
         history.last[i] = [k.opening[i], slip.x, slip.y, slip.z];
         history.last_stress[i] = [ps.sigma, ps.tau];
         history.dissipated += weight * ps.dissipated;
@@ -259,6 +263,7 @@ pub fn joint_update_fast(
     };
     if broken_points >= 2 {
         history.failed = true;
+        history.work -= ending;
         history.released = stored_total(&for_stored);
         out.failed = Some(mode.unwrap_or(FailureMode::Mixed));
         out.forces = [Vec3::zeros(); 6];

@@ -108,9 +108,15 @@ pub struct JointHistory {
     /// steps of `A/3 (σ̄ Δδn + τ̄·Δδs)` at each point, `σ̄` and `τ̄` the means
     /// of the last and the new traction (trapezoid rule: exact on an
     /// elastic branch, where the rectangle rule would book `k Δδ²/2` per
-    /// step as spurious dissipation whenever the joint vibrates).
-    /// `work − stored energy` is what the joint has dissipated, whatever
-    /// the path, so the run's energy account closes.
+    /// step as spurious dissipation whenever the joint vibrates). On the
+    /// step that fails it the joint exerts no force, so that step's
+    /// trapezoid ends on a zero traction: `A/3 (σ_last Δδn + τ_last·Δδs)/2`
+    /// (the work its nodes did on it, as the solver's nodal account sees
+    /// it; ending on the tractions it no longer exerts booked `½ σ Δδ` of
+    /// work that no node did, measured as the larger part of the energy
+    /// error of the bundled Brazilian run's shear failures under the
+    /// platen). `work − stored energy` is what the joint has dissipated,
+    /// whatever the path, so the run's energy account closes.
     pub work: Real,
     /// Opening and slip vector of each point at the last evaluation.
     pub last: [[Real; 4]; 3],
@@ -311,6 +317,9 @@ pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], wi
     let weight = k.frame.area / 3.0;
     let mut broken_points = 0;
     let mut mode = None;
+    // The halves of this step's work that end on this evaluation's
+    // tractions: taken back if the joint fails now (`JointHistory::work`).
+    let mut ending = 0.0;
     let mut stored_total = 0.0;
     for (i, w) in GAUSS.iter().enumerate() {
         let ds = k.slip[i].norm();
@@ -329,6 +338,8 @@ pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], wi
         }
         let normal_work = 0.5 * (sigma_last + ps.sigma) * (k.opening[i] - ln);
         history.work += weight * (normal_work + 0.5 * traction.dot(&d_slip));
+        let shear_now = if ds > 0.0 { k.slip[i] * (ps.tau / ds) } else { Vec3::zeros() };
+        ending += weight * 0.5 * (ps.sigma * (k.opening[i] - ln) + shear_now.dot(&d_slip));
         history.last[i] = [k.opening[i], k.slip[i].x, k.slip[i].y, k.slip[i].z];
         history.last_stress[i] = [ps.sigma, ps.tau];
         history.dissipated += weight * ps.dissipated;
@@ -352,6 +363,7 @@ pub fn joint_update(joint: &Joint, history: &mut JointHistory, x: &[Vec3; 6], wi
     }
     if broken_points >= 2 {
         history.failed = true;
+        history.work -= ending;
         history.released = stored_total;
         out.failed = Some(mode.unwrap_or(FailureMode::Mixed));
         out.forces = [Vec3::zeros(); 6];

@@ -2,8 +2,8 @@
 //! meaningful, for a driver to call every so many steps
 //! ([`Solver::check`]).
 //!
-//! Three checks, one pass over nodes and one over tets (cheap next to a
-//! step: no force evaluation):
+//! Three checks of the state, one pass over nodes and one over tets
+//! (cheap next to a step: no force evaluation), in [`Solver::check`]:
 //!
 //! 1. every position and velocity is finite;
 //! 2. no deformable tet is inverted (`J = V/V₀ ≤ 0`; the neo-Hookean law
@@ -23,12 +23,21 @@
 //!    `(λ + 2μ − λ ln J) / J`, over the current density `ρ / J`). The run
 //!    is unsafe once `Δt > min_t Δt_t`: a crushed or flattened element has
 //!    stiffened past what the step was chosen for.
+//!
+//! And one of the energy account, in [`Solver::check_energy`]: the balance
+//! `B = kinetic + elastic + dissipated − external work` has moved since
+//! step 0 by more than a tolerance times the run's energy scale
+//! (`|B_n − B_0| > tol · scale_n`, both defined in `crate::account`; the
+//! account is centred so that an honest run keeps it near round-off,
+//! `crate::step`). It reads the last step that evaluated the energies and
+//! costs nothing more.
 
 use femdem_core::tet::{FACES, signed_volume, triangle_area};
 use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 use thiserror::Error;
 
+use crate::account::Imbalance;
 use crate::model::{Model, RIGID};
 use crate::step::Solver;
 
@@ -84,6 +93,27 @@ pub enum Trouble {
         j: Real,
         /// Its shortest altitude over the initial one.
         shrink: Real,
+    },
+    /// The energy account no longer balances.
+    #[error(
+        "step {step}, t = {time:e} s: the energy balance (kinetic + elastic + dissipated − external work) has moved by \
+         {error:.4e} J since step 0, {:.3e} of the run's energy scale {scale:.4e} J, above the tolerance {tolerance:e}: \
+         energy was {} that no force accounts for; the integration has lost accuracy (a smaller time step, [solver] \
+         safety or time_step, is more accurate) or the state was changed outside the step",
+        error.abs() / scale,
+        if *error > 0.0 { "gained" } else { "lost" }
+    )]
+    EnergyBalance {
+        /// Step number of the evaluation.
+        step: u64,
+        /// Its time, s.
+        time: Real,
+        /// `B_n − B_0`, J.
+        error: Real,
+        /// The run's energy scale, J.
+        scale: Real,
+        /// The tolerance, a fraction of the scale.
+        tolerance: Real,
     },
 }
 
@@ -150,5 +180,24 @@ impl Solver {
             return Err(Trouble::StepTooLarge { step, time, dt: self.dt(), estimate, tet, centroid, j, shrink });
         }
         Ok(())
+    }
+
+    /// Checks the energy account: the last evaluation ([`Solver::imbalance`])
+    /// must have `|B_n − B_0| ≤ tolerance · scale_n`. Nothing is checked
+    /// before the first step. The caller sees that the step it checks
+    /// evaluated the energies ([`crate::Want::energy`]): the check reads
+    /// the last one that did.
+    ///
+    /// # Errors
+    /// [`Trouble::EnergyBalance`] with the step and time of that
+    /// evaluation, the error and the scale.
+    pub fn check_energy(&self, tolerance: Real) -> Result<(), Trouble> {
+        match self.imbalance() {
+            // NaN (non-finite energies) trips too.
+            Some(i @ Imbalance { step, time, error, scale }) if i.relative() > tolerance || i.relative().is_nan() => {
+                Err(Trouble::EnergyBalance { step, time, error, scale, tolerance })
+            }
+            _ => Ok(()),
+        }
     }
 }

@@ -16,6 +16,8 @@
 //!   which runs the stages of one step — internal forces (`forces.rs`),
 //!   failures, contact (`contact/`), external forces, update, energy — and
 //!   returns a [`StepRecord`] of step `n`.
+//! - `account.rs`: the half step of work held over between steps, and
+//!   the watch on the balance ([`Solver::imbalance`], [`Imbalance`]).
 //! - [`Solver::snapshot`] / [`Solver::restore`] (`snapshot.rs`): the
 //!   evolving state as bytes, for checkpoints; a restored solver continues
 //!   bit for bit.
@@ -64,6 +66,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod account;
 pub mod contact;
 mod error;
 pub mod forces;
@@ -76,9 +79,10 @@ mod state;
 mod step;
 mod timestep;
 
+pub use account::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};
 pub use contact::{Contact, ContactEnergy, ContactSettings, RAMP_STEPS};
 pub use error::SolverError;
-pub use forces::{ForceSums, Want, Workspace};
+pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::Trouble;
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RIGID, RegionBehaviour};

@@ -4,9 +4,12 @@
 //! same model, loads and settings, which then continues bit for bit as the
 //! original would have.
 //!
-//! What is saved: the node state (`x_n`, `v_{n−½}`, `t_n`, `n`) and every
+//! What is saved: the node state (`x_n`, `v_{n−½}`, `t_n`, `n`; with
+//! viscous materials `v_{n−3/2}` too, which the dissipation reads) and every
 //! joint's history (damage at each integration point, last opening, slip
-//! and tractions, softened flags, work, failed flag); the energy account;
+//! and tractions, softened flags, work, failed flag); the energy account
+//! with the half step of work it holds over and its watch
+//! (`crate::account`);
 //! the failure record; the last [`StepRecord`] (it carries the failure
 //! counts); the contact pass's state (contactable tets, cracked vertices
 //! and their pieces, bonded pairs, the candidates of the last detection
@@ -31,11 +34,15 @@ use femdem_core::Vec3;
 use femdem_fracture::{FailureMode, JointHistory, Softened};
 
 use crate::SolverError;
+use crate::account::{Account, Imbalance};
 use crate::state::{Energies, Failure};
 use crate::step::{Solver, StepRecord};
 
 /// The version of the snapshot layout written by [`Solver::snapshot`].
-pub const SNAPSHOT_VERSION: u32 = 1;
+///
+/// 2: the energy account centred on `t_n` (the half step of work held
+/// over, the watch on the balance, the velocities of the step before).
+pub const SNAPSHOT_VERSION: u32 = 2;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]
@@ -317,6 +324,26 @@ fn get_energies(d: &mut Decoder<'_>) -> Result<Energies, SolverError> {
     })
 }
 
+fn put_account(e: &mut Encoder, a: &Account) {
+    e.f64(a.ahead);
+    e.bool(a.initial.is_some());
+    e.f64(a.initial.unwrap_or(0.0));
+    e.f64(a.peak_held);
+    e.bool(a.last.is_some());
+    let last = a.last.unwrap_or(Imbalance { step: 0, time: 0.0, error: 0.0, scale: 0.0 });
+    e.u64(last.step);
+    [last.time, last.error, last.scale].into_iter().for_each(|x| e.f64(x));
+}
+
+fn get_account(d: &mut Decoder<'_>) -> Result<Account, SolverError> {
+    let ahead = d.f64()?;
+    let initial = (d.bool()?, d.f64()?);
+    let peak_held = d.f64()?;
+    let has_last = d.bool()?;
+    let last = Imbalance { step: d.u64()?, time: d.f64()?, error: d.f64()?, scale: d.f64()? };
+    Ok(Account { ahead, initial: initial.0.then_some(initial.1), peak_held, last: has_last.then_some(last) })
+}
+
 fn get_mode(d: &mut Decoder<'_>) -> Result<FailureMode, SolverError> {
     let code = d.u8()?;
     FailureMode::from_code(code).ok_or_else(|| snapshot_error(format!("unknown failure mode code {code}")))
@@ -375,11 +402,13 @@ impl Solver {
         let s = &self.state;
         e.vec3s(&s.x);
         e.vec3s(&s.v);
+        e.vec3s(&self.v_before);
         e.f64(s.time);
         e.u64(s.step);
         e.count(s.joints.len());
         s.joints.iter().for_each(|h| put_joint(&mut e, h));
         put_energies(&mut e, self.energies());
+        put_account(&mut e, &self.account);
         e.count(self.failures().len());
         for f in self.failures() {
             e.u32(f.joint);
@@ -426,12 +455,15 @@ impl Solver {
         expect_count("nodes", x.len(), n)?;
         let v = d.vec3s()?;
         expect_count("velocities", v.len(), n)?;
+        let v_before = d.vec3s()?;
+        expect_count("velocities of the step before", v_before.len(), self.v_before.len())?;
         let time = d.f64()?;
         let step = d.u64()?;
         let n_joints = d.count()?;
         expect_count("joints", n_joints, self.model.joints.len())?;
         let joints = (0..n_joints).map(|_| get_joint(&mut d)).collect::<Result<Vec<_>, _>>()?;
         let energies = get_energies(&mut d)?;
+        let account = get_account(&mut d)?;
         let n_failures = d.count()?;
         let mut failures = Vec::with_capacity(n_failures);
         for _ in 0..n_failures {
@@ -458,10 +490,11 @@ impl Solver {
         d.finish()?;
         self.state.x = x;
         self.state.v = v;
+        self.v_before = v_before;
         self.state.time = time;
         self.state.step = step;
         self.state.joints = joints;
-        self.put_back(energies, failures, record, contact);
+        self.put_back(energies, failures, record, contact, account);
         Ok(())
     }
 }

@@ -19,32 +19,39 @@ pub struct State {
     pub joints: Vec<JointHistory>,
 }
 
-/// The energy account, J.
+/// The energy account, J, every term at `t_n`, the time of the record
+/// (the centring and its formulas: `crate::step`, "The energy account and
+/// its time-centring").
 ///
 /// The cumulative terms (`damping`, `external_work`, `contact`,
-/// `friction`) are booked at every step; the state terms (`kinetic`,
-/// `tet_elastic`, `joint_elastic`, `fracture`) are evaluated only at steps
-/// that ask for them ([`crate::Want::energy`]) and keep their last value
-/// otherwise.
+/// `friction`) are booked at every step, by intervals `[t_{n−1}, t_n]`;
+/// the state terms (`kinetic`, `tet_elastic`, `joint_elastic`,
+/// `fracture`) are evaluated only at steps that ask for them
+/// ([`crate::Want::energy`]) and keep their last value otherwise.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Energies {
-    /// Kinetic energy `Σ ½ m |v_n|²`.
+    /// Kinetic energy, the leapfrog's `½ Σ m v_{n−½} · v_{n+½}` (the
+    /// mid-step `½ Σ m |v_n|²` less `⅛ Σ m |v_{n+½} − v_{n−½}|²`).
     pub kinetic: Real,
-    /// Elastic energy stored in the tets.
+    /// Elastic energy stored in the tets at `x_n`.
     pub tet_elastic: Real,
-    /// Elastic energy stored in the joints.
+    /// Elastic energy stored in the joints at `x_n`.
     pub joint_elastic: Real,
-    /// Energy dissipated by viscous damping since the start.
+    /// Energy dissipated by viscous damping up to `t_n`:
+    /// `Σ_k Δt ∫ η D(v_{k−½}) : D(v̄_k) dv` (`crate::forces::Dissipation`).
     pub damping: Real,
-    /// Work of loads, gravity and prescribed motions since the start.
+    /// Work of loads, gravity and prescribed motions up to `t_n`: per
+    /// interval the trapezoid `½ (f_{k−1} + f_k) · (x_k − x_{k−1})`.
     pub external_work: Real,
-    /// Energy dissipated by joint softening and failure since the start.
+    /// Energy dissipated by joint softening and failure up to `t_n`: the
+    /// work done on the joints less what the intact ones store.
     pub fracture: Real,
-    /// Work absorbed by the normal contact forces since the start (the
+    /// Work absorbed by the normal contact forces up to `t_n` (the
     /// penalty potential's energy plus whatever the Eq. 18 ramp does not
-    /// give back), plus the elastic energy of the friction springs now.
+    /// give back), plus the elastic energy of the friction springs now;
+    /// per interval the trapezoid, as `external_work`.
     pub contact: Real,
-    /// Energy dissipated by Coulomb friction since the start: the work
+    /// Energy dissipated by Coulomb friction up to `t_n`: the work
     /// absorbed by friction forces less the energy the sticking springs
     /// still hold.
     pub friction: Real,
@@ -52,7 +59,10 @@ pub struct Energies {
 
 impl Energies {
     /// `kinetic + elastic + dissipated − external work`: constant in an
-    /// exact solution (equal to the initial kinetic + elastic energy).
+    /// exact solution (equal to the initial kinetic + elastic energy), and
+    /// for a linear elastic body in femdem's discrete one too, to
+    /// round-off; how far it has moved is watched by
+    /// [`crate::Solver::imbalance`].
     pub fn balance(&self) -> Real {
         self.kinetic
             + self.tet_elastic

@@ -27,7 +27,7 @@ use femdem_core::{Real, Vec3};
 use femdem_fracture::JointHistory;
 use rayon::prelude::*;
 
-use crate::forces::{Want, Workspace, internal_forces};
+use crate::forces::{Dissipation, Want, Workspace, internal_forces};
 use crate::model::{Model, RIGID};
 
 /// The result of [`stable_time_step`].
@@ -151,7 +151,7 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
     let zero_v = vec![Vec3::zeros(); n];
     // A scratch history: the probing moves are far below any peak opening.
     let mut history = vec![JointHistory::default(); model.joints.len()];
-    internal_forces(model, &model.x0, &zero_v, &mut history, &mut ws, Want::default(), false);
+    internal_forces(model, &model.x0, &zero_v, &mut history, &mut ws, Want::default(), Dissipation::None);
     let f0 = ws.internal.clone();
     let mut xp = model.x0.clone();
 
@@ -160,7 +160,7 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
         let wmax = z.iter().zip(&inv_sqrt_m).map(|(v, s)| v.norm() * s).fold(0.0, Real::max);
         let eps = 1e-6 * min_size / wmax;
         xp.par_iter_mut().enumerate().for_each(|(i, p)| *p = model.x0[i] + z[i] * (inv_sqrt_m[i] * eps));
-        internal_forces(model, &xp, &zero_v, &mut history, &mut ws, Want::default(), false);
+        internal_forces(model, &xp, &zero_v, &mut history, &mut ws, Want::default(), Dissipation::None);
         (0..n).map(|i| -(ws.internal[i] - f0[i]) * (inv_sqrt_m[i] / eps)).collect()
     });
     // Damping: C w = −(f(x0, v = w) − f0), exactly linear in w.
@@ -168,7 +168,7 @@ pub fn stable_time_step(model: &Model, held: &[bool], max_iterations: usize) -> 
     let (beta, it_c) = if viscous {
         lanczos_max(n, &free, max_iterations, |z| {
             let w: Vec<Vec3> = z.iter().zip(&inv_sqrt_m).map(|(v, s)| v * *s).collect();
-            internal_forces(model, &model.x0, &w, &mut history, &mut ws, Want::default(), false);
+            internal_forces(model, &model.x0, &w, &mut history, &mut ws, Want::default(), Dissipation::None);
             (0..n).map(|i| -(ws.internal[i] - f0[i]) * inv_sqrt_m[i]).collect()
         })
     } else {

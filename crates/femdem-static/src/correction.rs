@@ -32,7 +32,7 @@
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::JointHistory;
-use femdem_solver::forces::{Want, Workspace, internal_forces};
+use femdem_solver::forces::{Dissipation, Want, Workspace, internal_forces};
 use femdem_solver::loads::surface_forces;
 use femdem_solver::{Loads, Model};
 
@@ -85,7 +85,15 @@ impl<'a> ModelResidual<'a> {
             *x = x0 + d;
         }
         self.history.iter_mut().for_each(|h| *h = JointHistory::default());
-        internal_forces(m, &self.x, &self.v, &mut self.history, &mut self.workspace, Want::default(), false);
+        internal_forces(
+            m,
+            &self.x,
+            &self.v,
+            &mut self.history,
+            &mut self.workspace,
+            Want::default(),
+            Dissipation::None,
+        );
         let mut f = self.workspace.internal.clone();
         for load in &self.loads.surfaces {
             surface_forces(load, &self.x, load.ramp.factor(0.0), |n, force| f[n as usize] += force);

@@ -265,6 +265,13 @@ pub struct SolverSpec {
     /// 0 turns the guard off).
     #[serde(default = "default_check_interval")]
     pub check_interval: u64,
+    /// The run guard's energy check, at every check: the largest move of
+    /// the energy balance since step 0, as a fraction of the run's energy
+    /// scale (`femdem_solver::Imbalance`), in [0, 1]; default
+    /// `femdem_solver::ENERGY_TOLERANCE` (0.01); 0 turns the energy check
+    /// off.
+    #[serde(default = "default_energy_tolerance")]
+    pub energy_tolerance: f64,
     /// How the run starts: `"dynamic"` (default: at rest in the reference
     /// state, loads as their ramps say) or `"static"` (surface loads held
     /// in full from t = 0, the body first put into equilibrium under them
@@ -274,6 +281,10 @@ pub struct SolverSpec {
 
 fn default_check_interval() -> u64 {
     100
+}
+
+fn default_energy_tolerance() -> f64 {
+    femdem_solver::ENERGY_TOLERANCE
 }
 
 fn default_safety() -> f64 {

@@ -29,6 +29,13 @@
 //! lengths it records are on disk. The two latest checkpoints are kept.
 //! [`latest`] takes the newest one that is complete (magic, version, length
 //! and checksum all right), skipping, with a warning, any that is not.
+//!
+//! For tests of a crash in the middle of a write, the hidden option
+//! `femdem run --pause-checkpoint N` stops the checkpoint of step `N`
+//! after its temporary file is written and synced and before the rename:
+//! the writer creates [`PAUSED`] in the output directory and waits
+//! [`PAUSE_SECONDS`] (a test kills the run there with SIGKILL; if none
+//! does, it goes on).
 
 use std::fs::{self, File};
 use std::io::Write;
@@ -51,6 +58,10 @@ const PREFIX: &str = "checkpoint_";
 const SUFFIX: &str = ".femdem-ckpt";
 /// The file a checkpoint is written to before it is renamed.
 pub const TEMPORARY: &str = ".checkpoint.tmp";
+/// The file a writer paused by `--pause-checkpoint` creates.
+pub const PAUSED: &str = ".checkpoint.paused";
+/// How long a paused writer waits before renaming after all, s.
+pub const PAUSE_SECONDS: u64 = 60;
 /// Bytes before the payload: magic, version, length, checksum.
 const HEADER: usize = 8 + 4 + 8 + 8;
 
@@ -308,8 +319,9 @@ fn list(dir: &Path) -> Result<Vec<(u64, PathBuf)>> {
 
 /// Writes `checkpoint` into `dir` atomically (see the module
 /// documentation), then removes all but the [`KEEP`] newest checkpoints.
-/// Returns the file written.
-pub fn write(dir: &Path, checkpoint: &Checkpoint) -> Result<PathBuf> {
+/// Returns the file written. If the checkpoint's step is `pause` (a test
+/// hook), waits between the temporary file and the rename.
+pub fn write(dir: &Path, checkpoint: &Checkpoint, pause: Option<u64>) -> Result<PathBuf> {
     let path = dir.join(file_name(checkpoint.schedule.next_step));
     let tmp = dir.join(TEMPORARY);
     let bytes = checkpoint.to_bytes();
@@ -318,6 +330,10 @@ pub fn write(dir: &Path, checkpoint: &Checkpoint) -> Result<PathBuf> {
         f.sync_all()
     });
     written.with_context(|| format!("writing checkpoint {}", tmp.display()))?;
+    if pause == Some(checkpoint.schedule.next_step) {
+        File::create(dir.join(PAUSED)).with_context(|| format!("creating {}", dir.join(PAUSED).display()))?;
+        std::thread::sleep(std::time::Duration::from_secs(PAUSE_SECONDS));
+    }
     fs::rename(&tmp, &path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
     // The rename itself is durable once the directory is synced (where the
     // platform allows opening a directory; elsewhere this is best effort).
@@ -359,16 +375,18 @@ pub fn latest(dir: &Path) -> Result<(PathBuf, Checkpoint)> {
 /// Removes the checkpoints in `dir` newer than step `step` (after a resume
 /// from `step`, those are damaged or belong to a future this run will
 /// write again) or, with `None`, all of them (a fresh run), and a leftover
-/// temporary file.
+/// temporary file (and [`PAUSED`]).
 pub fn remove_after(dir: &Path, step: Option<u64>) -> Result<()> {
     for (s, path) in list(dir)? {
         if step.is_none_or(|step| s > step) {
             fs::remove_file(&path).with_context(|| format!("removing checkpoint {}", path.display()))?;
         }
     }
-    let tmp = dir.join(TEMPORARY);
-    if tmp.exists() {
-        fs::remove_file(&tmp).with_context(|| format!("removing {}", tmp.display()))?;
+    for leftover in [TEMPORARY, PAUSED] {
+        let file = dir.join(leftover);
+        if file.exists() {
+            fs::remove_file(&file).with_context(|| format!("removing {}", file.display()))?;
+        }
     }
     Ok(())
 }

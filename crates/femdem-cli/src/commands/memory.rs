@@ -16,7 +16,8 @@
 //! `2 s T` joints for `T` tets on `V` vertices.
 //!
 //! Bytes per item are the arrays that hold them, element by element (see
-//! [`PER_NODE`], [`PER_TET`], [`per_joint`]); `docs/reliability.md` has
+//! [`PER_NODE`], [`PER_TET`], [`per_joint`]; with a viscous material,
+//! [`PER_VISCOUS_NODE`] more per node); `docs/reliability.md` has
 //! the ratio of a run's measured peak resident memory to this estimate.
 
 use std::mem::size_of;
@@ -35,6 +36,10 @@ use crate::case::{self, LoadedCase};
 /// the lumped mass, the origin (mesh and model), the rigid flag, the two
 /// gather offsets.
 pub const PER_NODE: usize = 6 * size_of::<Vec3>() + size_of::<f64>() + 2 * size_of::<u32>() + 1 + 2 * size_of::<u32>();
+
+/// Bytes per node when a material is viscous: the velocities of the step
+/// before, which the viscous dissipation reads (`femdem_solver::Dissipation`).
+pub const PER_VISCOUS_NODE: usize = size_of::<Vec3>();
 
 /// Bytes per tet: its nodes in the mesh, the jointed mesh and the model
 /// (3 × `[u32; 4]`, with the region ids), the reference data (`Dm⁻¹` and
@@ -75,6 +80,8 @@ pub struct Estimate {
     /// Bytes of the arrays of the mesh, the model, the state and the
     /// force pass.
     pub bytes: f64,
+    /// Whether a material is viscous (its nodes need [`PER_VISCOUS_NODE`]).
+    viscous: bool,
 }
 
 impl Estimate {
@@ -84,7 +91,8 @@ impl Estimate {
         self.tets += tets;
         self.nodes += 4.0 * jointed * tets + (1.0 - jointed) * vertices;
         self.joints += 2.0 * jointed * tets;
-        self.bytes = self.nodes * PER_NODE as f64 + self.tets * PER_TET as f64 + self.joints * per_joint() as f64;
+        let per_node = PER_NODE + if self.viscous { PER_VISCOUS_NODE } else { 0 };
+        self.bytes = self.nodes * per_node as f64 + self.tets * PER_TET as f64 + self.joints * per_joint() as f64;
     }
 }
 
@@ -102,7 +110,11 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
         }
         zones_of(section, region).map_or(1.0, |zones| sampled_share(&zones, lo, hi, inside))
     };
-    let mut out = Estimate::default();
+    let viscous = case.case.materials.iter().any(|m| {
+        let m = m.get_ref();
+        m.viscosity.is_some_and(|v| v > 0.0) || m.damping_ratio.is_some_and(|r| r > 0.0)
+    });
+    let mut out = Estimate { viscous, ..Estimate::default() };
     // The bounding box of the parts so far, for platens.
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -308,7 +320,7 @@ mod tests {
 
     #[test]
     fn a_run_that_does_not_fit_is_refused_with_its_figures() {
-        let e = Estimate { tets: 1e8, nodes: 4e8, joints: 2e8, bytes: 3e11 };
+        let e = Estimate { tets: 1e8, nodes: 4e8, joints: 2e8, bytes: 3e11, viscous: false };
         let message = refusal(Path::new("big.toml"), &e, 16e9).expect("refused");
         assert!(message.starts_with("big.toml: the mesh would need about 279.4 GiB"), "{message}");
         assert!(message.contains("1.000e8 tets") && message.contains("--force"), "{message}");

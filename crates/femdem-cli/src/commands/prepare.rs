@@ -45,6 +45,18 @@ pub enum Start {
     Static,
 }
 
+/// `[solver] energy_tolerance`: a fraction in [0, 1]; 0 turns the energy
+/// check off (`None`).
+pub fn energy_tolerance(tolerance: f64) -> Result<Option<f64>, String> {
+    if !(0.0..=1.0).contains(&tolerance) {
+        return Err(format!(
+            "`energy_tolerance` must lie in [0, 1] (a fraction of the run's energy scale; 0 turns the energy check \
+             off), got {tolerance}"
+        ));
+    }
+    Ok((tolerance > 0.0).then_some(tolerance))
+}
+
 /// `[solver] start`: `dynamic` or `static`.
 pub fn start(name: &str) -> Result<Start, String> {
     match name {
@@ -64,6 +76,9 @@ pub struct Runnable {
     pub steps: u64,
     /// Steps between run-guard checks (0: none).
     pub check_interval: u64,
+    /// The energy check's tolerance, a fraction of the run's energy scale
+    /// (`None`: off).
+    pub energy_tolerance: Option<f64>,
     /// `[output]`, resolved and checked.
     pub output: case::setup::OutputSettings,
     /// The load–strain columns, if asked for.
@@ -114,6 +129,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     if !(s.safety > 0.0 && s.safety <= 1.0) {
         bail!(at(format!("safety must lie in (0, 1], got {}", s.safety)));
     }
+    let energy_tolerance = energy_tolerance(s.energy_tolerance).map_err(at)?;
     let start = start(s.start.as_deref().unwrap_or("dynamic")).map_err(at)?;
     if start == Start::Static && !jointed.initial_contacts.is_empty() {
         bail!(at(format!(
@@ -174,7 +190,17 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         mesh,
         zone,
         jointed,
-        run: Some(Runnable { solver, stable, steps, check_interval, output, load_strain, probes, start }),
+        run: Some(Runnable {
+            solver,
+            stable,
+            steps,
+            check_interval,
+            energy_tolerance,
+            output,
+            load_strain,
+            probes,
+            start,
+        }),
     })
 }
 
@@ -190,4 +216,22 @@ pub fn start_static(
     let solution = femdem_static::static_solve(&solver.model, &solver.loads, initial, &options)?;
     solver.start_displaced(&solution.displacement)?;
     Ok(solution)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `[solver] energy_tolerance`: a fraction in [0, 1], 0 turning the
+    /// energy check off; anything else refused.
+    #[test]
+    fn energy_tolerance_is_a_fraction_and_zero_turns_it_off() {
+        assert_eq!(energy_tolerance(0.0), Ok(None));
+        assert_eq!(energy_tolerance(0.01), Ok(Some(0.01)));
+        assert_eq!(energy_tolerance(1.0), Ok(Some(1.0)));
+        for bad in [-1e-3, 1.5, f64::NAN, f64::INFINITY] {
+            let err = energy_tolerance(bad).unwrap_err();
+            assert!(err.contains("`energy_tolerance` must lie in [0, 1]"), "{bad}: {err}");
+        }
+    }
 }

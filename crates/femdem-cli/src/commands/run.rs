@@ -37,6 +37,9 @@ pub struct RunOptions {
     /// `--stop-after-steps N` (for tests): stop as a signal would once `N`
     /// steps are done, writing a checkpoint.
     pub stop_after_steps: Option<u64>,
+    /// `--pause-checkpoint N` (for tests): the checkpoint of step `N`
+    /// pauses before its rename ([`checkpoint::write`]).
+    pub pause_checkpoint: Option<u64>,
     /// `--progress-interval SECONDS` (for tests): wall time between plain
     /// progress lines (default 10 s).
     pub progress_interval: Option<f64>,
@@ -47,7 +50,8 @@ pub struct RunOptions {
 
 /// Runs the command.
 pub fn run(path: &Path, options: RunOptions) -> Result<()> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, progress_interval, overwrite } = options;
+    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, progress_interval, overwrite } =
+        options;
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     // The output directory is checked before the mesh is built: a refusal
@@ -157,13 +161,16 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             // The state to continue from: this step has not been taken, and
             // the frame and row the interruption adds below are not in it.
             let at = schedule_at(n, next_frame, next_row, ended_past_peak, &past_peak);
-            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver)?);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
         }
         let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
         let row_due = frame_due || t >= next_row - 0.5 * dt;
-        // Probes record stress in every history row.
+        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
+        // The energy check reads the energies of the step it checks; probes
+        // record stress in every history row.
+        let energy_checked = checked && run.energy_tolerance.is_some();
         let probing = row_due && !run.probes.is_empty();
-        solver.step(Want { stress: frame_due || probing, energy: row_due });
+        solver.step(Want { stress: frame_due || probing, energy: row_due || energy_checked });
         let record = solver.record();
         if !record.new_failures.is_empty() {
             output.failure_rows(solver, record)?;
@@ -176,9 +183,20 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             output.frames(solver, t)?;
             next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
         }
-        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
-        if let Some(trouble) = checked.then(|| solver.check(run.stable.critical).err()).flatten() {
-            // Keep what shows the trouble: the current frame and the history so far.
+        let trouble = checked
+            .then(|| {
+                solver
+                    .check(run.stable.critical)
+                    .err()
+                    .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
+            })
+            .flatten();
+        if let Some(trouble) = trouble {
+            // Keep what shows the trouble: the current frame and the history
+            // so far, with this step's row (its energies, if evaluated).
+            if !row_due && solver.record().energies_current {
+                output.history_row(solver, solver.record())?;
+            }
             output.frames(solver, solver.state.time)?;
             progress.finish();
             bail!(
@@ -207,7 +225,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         let by_wall = checkpoints.interval_wall > 0.0 && saved_at.elapsed().as_secs_f64() >= checkpoints.interval_wall;
         if !last && (by_steps || by_wall) {
             let at = schedule_at(n + 1, next_frame, next_row, ended_past_peak, &past_peak);
-            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver)?);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
             saved_at = Instant::now();
         }
     }
@@ -256,11 +274,19 @@ fn schedule_at(n: u64, next_frame: f64, next_row: f64, ended: bool, watch: &Opti
     }
 }
 
-/// Writes a checkpoint of `solver` and `output` at `schedule` into `dir`;
-/// returns its file.
-fn save(dir: &Path, identity: &Identity, schedule: Schedule, output: &mut Output, solver: &Solver) -> Result<PathBuf> {
+/// Writes a checkpoint of `solver` and `output` at `schedule` into `dir`
+/// (pausing before the rename if its step is `pause`, for tests); returns
+/// its file.
+fn save(
+    dir: &Path,
+    identity: &Identity,
+    schedule: Schedule,
+    output: &mut Output,
+    solver: &Solver,
+    pause: Option<u64>,
+) -> Result<PathBuf> {
     let saved = Checkpoint { identity: identity.clone(), schedule, marks: output.marks()?, solver: solver.snapshot() };
-    checkpoint::write(dir, &saved)
+    checkpoint::write(dir, &saved, pause)
 }
 
 /// `[output.load_strain] stop_below_peak`: watches the load `F` of Eq. 21

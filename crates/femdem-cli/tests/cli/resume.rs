@@ -6,7 +6,8 @@
 //! then resumed, writes `history.csv`, `failures.csv`, both `.pvd` series
 //! and every frame byte for byte as the uninterrupted run does; so does a
 //! resume whose newest checkpoint was left incomplete (cut in half, beside
-//! a partial temporary file), from the complete one before it; and a
+//! a partial temporary file), from the complete one before it; so does a
+//! run killed with SIGKILL while it writes a checkpoint (Unix); and a
 //! checkpoint is refused to another case, naming both.
 
 use crate::common::{femdem, history_csv, root};
@@ -111,6 +112,61 @@ fn a_damaged_latest_checkpoint_is_skipped_for_the_complete_one_before_it() {
     assert!(stderr.contains("skipping checkpoint") && stderr.contains("incomplete"), "{stderr}");
     assert!(stderr.contains("step 800"), "{stderr}");
     assert!(!checkpoint(1000).exists(), "the damaged checkpoint is removed once the run has gone past it");
+    assert_identical_to_baseline(&out);
+}
+
+/// SIGKILL in the middle of a checkpoint write: the run, checkpointing
+/// every 400 steps, is held by the hidden `--pause-checkpoint 800` between
+/// writing (and syncing) the temporary file of its step-800 checkpoint and
+/// renaming it, and killed there with SIGKILL — nothing of femdem runs
+/// after it, as on a node failure or the OOM killer. On disk: the
+/// checkpoint of step 400 and the temporary file, no checkpoint of step
+/// 800. `--resume` must take step 400, remove the temporary file, and end
+/// byte for byte as the uninterrupted run.
+#[cfg(unix)]
+#[test]
+fn a_run_killed_while_writing_a_checkpoint_resumes_from_the_one_before() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+
+    let dir = fresh("resume-killed");
+    let case_dir = dir.join("case");
+    std::fs::create_dir_all(&case_dir).unwrap();
+    let text = std::fs::read_to_string(root().join(CASE)).unwrap();
+    let case = case_dir.join(format!("{STEM}.toml"));
+    std::fs::write(&case, format!("{text}\n[output.checkpoint]\ninterval_steps = 400\n")).unwrap();
+    let case = case.to_str().unwrap();
+    let out = dir.join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_femdem"))
+        .args(["run", case, "--out", out.to_str().unwrap(), "--pause-checkpoint", "800"])
+        .current_dir(root())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start femdem");
+    let paused = out.join(".checkpoint.paused");
+    let start = Instant::now();
+    while !paused.exists() {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("the run ended ({status}) without pausing in its checkpoint of step 800");
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "no pause within 120 s");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.signal(), Some(9), "killed by SIGKILL: {status}");
+    let checkpoint = |n: u64| out.join(format!("checkpoint_{n:012}.femdem-ckpt"));
+    assert!(checkpoint(400).is_file(), "the checkpoint before is complete");
+    assert!(!checkpoint(800).exists(), "killed before the rename");
+    let tmp = out.join(".checkpoint.tmp");
+    assert!(std::fs::metadata(&tmp).unwrap().len() > 0, "the interrupted write left its temporary file");
+    let o = resume(case, &out);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("resuming from") && stderr.contains("step 400"), "{stderr}");
+    assert!(!tmp.exists() && !paused.exists(), "the leftovers are removed");
     assert_identical_to_baseline(&out);
 }
 

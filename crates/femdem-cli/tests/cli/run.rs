@@ -36,9 +36,56 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
     let last = rows.last().unwrap();
     let work = last[col("external_work")];
     assert!(work > 0.0);
-    // The piston's energy input is accounted for (the reported kinetic
-    // energy uses the mid-step velocity: O(Δt) mismatch on the driven end).
-    assert!(last[col("balance")].abs() < 0.02 * work, "balance {} vs work {work}", last[col("balance")]);
+    // The piston's energy input is accounted for: the account centred on
+    // t_n is exact for a linear body, and this one barely leaves the
+    // linear range (strains of 1e-5); measured 4e-7 of the work (it was
+    // 6e-3 when the work was booked half a step ahead of the kinetic
+    // energy), so 1e-5 says the centring holds end to end.
+    assert!(last[col("balance")].abs() < 1e-5 * work, "balance {} vs work {work}", last[col("balance")]);
+}
+
+/// The run guard's energy check, end to end: a run that cannot meet its
+/// `[solver] energy_tolerance` is stopped at the first check past it with
+/// the step, the time, the error and the run's energy scale named; the
+/// frame of that moment and the history row of the checked step are
+/// written; the exit status is non-zero. The bundled elastic bar's account
+/// moves by about 4e-7 of its scale (round-off and the neo-Hookean law's
+/// small nonlinearity), so a tolerance of 1e-9 — legal, but below what the
+/// integration can give — trips the check at its first occasion, step 99
+/// of `check_interval = 100`; the default (0.01) lets the same run finish
+/// (`elastic_bar_runs_and_writes_a_series_and_a_history`).
+#[test]
+fn a_run_past_its_energy_tolerance_is_stopped_with_its_state_written() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("energy-guard-run");
+    let _ = std::fs::remove_dir_all(&out);
+    let o = femdem(&[
+        "run",
+        "cases/elastic-bar.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "solver.energy_tolerance=1e-9",
+    ]);
+    assert!(!o.status.success(), "the run must be stopped");
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(err.contains("the run guard stopped the run: step 99, t = "), "{err}");
+    assert!(
+        err.contains("the energy balance") && err.contains("of the run's energy scale") && err.contains("1e-9"),
+        "{err}"
+    );
+    assert!(err.contains("the state at that point was written to"), "{err}");
+    let pvd = std::fs::read_to_string(out.join("elastic-bar.pvd")).unwrap();
+    assert!(pvd.matches("file=\"").count() >= 2, "the state at the stop must be written: {pvd}");
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = history.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let (first, last) = (&rows[0], rows.last().unwrap());
+    assert_eq!(last[col("step")], 99.0, "the history ends on the checked step's row");
+    let work = last[col("external_work")];
+    let moved = (last[col("balance")] - first[col("balance")]).abs();
+    assert!(moved > 1e-9 * work && moved < 1e-5 * work, "moved {moved:e} J of {work:e} J");
 }
 
 #[test]
@@ -163,6 +210,7 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("zero_fracture_energy", ":23:", "`fracture_energy` must be finite and > 0 J/m², got 0 J/m²"),
         ("unknown_start", ":64:", "solver: `start`: `quasi-static` is not one of dynamic, static"),
         ("static_start_with_traces", ":39:", "start in contact across pre-existing fracture faces"),
+        ("energy_tolerance_above_one", ":64:", "solver: `energy_tolerance` must lie in [0, 1]"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

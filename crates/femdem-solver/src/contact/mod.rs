@@ -78,14 +78,19 @@ pub const RAMP_STEPS: u32 = 10;
 /// The contact terms of the energy account, J.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ContactEnergy {
-    /// Work absorbed by the normal forces since the start, plus the elastic
-    /// energy of the friction springs now.
+    /// Work absorbed by the normal forces up to `t_n` of the last pass,
+    /// plus the elastic energy of the friction springs now.
     pub contact: Real,
-    /// Energy dissipated by friction since the start: the work absorbed by
-    /// the friction forces less what the springs still hold.
+    /// Energy dissipated by friction up to `t_n`: the work absorbed by the
+    /// friction forces less what the springs still hold.
     pub friction: Real,
     friction_absorbed: Real,
     spring_booked: Real,
+    /// Work of the last pass's normal forces over the half step after
+    /// `t_n`, `½ Δt Σ f_N · v_{n+½}`: booked with the next pass.
+    normal_ahead: Real,
+    /// The same for the friction forces.
+    friction_ahead: Real,
 }
 
 /// The contact pass's state.
@@ -277,24 +282,35 @@ impl Contact {
         &self.total
     }
 
-    /// Books the work of the last pass's forces over the step, once the
-    /// update has produced the velocities `v_{n+½}` (`v_new`): with
-    /// `v_n = (v_{n−½} + v_{n+½}) / 2`, the normal forces absorb
-    /// `−Δt Σ f_N · v_n` (the potential's energy plus what the Eq. 18 ramp
-    /// does not give back) and the friction forces `−Δt Σ f_T · v_n`, of
-    /// which the sticking springs still hold `spring_energy`.
+    /// Books the work of the last pass's forces, once the update has
+    /// produced the velocities `v_{n+½}` (`v_new`), centred as the rest of
+    /// the account (see `crate::step`): the work `Δt f_n · v_n` of step `n`
+    /// is split into `½ Δt f_n · v_{n−½}`, which closes the interval
+    /// `[t_{n−1}, t_n]` and is booked now with the half held over from the
+    /// last pass, and `½ Δt f_n · v_{n+½}`, which opens `[t_n, t_{n+1}]`
+    /// and is held over. Per interval that is the trapezoidal work
+    /// `½ (f_{n−1} + f_n) · (x_n − x_{n−1})`, and the terms below belong to
+    /// `t_n`. The normal forces absorb `−W_N` (the potential's energy plus
+    /// what the Eq. 18 ramp does not give back), the friction forces
+    /// `−W_T`, of which the sticking springs still hold `spring_energy`.
     pub fn book_work(&mut self, v_new: &[Vec3], dt: Real) {
-        let (mut normal, mut friction) = (0.0, 0.0);
+        let half = 0.5 * dt;
+        let (mut normal, mut friction, mut normal_ahead, mut friction_ahead) = (0.0, 0.0, 0.0, 0.0);
         for (k, &n) in self.touched.iter().enumerate() {
-            let v_n = (self.v_before[k] + v_new[n as usize]) * 0.5;
-            normal += dt * self.force[n as usize].dot(&v_n);
-            friction += dt * self.friction_force[n as usize].dot(&v_n);
+            let (before, after) = (self.v_before[k], v_new[n as usize]);
+            let (f_n, f_t) = (self.force[n as usize], self.friction_force[n as usize]);
+            normal += half * f_n.dot(&before);
+            friction += half * f_t.dot(&before);
+            normal_ahead += half * f_n.dot(&after);
+            friction_ahead += half * f_t.dot(&after);
         }
         let e = &mut self.energy;
-        e.friction_absorbed -= friction;
-        e.contact += self.spring_energy - e.spring_booked - normal;
+        e.friction_absorbed -= e.friction_ahead + friction;
+        e.contact += self.spring_energy - e.spring_booked - (e.normal_ahead + normal);
         e.friction = e.friction_absorbed - self.spring_energy;
         e.spring_booked = self.spring_energy;
+        e.normal_ahead = normal_ahead;
+        e.friction_ahead = friction_ahead;
     }
 
     /// The tets that can touch, ascending.
@@ -533,7 +549,9 @@ impl Contact {
         }
         e.vec3s(&self.v_before);
         let en = &self.energy;
-        [en.contact, en.friction, en.friction_absorbed, en.spring_booked].into_iter().for_each(|x| e.f64(x));
+        [en.contact, en.friction, en.friction_absorbed, en.spring_booked, en.normal_ahead, en.friction_ahead]
+            .into_iter()
+            .for_each(|x| e.f64(x));
         e.count(self.active_pairs);
         e.u64(self.detections);
         e.f64(self.spring_energy);
@@ -600,6 +618,8 @@ impl Contact {
             friction: d.f64()?,
             friction_absorbed: d.f64()?,
             spring_booked: d.f64()?,
+            normal_ahead: d.f64()?,
+            friction_ahead: d.f64()?,
         };
         c.active_pairs = d.count()?;
         c.detections = d.u64()?;

@@ -55,7 +55,9 @@ impl External {
     /// targets at `t_n + Δt/2`, and records the load totals, the drives'
     /// reactions (given the internal and contact forces of this step) and
     /// their mean displacements. Returns the work the reactions do over the
-    /// step, J.
+    /// step in its two halves, J: `½ Δt Σ r · v_{n−½}` (the half that
+    /// belongs to `t_n`) and `½ Δt Σ r · v_{n+½}` (the half that belongs to
+    /// `t_{n+1}`; `v_{n+½}` of a driven component is its target).
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate(
         &mut self,
@@ -66,7 +68,7 @@ impl External {
         contact: Option<&[Vec3]>,
         dt: Real,
         record: &mut StepRecord,
-    ) -> Real {
+    ) -> (Real, Real) {
         let t = state.time;
         // Surface loads at t_n on the current geometry, in a fixed order.
         for &n in &self.surface_nodes {
@@ -83,7 +85,7 @@ impl External {
         }
         // Reactions of the drives (sequential, small).
         let t_half = t + 0.5 * dt;
-        let mut reaction_work = 0.0;
+        let (mut back, mut ahead) = (0.0, 0.0);
         for (d, drive) in loads.drives.iter().enumerate() {
             let target = drive.velocity * drive.ramp.factor(t_half);
             self.targets[d] = target;
@@ -101,13 +103,14 @@ impl External {
                     if self.prescribed[i][c] == d as u16 {
                         let r = model.mass[i] * (target[c] - state.v[i][c]) / dt - f[c];
                         total[c] += r;
-                        reaction_work += dt * r * 0.5 * (target[c] + state.v[i][c]);
+                        back += 0.5 * dt * r * state.v[i][c];
+                        ahead += 0.5 * dt * r * target[c];
                     }
                 }
             }
             record.drive_forces[d] = total;
             record.drive_displacements[d] = u / drive.nodes.len().max(1) as Real;
         }
-        reaction_work
+        (back, ahead)
     }
 }

@@ -7,7 +7,7 @@ use femdem_fracture::{JointHistory, joint_update};
 use super::Solver;
 use super::prescribed::FREE;
 use crate::SolverError;
-use crate::forces::{Want, Workspace, internal_forces};
+use crate::forces::{Dissipation, Want, Workspace, internal_forces};
 
 impl Solver {
     /// Moves the nodes to `x0 + u` at rest (`v = 0`), before the first
@@ -49,7 +49,7 @@ impl Solver {
         for ((x, x0), d) in self.state.x.iter_mut().zip(&self.model.x0).zip(u) {
             *x = x0 + d;
         }
-        self.state.v.iter_mut().for_each(|v| *v = Vec3::zeros());
+        self.state.v.iter_mut().chain(self.v_before.iter_mut()).for_each(|v| *v = Vec3::zeros());
         let x = &self.state.x;
         let mut joint_work = 0.0;
         for ((history, nodes), joint) in self.state.joints.iter_mut().zip(&self.model.joints).zip(&self.model.joint_law)
@@ -65,7 +65,7 @@ impl Solver {
         let mut scratch = Workspace::new(&self.model);
         let mut history = self.state.joints.clone();
         let want = Want { energy: true, stress: false };
-        let sums = internal_forces(&self.model, x, &self.state.v, &mut history, &mut scratch, want, false);
+        let sums = internal_forces(&self.model, x, &self.state.v, &mut history, &mut scratch, want, Dissipation::None);
         let stored = sums.tet_energy + sums.joint_energy;
         // Before the first step nothing else is booked: set, not added, so
         // that a second call replaces the first.

@@ -12,20 +12,42 @@ use crate::loads::Loads;
 use crate::model::Model;
 use crate::state::State;
 
+/// What the update reports for the energy account (see `super`'s module
+/// documentation for the time-centring).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Powers {
+    /// `Σ f_ext,n · v_{n−½}` over the nodes: the external forces (surface
+    /// loads and gravity) of step `n` against the velocity before it, W.
+    pub back: Real,
+    /// `Σ f_ext,n · v_{n+½}`: against the velocity after it, W.
+    pub ahead: Real,
+    /// With `want_kinetic`, the leapfrog kinetic energy of `t_n`,
+    /// `½ Σ m v_{n−½} · v_{n+½}`, J (else 0).
+    pub kinetic: Real,
+}
+
+impl Powers {
+    fn add(self, o: Powers) -> Powers {
+        Powers { back: self.back + o.back, ahead: self.ahead + o.ahead, kinetic: self.kinetic + o.kinetic }
+    }
+}
+
 /// The update stage's state: per-chunk partial sums.
 pub(super) struct Update {
-    partials: Vec<[Real; 2]>,
+    partials: Vec<Powers>,
 }
 
 impl Update {
     pub fn new(nodes: usize) -> Update {
-        Update { partials: vec![[0.0; 2]; nodes.div_ceil(CHUNK)] }
+        Update { partials: vec![Powers::default(); nodes.div_ceil(CHUNK)] }
     }
 
     /// `v_{n+½} = v_{n−½} + Δt f / m` with the prescribed components
-    /// imposed, `x_{n+1} = x_n + Δt v_{n+½}`. Returns the power of the
-    /// external forces at `v_n` (surface loads and gravity), W, and, with
-    /// `want_kinetic`, the kinetic energy at `v_n`, J.
+    /// imposed, `x_{n+1} = x_n + Δt v_{n+½}`. Returns the powers of the
+    /// external forces (surface loads and gravity) against `v_{n−½}` and
+    /// `v_{n+½}`, and, with `want_kinetic`, the kinetic energy of `t_n`
+    /// ([`Powers`]). A non-empty `before` (the velocities of the step
+    /// before, one per node) receives `v_{n−½}`.
     #[allow(clippy::too_many_arguments)]
     pub fn advance(
         &mut self,
@@ -35,25 +57,28 @@ impl Update {
         internal: &[Vec3],
         contact: Option<&[Vec3]>,
         state: &mut State,
+        before: &mut [Vec3],
         dt: Real,
         want_kinetic: bool,
-    ) -> (Real, Real) {
-        state
-            .x
-            .par_chunks_mut(CHUNK)
-            .zip(state.v.par_chunks_mut(CHUNK))
-            .zip(self.partials.par_iter_mut())
-            .enumerate()
-            .for_each(|(c, ((xs, vs), partial))| {
-                *partial =
-                    advance_chunk(model, loads, external, internal, contact, c * CHUNK, xs, vs, dt, want_kinetic);
-            });
-        self.partials.iter().fold((0.0, 0.0), |(p, k), q| (p + q[0], k + q[1]))
+    ) -> Powers {
+        let chunks = state.x.par_chunks_mut(CHUNK).zip(state.v.par_chunks_mut(CHUNK)).zip(self.partials.par_iter_mut());
+        let go = |c: usize, xs: &mut [Vec3], vs: &mut [Vec3], before: &mut [Vec3]| {
+            advance_chunk(model, loads, external, internal, contact, c * CHUNK, xs, vs, before, dt, want_kinetic)
+        };
+        if before.is_empty() {
+            chunks.enumerate().for_each(|(c, ((xs, vs), partial))| *partial = go(c, xs, vs, &mut []));
+        } else {
+            chunks
+                .zip(before.par_chunks_mut(CHUNK))
+                .enumerate()
+                .for_each(|(c, (((xs, vs), partial), before))| *partial = go(c, xs, vs, before));
+        }
+        self.partials.iter().fold(Powers::default(), |p, &q| p.add(q))
     }
 }
 
 /// The nodes `first..first + xs.len()` (one chunk of the update; not
-/// inlined, so that profiles name it): returns `[power, kinetic]`.
+/// inlined, so that profiles name it): returns its share of [`Powers`].
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 fn advance_chunk(
@@ -65,12 +90,12 @@ fn advance_chunk(
     first: usize,
     xs: &mut [Vec3],
     vs: &mut [Vec3],
+    before: &mut [Vec3],
     dt: Real,
     want_kinetic: bool,
-) -> [Real; 2] {
+) -> Powers {
     let (prescribed, f_surface, targets) = (&external.prescribed, &external.f_surface, &external.targets);
-    let mut power = 0.0;
-    let mut kinetic = 0.0;
+    let mut sums = Powers::default();
     for (k, (x, v)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
         let i = first + k;
         let m = model.mass[i];
@@ -88,13 +113,16 @@ fn advance_chunk(
                 d => new[comp] = targets[d as usize][comp],
             }
         }
-        let v_n = (old + new) * 0.5;
-        power += f_ext.dot(&v_n);
+        sums.back += f_ext.dot(&old);
+        sums.ahead += f_ext.dot(&new);
         if want_kinetic {
-            kinetic += 0.5 * m * v_n.norm_squared();
+            sums.kinetic += 0.5 * m * old.dot(&new);
+        }
+        if let Some(b) = before.get_mut(k) {
+            *b = old;
         }
         *v = new;
         *x += new * dt;
     }
-    [power, kinetic]
+    sums
 }

@@ -49,7 +49,7 @@ use femdem_core::{Mat3, Vec3};
 use femdem_fracture::{GfCalibration, JointHistory};
 use femdem_material::{Law, cauchy_stress};
 use femdem_mesh::{TetMesh, insert_joints, insert_joints_within};
-use femdem_solver::forces::{Want, Workspace, internal_forces};
+use femdem_solver::forces::{Dissipation, Want, Workspace, internal_forces};
 use femdem_solver::{Model, RegionBehaviour, Solver};
 
 /// Tets whose centroid has coordinate `axis` in `[lo, hi]`.
@@ -72,7 +72,7 @@ fn zone_edge_passes_the_patch_test() {
     let v = vec![Vec3::zeros(); x.len()];
     let mut ws = Workspace::new(&m);
     let mut history = vec![JointHistory::default(); m.joints.len()];
-    internal_forces(&m, &x, &v, &mut history, &mut ws, Want { stress: true, ..Want::default() }, false);
+    internal_forces(&m, &x, &v, &mut history, &mut ws, Want { stress: true, ..Want::default() }, Dissipation::None);
 
     let expected = cauchy_stress(law, &material, &(Mat3::identity() + g), &Mat3::zeros());
     let scale = expected.norm();

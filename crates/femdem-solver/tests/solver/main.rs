@@ -13,6 +13,7 @@ mod contact_pressed;
 mod contact_step;
 mod determinism;
 mod energy;
+mod energy_guard;
 mod extremes;
 mod gravity;
 mod guard;

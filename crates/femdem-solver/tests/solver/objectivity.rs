@@ -20,7 +20,7 @@ use crate::common::{box_mesh, model, rock, solver};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_material::Law;
 use femdem_solver::Loads;
-use femdem_solver::forces::{Want, Workspace, internal_forces};
+use femdem_solver::forces::{Dissipation, Want, Workspace, internal_forces};
 use nalgebra::Rotation3;
 
 fn rotation_90() -> Mat3 {
@@ -42,7 +42,7 @@ fn rigid_rotation_by_90_degrees_makes_no_stress() {
         &mut history(&m),
         &mut ws,
         Want { stress: true, ..Want::default() },
-        false,
+        Dissipation::None,
     );
     let worst = ws.stress.iter().map(|s| s.norm()).fold(0.0, Real::max);
     assert!(worst / 26e9 < 1e-9, "max |σ|/E = {}", worst / 26e9);
@@ -60,10 +60,26 @@ fn rotated_stretch_gives_rotated_stress() {
     let mut ws = Workspace::new(&m);
     let zero = vec![Vec3::zeros(); m.num_nodes()];
     let stretched: Vec<Vec3> = m.x0.iter().map(|p| u * p).collect();
-    internal_forces(&m, &stretched, &zero, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() }, false);
+    internal_forces(
+        &m,
+        &stretched,
+        &zero,
+        &mut history(&m),
+        &mut ws,
+        Want { stress: true, ..Want::default() },
+        Dissipation::None,
+    );
     let s0 = ws.stress[0];
     let rotated: Vec<Vec3> = m.x0.iter().map(|p| r * u * p).collect();
-    internal_forces(&m, &rotated, &zero, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() }, false);
+    internal_forces(
+        &m,
+        &rotated,
+        &zero,
+        &mut history(&m),
+        &mut ws,
+        Want { stress: true, ..Want::default() },
+        Dissipation::None,
+    );
     let expected = r * s0 * r.transpose();
     assert!((ws.stress[0] - expected).norm() < 1e-10 * s0.norm());
 }

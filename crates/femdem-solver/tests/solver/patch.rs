@@ -20,7 +20,7 @@ fn history(m: &femdem_solver::Model) -> Vec<femdem_fracture::JointHistory> {
 use crate::common::{box_mesh, model, rock};
 use femdem_core::{Mat3, Vec3};
 use femdem_material::{Law, cauchy_stress};
-use femdem_solver::forces::{Want, Workspace, internal_forces};
+use femdem_solver::forces::{Dissipation, Want, Workspace, internal_forces};
 
 fn run_patch(breakable: bool, law: Law) {
     let mesh = box_mesh([0.0; 3], [0.1, 0.08, 0.06], 0.02, 0.12, breakable);
@@ -30,7 +30,7 @@ fn run_patch(breakable: bool, law: Law) {
     let x: Vec<Vec3> = m.x0.iter().map(|p| p + g * p).collect();
     let v = vec![Vec3::zeros(); x.len()];
     let mut ws = Workspace::new(&m);
-    internal_forces(&m, &x, &v, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() }, false);
+    internal_forces(&m, &x, &v, &mut history(&m), &mut ws, Want { stress: true, ..Want::default() }, Dissipation::None);
 
     let expected = cauchy_stress(law, &material, &(Mat3::identity() + g), &Mat3::zeros());
     let scale = expected.norm();

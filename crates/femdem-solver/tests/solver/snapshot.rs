@@ -5,8 +5,9 @@
 //! are part of the state) stepped 300 steps, snapshot, then 300 more; a
 //! second solver built the same way and restored from the snapshot takes
 //! the same 300 steps and ends in the same bits — positions, velocities,
-//! joint histories, energies, the failure record, the step record and the
-//! contact pass's whole state (its own snapshot). The snapshot is taken
+//! joint histories, energies and the watch on their balance, the failure
+//! record, the step record and the contact pass's whole state (its own
+//! snapshot). The snapshot is taken
 //! while joints fail and pairs are in contact (asserted), and the steps
 //! ask for energies and stresses on an irregular schedule, as a run's
 //! output does.
@@ -78,6 +79,7 @@ fn a_restored_solver_continues_bit_for_bit() {
     assert!(a.failures().len() > failed, "joints keep failing after the snapshot");
     assert_eq!(a.state, b.state, "positions, velocities, joint histories");
     assert_eq!(a.energies(), b.energies());
+    assert_eq!(a.imbalance(), b.imbalance(), "the energy watch");
     assert_eq!(a.failures(), b.failures());
     assert_eq!(a.record(), b.record());
     assert!(a.snapshot() == b.snapshot(), "the whole state, contact included, differs");

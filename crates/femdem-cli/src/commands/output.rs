@@ -49,6 +49,20 @@ pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     lines
 }
 
+/// The energy columns of `history.csv`, J, in order (after `time` and
+/// `step`).
+pub const ENERGY_COLUMNS: [&str; 9] = [
+    "kinetic",
+    "tet_elastic",
+    "joint_elastic",
+    "damping",
+    "fracture",
+    "contact",
+    "friction",
+    "external_work",
+    "balance",
+];
+
 /// What the history records besides the energies and the loads' forces.
 #[derive(Clone, Debug, Default)]
 pub struct Recorded {
@@ -62,26 +76,12 @@ pub struct Recorded {
 /// force and displacement, each surface load's force, the load–strain pair
 /// when asked for, and each probe's twelve columns.
 fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
-    let mut columns: Vec<String> = [
-        "time",
-        "step",
-        "kinetic",
-        "tet_elastic",
-        "joint_elastic",
-        "damping",
-        "fracture",
-        "contact",
-        "friction",
-        "external_work",
-        "balance",
-        "broken_tensile",
-        "broken_shear",
-        "broken_mixed",
-        "broken_collapsed",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    let mut columns: Vec<String> = ["time", "step"]
+        .iter()
+        .chain(&ENERGY_COLUMNS)
+        .chain(&["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"])
+        .map(|s| s.to_string())
+        .collect();
     for d in &solver.loads.drives {
         columns.extend(["fx", "fy", "fz", "ux", "uy", "uz"].map(|c| format!("{}_{c}", d.name)));
     }

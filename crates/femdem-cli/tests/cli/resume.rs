@@ -23,6 +23,18 @@ fn fresh(name: &str) -> PathBuf {
     dir
 }
 
+/// The case with checkpoints every 400 steps, written under the same file
+/// name (its frames are named after it) in `dir/case/`: its results are
+/// those of the case.
+fn with_checkpoints_every_400(dir: &Path) -> PathBuf {
+    let case_dir = dir.join("case");
+    std::fs::create_dir_all(&case_dir).unwrap();
+    let text = std::fs::read_to_string(root().join(CASE)).unwrap();
+    let case = case_dir.join(format!("{STEM}.toml"));
+    std::fs::write(&case, format!("{text}\n[output.checkpoint]\ninterval_steps = 400\n")).unwrap();
+    case
+}
+
 /// The uninterrupted run, once for all tests.
 fn baseline() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
@@ -90,11 +102,7 @@ fn a_damaged_latest_checkpoint_is_skipped_for_the_complete_one_before_it() {
     // The case with checkpoints every 400 steps, under the same file name
     // (its frames are named after it); its results are those of the case.
     let dir = fresh("resume-damaged");
-    let case_dir = dir.join("case");
-    std::fs::create_dir_all(&case_dir).unwrap();
-    let text = std::fs::read_to_string(root().join(CASE)).unwrap();
-    let case = case_dir.join(format!("{STEM}.toml"));
-    std::fs::write(&case, format!("{text}\n[output.checkpoint]\ninterval_steps = 400\n")).unwrap();
+    let case = with_checkpoints_every_400(&dir);
     let case = case.to_str().unwrap();
     let out = dir.join("out");
     let (_, failures) = stop_after(case, &out, 1000);
@@ -131,11 +139,7 @@ fn a_run_killed_while_writing_a_checkpoint_resumes_from_the_one_before() {
     use std::time::{Duration, Instant};
 
     let dir = fresh("resume-killed");
-    let case_dir = dir.join("case");
-    std::fs::create_dir_all(&case_dir).unwrap();
-    let text = std::fs::read_to_string(root().join(CASE)).unwrap();
-    let case = case_dir.join(format!("{STEM}.toml"));
-    std::fs::write(&case, format!("{text}\n[output.checkpoint]\ninterval_steps = 400\n")).unwrap();
+    let case = with_checkpoints_every_400(&dir);
     let case = case.to_str().unwrap();
     let out = dir.join("out");
     let mut child = Command::new(env!("CARGO_BIN_EXE_femdem"))

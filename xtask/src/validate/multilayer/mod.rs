@@ -42,8 +42,8 @@ fn plan(profile: Profile) -> Plan {
         // about 30 min to 3 ms).
         Profile::Quick => Plan { element_size: 0.15, end_time: END_TIME, interval: 2.0e-4 },
         // The paper's mean element size, about 2.4 cm (486,425 tets in the
-        // paper; here 603,099, mean edge 28 mm, about 20,000 steps): a day
-        // or more on 2 cores.
+        // paper; here 603,099, mean edge 28 mm, about 20,400 steps):
+        // hours to more than a day on 2 cores (docs/validation.md).
         Profile::Paper => Plan { element_size: 0.024, end_time: END_TIME, interval: 2.5e-4 },
     }
 }

@@ -30,10 +30,16 @@ const SCATTER_DEG: f64 = 6.0;
 const MIN_GAP: f64 = 0.05;
 
 /// SplitMix64: a small, fixed generator, so the same seed gives the same
-/// map on every platform and version.
-struct Rng(u64);
+/// map on every platform and version (the validation draws its baseline
+/// points with it too).
+pub(crate) struct Rng(u64);
 
 impl Rng {
+    /// The generator started at `seed`.
+    pub(crate) fn new(seed: u64) -> Rng {
+        Rng(seed)
+    }
+
     fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
@@ -43,7 +49,7 @@ impl Rng {
     }
 
     /// Uniform in [lo, hi).
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+    pub(crate) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
     }
 }

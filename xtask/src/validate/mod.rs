@@ -21,6 +21,7 @@
 pub(crate) mod brazilian;
 pub(crate) mod failures;
 pub(crate) mod history;
+mod multilayer;
 pub(crate) mod plot;
 mod polyaxial;
 mod report;
@@ -57,7 +58,7 @@ impl Profile {
 }
 
 /// The cases, in the paper's order, and whether they are built yet.
-const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", true), ("multilayer", false)];
+const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", true), ("multilayer", true)];
 
 /// Runs the task.
 pub fn run(args: &[String]) -> Result<()> {
@@ -109,6 +110,7 @@ pub fn run(args: &[String]) -> Result<()> {
                 brazilian::validate(&femdem, profile, rates, sensitivity, &out, &mut report)?
             }
             "polyaxial" => polyaxial::validate(&femdem, profile, &out, &mut report)?,
+            "multilayer" => multilayer::validate(&femdem, profile, &out, &mut report)?,
             _ => unreachable!("every built case is dispatched"),
         }
     }

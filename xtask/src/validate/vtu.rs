@@ -34,6 +34,7 @@ pub struct Grid {
     /// Each cell's point indices.
     pub cells: Vec<Vec<usize>>,
     cell_data: Vec<(String, usize, Vec<f64>)>,
+    point_data: Vec<(String, usize, Vec<f64>)>,
 }
 
 impl Grid {
@@ -58,14 +59,30 @@ impl Grid {
             cells.push(connectivity[start..end].iter().map(|&i| i as usize).collect());
             start = end;
         }
-        let mut cell_data = Vec::new();
-        for a in piece.data.cell {
-            if let Attribute::DataArray(d) = a {
-                let values: Vec<f64> = d.data.cast_into().unwrap_or_default();
-                cell_data.push((d.name, d.elem.num_comp() as usize, values));
-            }
-        }
-        Ok(Grid { points, cells, cell_data })
+        let arrays = |attributes: Vec<Attribute>| -> Vec<(String, usize, Vec<f64>)> {
+            attributes
+                .into_iter()
+                .filter_map(|a| match a {
+                    Attribute::DataArray(d) => {
+                        let values: Vec<f64> = d.data.cast_into().unwrap_or_default();
+                        Some((d.name, d.elem.num_comp() as usize, values))
+                    }
+                    Attribute::Field { .. } => None,
+                })
+                .collect()
+        };
+        let cell_data = arrays(piece.data.cell);
+        let point_data = arrays(piece.data.point);
+        Ok(Grid { points, cells, cell_data, point_data })
+    }
+
+    /// The point array `name`: its number of components and its values.
+    pub fn point(&self, name: &str) -> Result<(usize, &[f64])> {
+        self.point_data
+            .iter()
+            .find(|(n, _, _)| n == name)
+            .map(|(_, c, v)| (*c, v.as_slice()))
+            .with_context(|| format!("no point array `{name}`"))
     }
 
     /// The cell array `name`: its number of components and its values.

@@ -142,7 +142,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         "## Polyaxial compression ({} profile)\n\nApplied: σ1 = −{} MPa along x, σ2 = −{} MPa along z, σ3 = −{} MPa along y, ramped over 2 ms and held; runs end at {} ms. \
          Bands: Hough transform of the shear-failed faces' centroids seen along z, slabs {} mm wide; facets: median angle to x of the \
          shear-failed faces' traces on x–y, weighted by area and by how nearly a face contains z. Mohr–Coulomb (Eq. 24): 45° + φ/2 from the σ1 axis.\n\n\
-         | test | mesh | c (MPa) | φ (°) | circle reach R/R_fail | failures T/S/M/C | shear share | main band (°, share) | conjugate (°, share) | facets (°) | 45° + φ/2 | energy error | steps | wall (s) |\n\
+         | test | mesh | c (MPa) | φ (°) | circle reach R/R_fail | failures T/S/M/C | shear share | main band to x (°, share) | conjugate to x (°, share) | facets (°) | 45° + φ/2 | energy error | steps | wall (s) |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         profile.name(),
         1e-6 * s.least,
@@ -155,8 +155,9 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         let t = o.test;
         let modes = o.modes();
         let found = bands::bands(&o.shear, width);
-        let band =
-            |b: Option<bands::Band>| b.map_or("—".into(), |b| format!("{:.0} ({:.0}%)", b.theta, 100.0 * b.share));
+        let band = |b: Option<bands::Band>| {
+            b.map_or("—".into(), |b| format!("{:.0} ({:.0}%)", b.angle_to_x(), 100.0 * b.share))
+        };
         let facets = bands::facet_angle(&o.shear).map_or("—".into(), |a| format!("{a:.1}"));
         let _ = writeln!(
             md,

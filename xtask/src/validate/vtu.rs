@@ -78,20 +78,12 @@ impl Grid {
 
     /// The point array `name`: its number of components and its values.
     pub fn point(&self, name: &str) -> Result<(usize, &[f64])> {
-        self.point_data
-            .iter()
-            .find(|(n, _, _)| n == name)
-            .map(|(_, c, v)| (*c, v.as_slice()))
-            .with_context(|| format!("no point array `{name}`"))
+        array(&self.point_data, "point", name)
     }
 
     /// The cell array `name`: its number of components and its values.
     pub fn cell(&self, name: &str) -> Result<(usize, &[f64])> {
-        self.cell_data
-            .iter()
-            .find(|(n, _, _)| n == name)
-            .map(|(_, c, v)| (*c, v.as_slice()))
-            .with_context(|| format!("no cell array `{name}`"))
+        array(&self.cell_data, "cell", name)
     }
 
     /// The centroid of cell `c`.
@@ -117,4 +109,14 @@ impl Grid {
             + u[2] * (v[0] * w[1] - v[1] * w[0]);
         det.abs() / 6.0
     }
+}
+
+/// The array `name` of `arrays` (`kind` names them in the error): its
+/// number of components and its values.
+fn array<'a>(arrays: &'a [(String, usize, Vec<f64>)], kind: &str, name: &str) -> Result<(usize, &'a [f64])> {
+    arrays
+        .iter()
+        .find(|(n, _, _)| n == name)
+        .map(|(_, c, v)| (*c, v.as_slice()))
+        .with_context(|| format!("no {kind} array `{name}`"))
 }

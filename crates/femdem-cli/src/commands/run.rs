@@ -73,11 +73,11 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     let solver = &mut run.solver;
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
+    let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
     let (mut output, schedule) = if resume.is_some() {
         let (file, saved) = checkpoint::latest(&dir)?;
         saved.identity.check(&identity, &file)?;
         solver.restore(&saved.solver).with_context(|| format!("checkpoint {}", file.display()))?;
-        let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
         let output =
             Output::resume(&dir, &stem, written, solver, pre_existing, columns, &saved.marks).with_context(|| {
                 format!("continuing the output in {} from checkpoint {}", dir.display(), file.display())
@@ -107,7 +107,6 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             outdir::clear(&dir, &stem)?;
         }
         let comments = history_comments(&prepared.case);
-        let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;

@@ -1,5 +1,5 @@
 //! `cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST]
-//! [--out DIR] [--sensitivity]`:
+//! [--ramp S] [--end-time S] [--out DIR] [--sensitivity]`:
 //! runs the reference paper's examples through `femdem run`, as a user
 //! would, checks the results against the paper and closed forms, and writes
 //! `report.md`, `checks.csv`, the runs' data and PNG figures to DIR
@@ -11,6 +11,10 @@
 //!
 //! A prebuilt `femdem` named by the environment variable `FEMDEM_BIN` is
 //! used instead of building one (a machine without cargo).
+//!
+//! `--ramp S` and `--end-time S` replace the polyaxial runs' ramp time of
+//! the pressures (the bundled case's by default) and their end time (the
+//! profile's by default), s: how the loading rate moves the bands.
 //!
 //! `--sensitivity` adds the Brazilian one-change-at-a-time runs (what moves
 //! f_bt; seven more runs).
@@ -60,12 +64,21 @@ impl Profile {
 /// The cases, in the paper's order, and whether they are built yet.
 const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", true), ("multilayer", true)];
 
+/// A positive, finite time in seconds given to option `flag`.
+fn seconds(flag: &str, text: &str) -> Result<f64> {
+    match text.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        _ => bail!("{flag} needs a positive time in seconds, not `{text}`"),
+    }
+}
+
 /// Runs the task.
 pub fn run(args: &[String]) -> Result<()> {
     let mut profile = Profile::Quick;
     let mut only: Option<String> = None;
     let mut sensitivity = false;
     let mut rates: Option<Vec<f64>> = None;
+    let mut timing = polyaxial::Timing::default();
     let mut out = crate::root().join("target").join("validation");
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -82,8 +95,10 @@ pub fn run(args: &[String]) -> Result<()> {
             "--out" => out = PathBuf::from(value()?),
             "--sensitivity" => sensitivity = true,
             "--rates" => rates = Some(brazilian::parse_rates(&value()?)?),
+            "--ramp" => timing.ramp = Some(seconds(a, &value()?)?),
+            "--end-time" => timing.end = Some(seconds(a, &value()?)?),
             other => bail!(
-                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST] [--out DIR] [--sensitivity]"
+                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--out DIR] [--sensitivity]"
             ),
         }
     }
@@ -109,7 +124,7 @@ pub fn run(args: &[String]) -> Result<()> {
                 let rates = rates.as_deref().unwrap_or(&brazilian::RATES);
                 brazilian::validate(&femdem, profile, rates, sensitivity, &out, &mut report)?
             }
-            "polyaxial" => polyaxial::validate(&femdem, profile, &out, &mut report)?,
+            "polyaxial" => polyaxial::validate(&femdem, profile, timing, &out, &mut report)?,
             "multilayer" => multilayer::validate(&femdem, profile, &out, &mut report)?,
             _ => unreachable!("every built case is dispatched"),
         }
@@ -131,4 +146,18 @@ pub fn run(args: &[String]) -> Result<()> {
         report.checks.iter().filter(|c| c.kind == report::Kind::Gate).count()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::seconds;
+
+    #[test]
+    fn times_on_the_command_line_must_be_positive_and_finite() {
+        assert_eq!(seconds("--ramp", "1e-3").unwrap(), 1e-3);
+        for bad in ["0", "-1e-3", "inf", "NaN", "1 ms", ""] {
+            let e = seconds("--ramp", bad).unwrap_err().to_string();
+            assert!(e.contains("--ramp") && e.contains(bad), "{e}");
+        }
+    }
 }

@@ -41,16 +41,28 @@ fn meshes(profile: Profile) -> (Mesh, Mesh) {
     }
 }
 
-/// When a profile's runs end, s. The pressures reach their final values at
-/// 2 ms; the Test 1 and 2 stresses exceed the strength (circle reach > 1)
-/// and the cube, held by pressures, then fails progressively: the runs end
-/// while the first bands form (the paper's Fig. 10a-b), because fragment
-/// contact makes every later step many times dearer.
-fn end_time(profile: Profile) -> f64 {
+/// When a profile's runs end by default, s. The bundled case's pressures
+/// reach their final values at 2 ms; the Test 1 and 2 stresses exceed the
+/// strength (circle reach > 1) and the cube, held by pressures, then fails
+/// progressively: the runs end while the first bands form (the paper's
+/// Fig. 10a-b), because fragment contact makes every later step many times
+/// dearer.
+fn default_end_time(profile: Profile) -> f64 {
     match profile {
         Profile::Quick => 2.5e-3,
         Profile::Paper => 3.0e-3,
     }
+}
+
+/// The loading history of the runs: `--ramp S` and `--end-time S` of
+/// `cargo xtask validate`, replacing the bundled case's ramp time and the
+/// profile's end time (to measure how the loading rate moves the bands).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Timing {
+    /// The time over which every pressure is ramped from zero, s.
+    pub ramp: Option<f64>,
+    /// When the runs end, s.
+    pub end: Option<f64>,
 }
 
 /// What one run measured.
@@ -107,9 +119,11 @@ impl Outcome {
 }
 
 /// Runs the case in `profile`, adding its checks and sections to `report`.
-pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Report) -> Result<()> {
+pub fn validate(femdem: &Femdem, profile: Profile, timing: Timing, out: &Path, report: &mut Report) -> Result<()> {
     let base = Base::load()?;
     let s = base.stresses;
+    let ramp = timing.ramp.unwrap_or(base.ramp);
+    let end_time = timing.end.unwrap_or_else(|| default_end_time(profile));
     let (unstructured, lattice) = meshes(profile);
     let dir = out.join("polyaxial");
     let mut runs = Vec::new();
@@ -124,7 +138,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
             mesh.label(),
             profile.name()
         );
-        let case = base.case(&title, test, mesh, end_time(profile))?;
+        let case = base.case(&title, test, mesh, ramp, end_time)?;
         let slug = match mesh {
             Mesh::Gmsh(_) => format!("test{}", test.number),
             Mesh::Lattice(_) => format!("test{}_lattice", test.number),
@@ -139,7 +153,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         Profile::Paper => 0.05,
     };
     let mut md = format!(
-        "## Polyaxial compression ({} profile)\n\nApplied: σ1 = −{} MPa along x, σ2 = −{} MPa along z, σ3 = −{} MPa along y, ramped over 2 ms and held; runs end at {} ms. \
+        "## Polyaxial compression ({} profile)\n\nApplied: σ1 = −{} MPa along x, σ2 = −{} MPa along z, σ3 = −{} MPa along y, ramped over {} ms and held; runs end at {} ms. \
          Bands: Hough transform of the shear-failed faces' centroids seen along z, slabs {} mm wide; facets: median angle to x of the \
          shear-failed faces' traces on x–y, weighted by area and by how nearly a face contains z. Mohr–Coulomb (Eq. 24): 45° + φ/2 from the σ1 axis.\n\n\
          | test | mesh | c (MPa) | φ (°) | circle reach R/R_fail | failures T/S/M/C | shear share | main band to x (°, share) | conjugate to x (°, share) | facets (°) | 45° + φ/2 | energy error | steps | wall (s) |\n\
@@ -148,7 +162,8 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         1e-6 * s.least,
         1e-6 * s.intermediate,
         1e-6 * s.most,
-        1e3 * end_time(profile),
+        1e3 * ramp,
+        1e3 * end_time,
         1e3 * width
     );
     for o in &runs {

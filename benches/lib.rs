@@ -49,19 +49,53 @@ pub fn brazilian_joints() -> femdem_fracture::JointParams {
 /// p0 = 10 E, 5% damping, no loads), or the same disc without joints when
 /// `breakable` is false; `dt` at 0.9 of the critical step.
 pub fn disc_solver(element_size: f64, breakable: bool) -> femdem_solver::Solver {
-    use femdem_material::{ElasticParams, Law};
-    use femdem_solver::{Loads, Model, RegionBehaviour, Solver, StepParams, held_nodes, stable_time_step};
+    use femdem_solver::{Loads, held_nodes, stable_time_step};
     let mut spec = disc_extrusion(element_size);
     spec.region.breakable = breakable;
     let mesh = femdem_mesh::generate::generate_extrusion(&spec).expect("disc");
-    let jointed = femdem_mesh::insert_joints(&mesh).expect("joints");
-    let viscosity = femdem_material::critical_viscosity(element_size, 26e9, 2340.0) * 0.05;
-    let material = ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().expect("rock");
-    let joints = breakable.then(brazilian_joints);
-    let model = Model::new(&jointed, &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints }], 1.0)
-        .expect("model");
+    let model = rock_model(&mesh, element_size, breakable);
     let held = held_nodes(&model, &Loads::default()).expect("constraints");
     let dt = 0.9 * stable_time_step(&model, &held, 300).critical;
+    spinning(model, dt)
+}
+
+/// A solver for a jointed unit box of about `tets` tets ([`box_with_tets`])
+/// of the disc's rock and joints, for the cost per element against the
+/// mesh size. The step is 0.7 of the critical step of a small box of the
+/// same lattice (Lanczos, 300 iterations) scaled by the cell size: the
+/// jittered lattice is the same at every size, and a Lanczos estimate on
+/// a million tets would cost a few hundred steps; a step's cost does not
+/// depend on it, but a step past the critical one would break every joint
+/// within a few steps and measure the failure path instead.
+pub fn box_solver(tets: usize) -> femdem_solver::Solver {
+    use femdem_solver::{Loads, held_nodes, stable_time_step};
+    let small = box_with_tets(1_000);
+    let small_model = rock_model(&femdem_mesh::generate::generate_box(&small).expect("box"), small.element_size, true);
+    let held = held_nodes(&small_model, &Loads::default()).expect("constraints");
+    let per_metre = stable_time_step(&small_model, &held, 300).critical / small.element_size;
+    let spec = box_with_tets(tets);
+    let mesh = femdem_mesh::generate::generate_box(&spec).expect("box");
+    let model = rock_model(&mesh, spec.element_size, true);
+    spinning(model, 0.7 * per_metre * spec.element_size)
+}
+
+/// The model of `mesh` with joints inserted (when `breakable`) and the
+/// Brazilian disc's rock (Table 1, 5% damping at element size `h`) and
+/// joint law ([`brazilian_joints`]).
+fn rock_model(mesh: &femdem_mesh::TetMesh, h: f64, breakable: bool) -> femdem_solver::Model {
+    use femdem_material::{ElasticParams, Law};
+    use femdem_solver::{Model, RegionBehaviour};
+    let jointed = femdem_mesh::insert_joints(mesh).expect("joints");
+    let viscosity = femdem_material::critical_viscosity(h, 26e9, 2340.0) * 0.05;
+    let material = ElasticParams { young: 26e9, poisson: 0.2, density: 2340.0, viscosity }.validate().expect("rock");
+    let joints = breakable.then(brazilian_joints);
+    Model::new(&jointed, &[RegionBehaviour::Deformable { law: Law::NeoHookean, material, joints }], 1.0).expect("model")
+}
+
+/// A solver of `model` without loads, stepping by `dt`, started spinning
+/// about z at 10 rad/s so that every kernel has work to do.
+fn spinning(model: femdem_solver::Model, dt: f64) -> femdem_solver::Solver {
+    use femdem_solver::{Loads, Solver, StepParams};
     let mut s = Solver::new(model, Loads::default(), StepParams::new(dt).expect("step")).expect("solver");
     s.set_velocity(|x| femdem_core::Vec3::new(x.y, -x.x, 0.0) * 10.0);
     s

@@ -171,7 +171,8 @@ pub fn layered_map(seed: u64, width: f64, height: f64, clearance: Option<f64>) -
 
     let mut out = String::new();
     let option = clearance.map_or_else(String::new, |c| format!(" --clearance {c}"));
-    let _ = writeln!(out, "# A layered fracture map: `cargo xtask map --seed {seed}{option}` ({width} m x {height} m).");
+    let _ =
+        writeln!(out, "# A layered fracture map: `cargo xtask map --seed {seed}{option}` ({width} m x {height} m).");
     let _ = writeln!(out, "# Trace-file format: docs/case-format.md. Coordinates in metres.");
     let _ = writeln!(
         out,

@@ -9,8 +9,8 @@
 //!   benchmarks; with `--memory` only the peak-memory run of joint insertion
 //!   on 10⁶ tets; with `--callgrind` the instructions per tet-step of each
 //!   kernel of the step (needs valgrind; `docs/performance.md`).
-//! - `map [--seed N] [--out FILE] [--width W] [--height H]`: a seeded
-//!   layered fracture map in the trace-file format (`map.rs`).
+//! - `map [--seed N] [--out FILE] [--width W] [--height H] [--clearance C]`:
+//!   a seeded layered fracture map in the trace-file format (`map.rs`).
 //! - `fixtures`: regenerates the Gmsh test fixtures (ASCII and binary) and
 //!   the paper cases' meshes (needs `pip install gmsh`).
 

@@ -1,5 +1,5 @@
-//! `cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]`: a
-//! seeded layered fracture map in the trace-file format of
+//! `cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]
+//! [--clearance C]`: a seeded layered fracture map in the trace-file format of
 //! docs/case-format.md, like the map of the reference paper's §3.3 (a
 //! limestone horizon of the Bristol Channel Basin): layers of varying
 //! thickness separated by persistent, layer-parallel fractures (the layer
@@ -14,6 +14,14 @@
 //! ending on an interface has exactly the interface's y. Fracture ends on
 //! an interface are kept at least `MIN_GAP` apart, and away from the
 //! outline's sides, so that the map does not force tiny elements.
+//!
+//! `--clearance C` (m) then leaves out every cross fracture that comes
+//! closer than `C` to the outline's left or right side (x = 0 or x = W),
+//! so that the rock between the side and the nearest cross fracture is at
+//! least `C` wide. The map is drawn as without it and only filtered, so
+//! the layers and every other cross fracture stay those of the same seed.
+//! Without the option nothing is left out (the generator's own `MIN_GAP`
+//! applies to the ends on the interfaces).
 
 use std::fmt::Write as _;
 
@@ -59,8 +67,10 @@ fn round(x: f64) -> f64 {
     (x * 1e4).round() / 1e4
 }
 
-/// A layered map of `width × height` m from `seed`, as trace-file text.
-pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
+/// A layered map of `width × height` m from `seed`, as trace-file text;
+/// with `clearance` (m), without the cross fractures closer than that to
+/// the sides x = 0 and x = `width`.
+pub fn layered_map(seed: u64, width: f64, height: f64, clearance: Option<f64>) -> String {
     let mut rng = Rng(seed);
     // Interfaces: y of each layer boundary, 0 and height included.
     let mut ys = vec![0.0];
@@ -78,8 +88,8 @@ pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
     let free = |ends: &[Vec<f64>], k: usize, x: f64| {
         x > MIN_GAP && x < width - MIN_GAP && ends[k].iter().all(|e| (e - x).abs() >= MIN_GAP)
     };
-    let mut cross: Vec<Vec<[f64; 2]>> = Vec::new();
-    let mut kinds = [0usize; 3];
+    // Each cross fracture's two ends and its kind (index into `kinds`).
+    let mut cross: Vec<(Vec<[f64; 2]>, usize)> = Vec::new();
     for l in 0..layers {
         let t = ys[l + 1] - ys[l];
         let mut x = t * rng.uniform(0.1, 0.6) - t * SPACING.1;
@@ -128,7 +138,7 @@ pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
             let clear = on.iter().all(|&(k, xk)| free(&ends, k, xk))
                 && cross.iter().all(|c| {
                     // No other fracture in the same span of y within MIN_GAP.
-                    let (c0, c1) = (c[0], c[1]);
+                    let (c0, c1) = (c.0[0], c.0[1]);
                     c1[1] <= a[1] || c0[1] >= b[1] || {
                         let y = a[1].max(c0[1]).midpoint(b[1].min(c1[1]));
                         let xc = c0[0] + (y - c0[1]) / (c1[1] - c0[1]) * (c1[0] - c0[0]);
@@ -141,19 +151,28 @@ pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
             for &(k, xk) in &on {
                 ends[k].push(xk);
             }
-            kinds[if hi > lo + 1 {
+            let class = if hi > lo + 1 {
                 2
             } else if tip.is_some() {
                 1
             } else {
                 0
-            }] += 1;
-            cross.push(vec![a, b]);
+            };
+            cross.push((vec![a, b], class));
         }
+    }
+    if let Some(c) = clearance {
+        cross.retain(|(ends, _)| ends.iter().all(|p| p[0] >= c && p[0] <= width - c));
+    }
+    let mut kinds = [0usize; 3];
+    for (_, k) in &cross {
+        kinds[*k] += 1;
     }
 
     let mut out = String::new();
-    let _ = writeln!(out, "# A layered fracture map: `cargo xtask map --seed {seed}` ({width} m x {height} m).");
+    let option = clearance.map_or_else(String::new, |c| format!(" --clearance {c}"));
+    let _ =
+        writeln!(out, "# A layered fracture map: `cargo xtask map --seed {seed}{option}` ({width} m x {height} m).");
     let _ = writeln!(out, "# Trace-file format: docs/case-format.md. Coordinates in metres.");
     let _ = writeln!(
         out,
@@ -169,7 +188,7 @@ pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
         let _ = writeln!(out, "0 {y:.4} {width:.4} {y:.4}");
     }
     let _ = writeln!(out, "\n# Cross fractures.");
-    for c in &cross {
+    for (c, _) in &cross {
         let _ = writeln!(out, "{:.4} {:.4} {:.4} {:.4}", c[0][0], c[0][1], c[1][0], c[1][1]);
     }
     out
@@ -177,7 +196,7 @@ pub fn layered_map(seed: u64, width: f64, height: f64) -> String {
 
 /// Parses the arguments and writes the map.
 pub fn run(args: &[String]) -> Result<()> {
-    let (mut seed, mut out, mut width, mut height) = (1u64, None::<String>, 1.5, 1.5);
+    let (mut seed, mut out, mut width, mut height, mut clearance) = (1u64, None::<String>, 1.5, 1.5, None::<f64>);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         let mut value = || it.next().with_context(|| format!("{a} needs a value"));
@@ -186,15 +205,22 @@ pub fn run(args: &[String]) -> Result<()> {
             "--out" => out = Some(value()?.clone()),
             "--width" => width = value()?.parse().context("--width")?,
             "--height" => height = value()?.parse().context("--height")?,
+            "--clearance" => clearance = Some(value()?.parse().context("--clearance")?),
             other => bail!(
-                "unknown argument `{other}`; usage: cargo xtask map [--seed N] [--out FILE] [--width W] [--height H]"
+                "unknown argument `{other}`; usage: cargo xtask map [--seed N] [--out FILE] [--width W] [--height H] \
+                 [--clearance C]"
             ),
         }
+    }
+    if let Some(c) = clearance
+        && !(c >= 0.0 && 2.0 * c < width)
+    {
+        bail!("--clearance must be ≥ 0 m and less than half the width ({width} m), got {c}");
     }
     if !(width > 2.0 * MIN_GAP && height >= 2.0 * THICKNESS.0) {
         bail!("the map must be wider than {} m and at least {} m high", 2.0 * MIN_GAP, 2.0 * THICKNESS.0);
     }
-    let text = layered_map(seed, width, height);
+    let text = layered_map(seed, width, height, clearance);
     match out {
         Some(path) => std::fs::write(&path, text).with_context(|| format!("writing {path}"))?,
         None => print!("{text}"),
@@ -208,7 +234,38 @@ mod tests {
 
     #[test]
     fn the_same_seed_gives_the_same_map_and_another_seed_another() {
-        assert_eq!(layered_map(3, 1.5, 1.5), layered_map(3, 1.5, 1.5));
-        assert_ne!(layered_map(3, 1.5, 1.5), layered_map(4, 1.5, 1.5));
+        assert_eq!(layered_map(3, 1.5, 1.5, None), layered_map(3, 1.5, 1.5, None));
+        assert_ne!(layered_map(3, 1.5, 1.5, None), layered_map(4, 1.5, 1.5, None));
+    }
+
+    /// The polylines of a map's text, each as its numbers.
+    fn lines(text: &str) -> Vec<Vec<f64>> {
+        text.lines()
+            .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+            .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
+            .collect()
+    }
+
+    #[test]
+    fn a_clearance_leaves_out_exactly_the_cross_fractures_near_the_sides() {
+        let (w, c) = (1.5, 0.2);
+        let all = lines(&layered_map(1, w, 1.5, None));
+        let kept = lines(&layered_map(1, w, 1.5, Some(c)));
+        let near = |l: &Vec<f64>| [l[0], l[2]].iter().any(|&x| x < c || x > w - c);
+        // Interfaces run from side to side: they are kept, and every cross
+        // fracture of the unfiltered map that keeps clear of the sides.
+        let interface = |l: &Vec<f64>| l[0] == 0.0 && l[2] == w;
+        let expected: Vec<_> = all.iter().filter(|l| interface(l) || !near(l)).cloned().collect();
+        assert_eq!(kept, expected);
+        assert!(kept.len() < all.len(), "seed 1 has cross fractures within {c} m of a side");
+        // The shipped map has cross fractures within 0.15 m of both sides.
+        assert!(all.iter().any(|l| !interface(l) && l[0].min(l[2]) < 0.15));
+        assert!(all.iter().any(|l| !interface(l) && l[0].max(l[2]) > w - 0.15));
+    }
+
+    #[test]
+    fn the_default_map_is_the_shipped_stand_in() {
+        let shipped = std::fs::read_to_string(crate::root().join("cases/paper/multilayer-map.txt")).unwrap();
+        assert_eq!(layered_map(1, 1.5, 1.5, None), shipped);
     }
 }

@@ -28,11 +28,21 @@ pub struct ContactSettings {
     /// joint that failed in compression rises from zero (Eq. 18; the paper
     /// uses [`crate::RAMP_STEPS`] = 10; 0: no ramp).
     pub ramp_steps: u32,
+    /// Whether a joint failure between two full detections only adds the
+    /// candidate pairs of the tets around the failed joint
+    /// (`Contact::add_candidates`, the default) instead of detecting all
+    /// pairs again. Both give the same forces bit for bit (every pair that
+    /// can touch is a candidate either way and forces are summed in
+    /// ascending pair order); `false` costs a full detection per failure
+    /// and is there for the test that compares the two
+    /// (`tests/solver/contact_incremental.rs`) and for profiling.
+    pub incremental: bool,
 }
 
 impl ContactSettings {
     /// Frictionless contact with penalty `p` (Pa) between all surfaces,
-    /// detected at every step, with the paper's 10-step ramp.
+    /// detected at every step, with the paper's 10-step ramp and
+    /// incremental detection after joint failures.
     pub fn new(penalty: Real) -> ContactSettings {
         ContactSettings {
             penalty,
@@ -41,6 +51,7 @@ impl ContactSettings {
             pair_friction: Vec::new(),
             buffer: 0.0,
             ramp_steps: crate::RAMP_STEPS,
+            incremental: true,
         }
     }
 

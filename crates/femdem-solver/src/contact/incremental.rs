@@ -77,27 +77,46 @@ impl Contact {
                 hi[k] = hi[k].max(self.centers[i][k] + self.radii[i]);
             }
         }
-        let mut found: Vec<(u32, u32)> = Vec::new();
-        for (j, (cj, &rj)) in self.centers.iter().zip(&self.radii).enumerate() {
-            let reach = rj + 2.0 * margin;
-            if (0..3).any(|k| cj[k] < lo[k] - reach || cj[k] > hi[k] + reach) {
-                continue;
-            }
-            for &i in &pending {
-                let ci = &self.centers[i];
-                let reach = self.radii[i] + rj + 2.0 * margin;
+        let near: Vec<usize> = (0..self.list.len())
+            .filter(|&j| {
+                let (c, reach) = (&self.centers[j], self.radii[j] + 2.0 * margin);
+                (0..3).all(|k| c[k] >= lo[k] - reach && c[k] <= hi[k] + reach)
+            })
+            .collect();
+        // The sphere pairs, each once (a pair of two pending tets from the
+        // smaller's side), as `a · 2³² + b` to sort.
+        let mut found: Vec<u64> = Vec::new();
+        for &i in &pending {
+            let (ci, ri) = (&self.centers[i], self.radii[i]);
+            for &j in &near {
+                let cj = &self.centers[j];
+                let reach = ri + self.radii[j] + 2.0 * margin;
                 let d2 = (ci.x - cj.x).powi(2) + (ci.y - cj.y).powi(2) + (ci.z - cj.z).powi(2);
-                if i != j && d2 <= reach * reach {
-                    found.push(spring_key(self.list[i], self.list[j]));
+                if d2 <= reach * reach && j != i && (j > i || pending.binary_search(&j).is_err()) {
+                    let (a, b) = spring_key(self.list[i], self.list[j]);
+                    found.push(u64::from(a) << 32 | u64::from(b));
                 }
             }
         }
         found.sort_unstable();
-        found.dedup();
+        // Kept: the pairs not yet candidates that may touch and that no face
+        // plane separates by `2 margin`.
         let gap = 2.0 * margin;
         let at = |t: u32| model.tets[t as usize].map(|n| x[n as usize]);
-        found.retain(|&(a, b)| self.may_touch(model, a, b) && !separated_by_face_plane(&at(a), &at(b), gap));
-        self.candidates = merge_unique(&self.candidates, &found);
+        let mut known = 0;
+        let mut added: Vec<(u32, u32)> = Vec::new();
+        for key in found {
+            let pair = ((key >> 32) as u32, key as u32);
+            known += self.candidates[known..].partition_point(|c| *c < pair);
+            if self.candidates.get(known) == Some(&pair) {
+                continue;
+            }
+            let (a, b) = pair;
+            if self.may_touch(model, a, b) && !separated_by_face_plane(&at(a), &at(b), gap) {
+                added.push(pair);
+            }
+        }
+        self.candidates = merge_unique(&self.candidates, &added);
 
         let mut fresh: Vec<u32> = self
             .pending

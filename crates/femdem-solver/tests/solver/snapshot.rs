@@ -17,9 +17,9 @@
 use crate::common::sheared_block;
 use femdem_solver::{Solver, SolverError, Want};
 
-/// The block of these tests, with incremental detection.
+/// The block of these tests: a 0.2 mm buffer, incremental detection.
 fn block(size: [f64; 3]) -> Solver {
-    sheared_block(size, true)
+    sheared_block(size, 2e-4, true)
 }
 
 fn want(n: u64) -> Want {

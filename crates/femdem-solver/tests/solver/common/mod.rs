@@ -258,9 +258,9 @@ pub fn pulled_bar_loads(jointed: &JointedMesh, w: f64, v: f64) -> Loads {
 /// A jointed block of `size` (m, element size 2.5 mm) with weak joints (a
 /// tenth of the paper's strengths), bottom held, top driven at `(5, 0, −2)`
 /// m/s: joints fail at most steps from about step 100 on. Contact without
-/// surfaces, friction 0.6, a 0.2 mm detection buffer, incremental detection
-/// after failures as `incremental` says.
-pub fn sheared_block(size: [f64; 3], incremental: bool) -> Solver {
+/// surfaces, friction 0.6, detection buffer `buffer` (m), incremental
+/// detection after failures as `incremental` says.
+pub fn sheared_block(size: [f64; 3], buffer: f64, incremental: bool) -> Solver {
     const H: f64 = 0.0025;
     const PENALTY: f64 = 26e9;
     let mesh = box_mesh([0.0; 3], size, H, 0.15, true);
@@ -284,7 +284,7 @@ pub fn sheared_block(size: [f64; 3], incremental: bool) -> Solver {
     let st = stable(&m, &loads, 300).with_contact(contact_omega(&m, PENALTY));
     let mut s = Solver::new(m, loads, StepParams::new(0.9 * st.critical).unwrap()).unwrap();
     let settings =
-        ContactSettings { surfaces: false, friction: 0.6, buffer: 2e-4, incremental, ..ContactSettings::new(PENALTY) };
+        ContactSettings { surfaces: false, friction: 0.6, buffer, incremental, ..ContactSettings::new(PENALTY) };
     s.enable_contact(settings, &[]);
     s
 }

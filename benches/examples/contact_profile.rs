@@ -42,7 +42,11 @@ fn main() {
     println!("steps           {steps}");
     println!("tet-steps       {}", s.model.num_deformable_tets() * steps);
     println!("failures        {failed}");
-    println!("detections      {} full, {} incremental", c.detections - detections_before, c.additions - additions_before);
+    println!(
+        "detections      {} full, {} incremental",
+        c.detections - detections_before,
+        c.additions - additions_before
+    );
     println!("contactable     {}", c.contactable().len());
     println!("pairs in contact per step {:.1}", pairs as f64 / steps.max(1) as f64);
     println!("wall            {wall:.3} s ({:.3e} tet-steps/s)", (s.model.num_deformable_tets() * steps) as f64 / wall);

@@ -63,11 +63,8 @@ impl Contact {
     pub(super) fn add_candidates(&mut self, model: &Model, x: &[Vec3], moved: Real) {
         let margin = 0.5 * self.settings.buffer + moved;
         self.spheres(model, x);
-        let pending: Vec<usize> = self
-            .pending
-            .iter()
-            .map(|t| self.list.binary_search(t).expect("a pending tet is contactable"))
-            .collect();
+        let pending: Vec<usize> =
+            self.pending.iter().map(|t| self.list.binary_search(t).expect("a pending tet is contactable")).collect();
         // A box around the pending tets' spheres: a partner's centre lies
         // within its own radius plus `2 margin` of it.
         let (mut lo, mut hi) = ([Real::INFINITY; 3], [Real::NEG_INFINITY; 3]);

@@ -59,7 +59,9 @@ impl Contact {
     /// contactable set at positions `x`, searched with margin `b/2 + moved`
     /// (`moved` bounds every watched node's distance from its reference),
     /// merged in ascending order; the nodes of the pending tets not yet
-    /// watched are watched from here.
+    /// watched are watched from here. Not inlined, so that a profile names
+    /// it.
+    #[inline(never)]
     pub(super) fn add_candidates(&mut self, model: &Model, x: &[Vec3], moved: Real) {
         let margin = 0.5 * self.settings.buffer + moved;
         self.spheres(model, x);

@@ -398,7 +398,9 @@ impl Contact {
 
     /// Runs NBS over the contactable tets at positions `x` with margin
     /// `b/2`, keeping the pairs that may touch as the candidates; every
-    /// contactable node's reference position becomes its position now.
+    /// contactable node's reference position becomes its position now. Not
+    /// inlined, so that a profile names it.
+    #[inline(never)]
     fn detect(&mut self, model: &Model, x: &[Vec3]) {
         self.spheres(model, x);
         self.pairs.clear();

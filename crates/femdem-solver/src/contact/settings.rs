@@ -19,10 +19,12 @@ pub struct ContactSettings {
     /// (rock against rock) and 0.1 between the disc and the steel platens.
     pub pair_friction: Vec<([u16; 2], Real)>,
     /// Detection buffer `b`, m: NBS keeps every pair whose bounding spheres
-    /// are at most `b` apart, and detection is repeated only once some
-    /// contactable node has moved more than `b/2` since the last one (two
-    /// tets that touch now were then at most `b` apart: see
-    /// `Contact::needs_detection`). 0 detects at every step.
+    /// are at most `b` apart, and a full detection is repeated only once
+    /// some contactable node has moved more than `b/2` from where it was at
+    /// the last one (two tets that touch now were then at most `b` apart:
+    /// see `Contact::needs_detection`); joint failures in between add their
+    /// candidates (see [`ContactSettings::incremental`]). 0 detects at every
+    /// step.
     pub buffer: Real,
     /// Steps `n_total` over which the contact force between the tets of a
     /// joint that failed in compression rises from zero (Eq. 18; the paper

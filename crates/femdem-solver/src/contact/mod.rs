@@ -578,10 +578,11 @@ impl Contact {
     /// Writes the pass's evolving state to a solver snapshot (see
     /// `crate::snapshot`): the contactable set, cracked vertices and their
     /// pieces, bonded pairs, the candidates with the watched nodes and their
-    /// reference positions, staleness and the pending tets, the last pass's touched nodes
-    /// with their forces and velocities, the energy account and counters,
-    /// the friction springs and the Eq. 18 ramp counters (maps sorted by
-    /// key). Scratch buffers (NBS, spheres, pair results) are not written.
+    /// reference positions, staleness and the pending tets, the last pass's
+    /// touched nodes with their forces and velocities, the energy account
+    /// and counters, the friction springs and the Eq. 18 ramp counters (maps
+    /// sorted by key). Scratch buffers (NBS, spheres, pair results) are not
+    /// written.
     pub(crate) fn encode(&self, e: &mut Encoder) {
         e.bools(&self.contactable);
         e.u32s(self.stars.pieces());
@@ -654,6 +655,9 @@ impl Contact {
         expect_count("detection positions", c.x_ref.len(), c.nodes.len())?;
         c.stale = d.bool()?;
         c.pending = d.u32s()?.into_iter().map(tet).collect::<Result<_, _>>()?;
+        if let Some(t) = c.pending.iter().find(|t| c.list.binary_search(t).is_err()) {
+            return Err(snapshot_error(format!("contact: pending tet {t} is not contactable")));
+        }
         c.force.iter_mut().chain(c.friction_force.iter_mut()).chain(c.total.iter_mut()).for_each(|f| {
             *f = Vec3::zeros();
         });

@@ -14,7 +14,7 @@
 //! profiles the set-up and ten fragmented steps (a profile with 2 steps,
 //! subtracted, leaves the steps alone; see
 //! `docs/performance.md`). Prints the tets, steps, failures, detections
-//! and contact pairs.
+//! (full, and incremental additions after failures) and contact pairs.
 
 use femdem_benches::polyaxial_cube_at;
 use femdem_solver::Want;
@@ -26,6 +26,7 @@ fn main() {
     let mut s = polyaxial_cube_at(from);
     let failed_before = s.failures().len();
     let detections_before = s.contact().map_or(0, |c| c.detections);
+    let additions_before = s.contact().map_or(0, |c| c.additions);
     let mut failed = 0;
     let mut pairs = 0;
     let start = std::time::Instant::now();
@@ -41,7 +42,11 @@ fn main() {
     println!("steps           {steps}");
     println!("tet-steps       {}", s.model.num_deformable_tets() * steps);
     println!("failures        {failed}");
-    println!("detections      {}", c.detections - detections_before);
+    println!(
+        "detections      {} full, {} incremental",
+        c.detections - detections_before,
+        c.additions - additions_before
+    );
     println!("contactable     {}", c.contactable().len());
     println!("pairs in contact per step {:.1}", pairs as f64 / steps.max(1) as f64);
     println!("wall            {wall:.3} s ({:.3e} tet-steps/s)", (s.model.num_deformable_tets() * steps) as f64 / wall);

@@ -12,8 +12,9 @@
 //! (`crate::account`);
 //! the failure record; the last [`StepRecord`] (it carries the failure
 //! counts); the contact pass's state (contactable tets, cracked vertices
-//! and their pieces, bonded pairs, the candidates of the last detection
-//! with the node positions it was made at and whether it is stale, the
+//! and their pieces, bonded pairs, the candidates with the watched nodes'
+//! reference positions, whether a full detection is due, the tets pending
+//! an incremental one, the
 //! friction springs, the Eq. 18 ramp counters, the nodes touched by the
 //! last pass with their forces and velocities, the contact energy
 //! account and counters). What is not: the model, the loads and the
@@ -42,7 +43,10 @@ use crate::step::{Solver, StepRecord};
 ///
 /// 2: the energy account centred on `t_n` (the half step of work held
 /// over, the watch on the balance, the velocities of the step before).
-pub const SNAPSHOT_VERSION: u32 = 2;
+/// 3: incremental contact detection (the tets pending an addition and the
+/// count of additions; each watched node's reference position is where it
+/// was at the last full detection or at the addition that made it watched).
+pub const SNAPSHOT_VERSION: u32 = 3;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]

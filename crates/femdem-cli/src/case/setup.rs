@@ -383,6 +383,7 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         pair_friction: Vec::new(),
         buffer: spec.buffer,
         ramp_steps: spec.ramp_steps,
+        incremental: true,
     };
     for (i, p) in spec.pairs.iter().enumerate() {
         let pair = p.get_ref();

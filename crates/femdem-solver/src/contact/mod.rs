@@ -40,13 +40,20 @@
 //! Detection (NBS, O(N) in the contactable tets) keeps the pairs whose
 //! bounding spheres are less than the buffer `b` apart and that no face
 //! plane of either keeps more than `b` apart, and is repeated only
-//! when some contactable node has moved more than `b/2` since the last
-//! detection, or when a joint failure changed the contactable set or the
-//! exclusions (`Contact::joint_failed` marks the candidates stale): any two
-//! tets that overlap now were then within `b` of each other (below). The
-//! candidate pairs are evaluated in parallel, and their forces are summed
-//! in ascending pair order, so results depend neither on the thread count
-//! nor on the buffer.
+//! when some contactable node has moved more than `b/2` from its reference
+//! position (where it was at the last detection): any two tets that overlap
+//! now were then within `b` of each other (`Contact::needs_detection`). A
+//! joint failure in between changes the contactable set and the exclusions
+//! only for the tets around the failed joint's three vertices
+//! (`Contact::joint_failed` marks them *pending*); the next pass adds their
+//! pairs with the contactable set, searched with a margin grown by the
+//! largest move since the references, and merges them into the sorted
+//! candidates (`incremental.rs`), instead of detecting everything again.
+//! The candidate pairs are evaluated in parallel, and their forces are
+//! summed in ascending pair order; every pair that can touch is a candidate
+//! whichever way it was found, and one that does not touch adds nothing, so
+//! results depend neither on the thread count, nor on the buffer, nor on
+//! when detection ran.
 //!
 //! Each pair's friction acts at its contact centre, the point of the
 //! overlap where its normal force acts: the slip is the relative velocity
@@ -54,6 +61,7 @@
 //! coordinates (`pair::evaluate`), so it has the right moment and slows a
 //! spinning body.
 
+mod incremental;
 mod pair;
 mod settings;
 mod stars;
@@ -115,14 +123,23 @@ pub struct Contact {
     first: Vec<u32>,
     fill: Vec<u32>,
     by_first: Vec<u32>,
-    /// Candidate pairs (tet indices) from the last detection.
+    /// Candidate pairs (tet indices), ascending: every pair of contactable
+    /// tets that may touch and can overlap while no node in `nodes` has
+    /// moved more than `b/2` from its reference position in `x_ref`.
     candidates: Vec<(u32, u32)>,
-    /// Nodes of the contactable tets and their positions at the last
-    /// detection.
+    /// Nodes of the contactable tets (ascending) but those of the `pending`
+    /// tets not yet added, and their reference positions: where they were
+    /// at the last full detection, or at the addition that made them
+    /// contactable since.
     nodes: Vec<u32>,
     x_ref: Vec<Vec3>,
-    /// Whether the contactable set changed since the last detection.
+    /// Whether a full detection is needed (a new pass, or pre-existing
+    /// fractures).
     stale: bool,
+    /// Tets around vertices cracked since the last detection or addition
+    /// (ascending): their pairs with the contactable set are not yet all
+    /// candidates (see `incremental.rs`).
+    pending: Vec<u32>,
     results: Vec<Option<PairForce>>,
     /// Normal contact force per node from the last pass, N.
     pub force: Vec<Vec3>,
@@ -139,8 +156,11 @@ pub struct Contact {
     is_touched: Vec<bool>,
     /// Pairs in contact at the last pass.
     pub active_pairs: usize,
-    /// Detections run so far.
+    /// Full detections run so far.
     pub detections: u64,
+    /// Incremental detections (the pairs of the tets around failed joints
+    /// added to the candidates) run so far.
+    pub additions: u64,
     /// Elastic energy of the friction springs after the last pass, J.
     pub spring_energy: Real,
     /// Tangential spring stretch of each pair in contact (friction history).
@@ -185,6 +205,7 @@ impl Contact {
             nodes: Vec::new(),
             x_ref: Vec::new(),
             stale: true,
+            pending: Vec::new(),
             results: Vec::new(),
             force: vec![Vec3::zeros(); model.num_nodes()],
             friction_force: vec![Vec3::zeros(); model.num_nodes()],
@@ -195,6 +216,7 @@ impl Contact {
             is_touched: vec![false; model.num_nodes()],
             active_pairs: 0,
             detections: 0,
+            additions: 0,
             spring_energy: 0.0,
             stick: PairMap::default(),
             stick_next: PairMap::default(),
@@ -233,7 +255,9 @@ impl Contact {
 
     /// Marks `vertices` cracked, makes `tets` and every tet around those
     /// vertices contactable, and finds the vertices' pieces again (`tets`
-    /// are no longer bonded); the candidates must be found again.
+    /// are no longer bonded); those tets become pending: whether they may
+    /// touch others changed only for pairs with one of them in (see
+    /// `incremental.rs`).
     fn crack(&mut self, model: &Model, vertices: &[u32], tets: &[u32]) {
         let mut added: Vec<u32> = Vec::new();
         let mut add = |t: u32, contactable: &mut Vec<bool>| {
@@ -268,7 +292,12 @@ impl Contact {
             }
             self.list = merged;
         }
-        self.stale = true;
+        self.pending.extend_from_slice(tets);
+        for &v in vertices {
+            self.pending.extend_from_slice(self.stars.of(v));
+        }
+        self.pending.sort_unstable();
+        self.pending.dedup();
     }
 
     /// The nodes the last pass put a force on, ascending.
@@ -352,9 +381,10 @@ impl Contact {
         }
     }
 
-    /// Runs NBS over the contactable tets at positions `x` with margin
-    /// `b/2`, keeping the pairs that may touch as the candidates.
-    fn detect(&mut self, model: &Model, x: &[Vec3]) {
+    /// The bounding spheres of the contactable tets at positions `x` into
+    /// `centers` and `radii` (indexed as `list`): centroid and largest
+    /// distance to a node.
+    fn spheres(&mut self, model: &Model, x: &[Vec3]) {
         self.centers.clear();
         self.radii.clear();
         for &t in &self.list {
@@ -364,6 +394,15 @@ impl Contact {
             self.centers.push(c);
             self.radii.push(r);
         }
+    }
+
+    /// Runs NBS over the contactable tets at positions `x` with margin
+    /// `b/2`, keeping the pairs that may touch as the candidates; every
+    /// contactable node's reference position becomes its position now. Not
+    /// inlined, so that a profile names it.
+    #[inline(never)]
+    fn detect(&mut self, model: &Model, x: &[Vec3]) {
+        self.spheres(model, x);
         self.pairs.clear();
         self.nbs.detect(&self.centers, &self.radii, 0.5 * self.settings.buffer, &mut self.pairs);
         // A canonical order, ascending `(a, b)`: the forces are then summed
@@ -416,7 +455,7 @@ impl Contact {
             }
         }
         self.candidates = candidates;
-        if self.stale {
+        if self.stale || !self.pending.is_empty() {
             self.nodes.clear();
             self.nodes.extend(self.list.iter().flat_map(|&t| model.tets[t as usize]));
             self.nodes.sort_unstable();
@@ -425,12 +464,15 @@ impl Contact {
         self.x_ref.clear();
         self.x_ref.extend(self.nodes.iter().map(|&n| x[n as usize]));
         self.stale = false;
+        self.pending.clear();
         self.detections += 1;
     }
 
-    /// Whether the candidates must be found again: the contactable set
-    /// changed, or a contactable node moved more than `b/2` since the last
-    /// detection.
+    /// What the candidates need before the pair loop at positions `x`: a
+    /// full detection when one is stale or a contactable node moved more
+    /// than `b/2` from its reference position, else the pairs of the
+    /// pending tets, if any (a full detection too when
+    /// [`ContactSettings::incremental`] is off).
     ///
     /// Why `b/2` suffices: let `d` bound every node's move. A point `q` in
     /// both tets now is a convex combination of each tet's current nodes;
@@ -438,14 +480,22 @@ impl Contact {
     /// within `d` of `q`, so `|c_A − c_B| ≤ r_A + r_B + 2d` for the centres
     /// and radii at detection, and NBS with margin `b/2` kept every pair with
     /// `|c_A − c_B| ≤ r_A + r_B + b`. (The comparison is strict, so `b = 0`
-    /// detects again whenever anything moved.)
-    fn needs_detection(&self, x: &[Vec3]) -> bool {
-        if self.stale {
-            return true;
+    /// detects again whenever anything moved.) An addition keeps the same
+    /// guarantee with a larger margin (`incremental.rs`).
+    fn needs_detection(&self, x: &[Vec3]) -> Update {
+        if self.stale || (!self.pending.is_empty() && !self.settings.incremental) {
+            return Update::Full;
         }
         let half = 0.5 * self.settings.buffer;
         let limit = half * half;
-        self.nodes.par_iter().zip(&self.x_ref).any(|(&n, r)| (x[n as usize] - r).norm_squared() > limit)
+        let moved2 = |(&n, r): (&u32, &Vec3)| (x[n as usize] - r).norm_squared();
+        if self.pending.is_empty() {
+            let far = self.nodes.par_iter().zip(&self.x_ref).any(|p| moved2(p) > limit);
+            return if far { Update::Full } else { Update::None };
+        }
+        // The largest move (a maximum: the same whatever the thread count).
+        let largest = self.nodes.par_iter().zip(&self.x_ref).map(moved2).reduce(|| 0.0, Real::max);
+        if largest > limit { Update::Full } else { Update::Add { moved: largest.sqrt() } }
     }
 
     /// Detects contacts at positions `x` (when needed) and computes the
@@ -461,8 +511,10 @@ impl Contact {
             self.is_touched[n as usize] = false;
         }
         self.touched.clear();
-        if self.needs_detection(x) {
-            self.detect(model, x);
+        match self.needs_detection(x) {
+            Update::None => {}
+            Update::Full => self.detect(model, x),
+            Update::Add { moved } => self.add_candidates(model, x, moved),
         }
         let (friction, stick, ramp) = (&self.friction, &self.stick, &self.ramp);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
@@ -525,11 +577,12 @@ impl Contact {
 
     /// Writes the pass's evolving state to a solver snapshot (see
     /// `crate::snapshot`): the contactable set, cracked vertices and their
-    /// pieces, bonded pairs, the last detection (candidates, the nodes and
-    /// positions it was made at, staleness), the last pass's touched nodes
-    /// with their forces and velocities, the energy account and counters,
-    /// the friction springs and the Eq. 18 ramp counters (maps sorted by
-    /// key). Scratch buffers (NBS, spheres, pair results) are not written.
+    /// pieces, bonded pairs, the candidates with the watched nodes and their
+    /// reference positions, staleness and the pending tets, the last pass's
+    /// touched nodes with their forces and velocities, the energy account
+    /// and counters, the friction springs and the Eq. 18 ramp counters (maps
+    /// sorted by key). Scratch buffers (NBS, spheres, pair results) are not
+    /// written.
     pub(crate) fn encode(&self, e: &mut Encoder) {
         e.bools(&self.contactable);
         e.u32s(self.stars.pieces());
@@ -542,6 +595,7 @@ impl Contact {
         e.u32s(&self.nodes);
         e.vec3s(&self.x_ref);
         e.bool(self.stale);
+        e.u32s(&self.pending);
         e.u32s(&self.touched);
         for &n in &self.touched {
             e.vec3(&self.force[n as usize]);
@@ -554,6 +608,7 @@ impl Contact {
             .for_each(|x| e.f64(x));
         e.count(self.active_pairs);
         e.u64(self.detections);
+        e.u64(self.additions);
         e.f64(self.spring_energy);
         let mut stick: Vec<_> = self.stick.iter().map(|(&k, &s)| (k, s)).collect();
         stick.sort_unstable_by_key(|&(k, _)| k);
@@ -599,6 +654,10 @@ impl Contact {
         c.x_ref = d.vec3s()?;
         expect_count("detection positions", c.x_ref.len(), c.nodes.len())?;
         c.stale = d.bool()?;
+        c.pending = d.u32s()?.into_iter().map(tet).collect::<Result<_, _>>()?;
+        if let Some(t) = c.pending.iter().find(|t| c.list.binary_search(t).is_err()) {
+            return Err(snapshot_error(format!("contact: pending tet {t} is not contactable")));
+        }
         c.force.iter_mut().chain(c.friction_force.iter_mut()).chain(c.total.iter_mut()).for_each(|f| {
             *f = Vec3::zeros();
         });
@@ -623,6 +682,7 @@ impl Contact {
         };
         c.active_pairs = d.count()?;
         c.detections = d.u64()?;
+        c.additions = d.u64()?;
         c.spring_energy = d.f64()?;
         c.stick.clear();
         for _ in 0..d.count()? {
@@ -637,6 +697,18 @@ impl Contact {
         }
         Ok(c)
     }
+}
+
+/// What the candidates need before a pass's pair loop
+/// (`Contact::needs_detection`).
+enum Update {
+    /// Nothing: they hold every pair that can touch.
+    None,
+    /// A full detection (`Contact::detect`).
+    Full,
+    /// The pairs of the pending tets (`Contact::add_candidates`); every
+    /// watched node is at most `moved` (m) from its reference position.
+    Add { moved: Real },
 }
 
 /// A length-prefixed list of tet pairs.

@@ -19,20 +19,32 @@ pub struct ContactSettings {
     /// (rock against rock) and 0.1 between the disc and the steel platens.
     pub pair_friction: Vec<([u16; 2], Real)>,
     /// Detection buffer `b`, m: NBS keeps every pair whose bounding spheres
-    /// are at most `b` apart, and detection is repeated only once some
-    /// contactable node has moved more than `b/2` since the last one (two
-    /// tets that touch now were then at most `b` apart: see
-    /// `Contact::needs_detection`). 0 detects at every step.
+    /// are at most `b` apart, and a full detection is repeated only once
+    /// some contactable node has moved more than `b/2` from where it was at
+    /// the last one (two tets that touch now were then at most `b` apart:
+    /// see `Contact::needs_detection`); joint failures in between add their
+    /// candidates (see [`ContactSettings::incremental`]). 0 detects at every
+    /// step.
     pub buffer: Real,
     /// Steps `n_total` over which the contact force between the tets of a
     /// joint that failed in compression rises from zero (Eq. 18; the paper
     /// uses [`crate::RAMP_STEPS`] = 10; 0: no ramp).
     pub ramp_steps: u32,
+    /// Whether a joint failure between two full detections only adds the
+    /// candidate pairs of the tets around the failed joint
+    /// (`Contact::add_candidates`, the default) instead of detecting all
+    /// pairs again. Both give the same forces bit for bit (every pair that
+    /// can touch is a candidate either way and forces are summed in
+    /// ascending pair order); `false` costs a full detection per failure
+    /// and is there for the test that compares the two
+    /// (`tests/solver/contact_incremental.rs`) and for profiling.
+    pub incremental: bool,
 }
 
 impl ContactSettings {
     /// Frictionless contact with penalty `p` (Pa) between all surfaces,
-    /// detected at every step, with the paper's 10-step ramp.
+    /// detected at every step, with the paper's 10-step ramp and
+    /// incremental detection after joint failures.
     pub fn new(penalty: Real) -> ContactSettings {
         ContactSettings {
             penalty,
@@ -41,6 +53,7 @@ impl ContactSettings {
             pair_friction: Vec::new(),
             buffer: 0.0,
             ramp_steps: crate::RAMP_STEPS,
+            incremental: true,
         }
     }
 

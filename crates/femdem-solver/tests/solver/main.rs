@@ -9,6 +9,7 @@ mod contact;
 mod contact_activation;
 mod contact_detection;
 mod contact_friction;
+mod contact_incremental;
 mod contact_pressed;
 mod contact_step;
 mod determinism;

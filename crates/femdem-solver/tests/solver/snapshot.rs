@@ -1,8 +1,10 @@
 //! A solver restored from a snapshot continues bit for bit as the one that
 //! took it (`Solver::snapshot`, `Solver::restore`): a jointed block sheared
 //! and pressed by its top until joints fail, with contact (friction 0.6,
-//! a detection buffer, so the last detection's candidates and positions
-//! are part of the state) stepped 300 steps, snapshot, then 300 more; a
+//! a detection buffer, so the candidates, the watched nodes' reference
+//! positions and the count of incremental additions are part of the state;
+//! failures have added candidates incrementally both before and after the
+//! snapshot, asserted) stepped 300 steps, snapshot, then 300 more; a
 //! second solver built the same way and restored from the snapshot takes
 //! the same 300 steps and ends in the same bits — positions, velocities,
 //! joint histories, energies and the watch on their balance, the failure
@@ -12,45 +14,12 @@
 //! ask for energies and stresses on an irregular schedule, as a run's
 //! output does.
 
-use crate::common::{box_mesh, joints, rock, stable};
-use femdem_core::Vec3;
-use femdem_material::{Law, critical_viscosity};
-use femdem_mesh::insert_joints;
-use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{
-    ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, SolverError, StepParams, VelocityDrive, Want,
-    contact_omega,
-};
+use crate::common::sheared_block;
+use femdem_solver::{Solver, SolverError, Want};
 
-const H: f64 = 0.0025;
-const PENALTY: f64 = 26e9;
-
-/// The block, bottom held, top driven at `(5, 0, −2)` m/s, contact on.
+/// The block of these tests: a 0.2 mm buffer, incremental detection.
 fn block(size: [f64; 3]) -> Solver {
-    let mesh = box_mesh([0.0; 3], size, H, 0.15, true);
-    let jointed = insert_joints(&mesh).unwrap();
-    let visc = critical_viscosity(H, 26e9, 2340.0) * 0.1;
-    // Weak joints (a tenth of the paper's strengths) break within the test.
-    let params = femdem_fracture::JointParams { tensile_strength: 3e5, cohesion: 1.5e6, ..joints(10.0 * 26e9) };
-    let behaviour = [RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(visc), joints: Some(params) }];
-    let m = Model::new(&jointed, &behaviour, 1.0).unwrap();
-    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
-    let loads = Loads {
-        fixed: vec![Fixed { nodes: sel("zmin"), components: [true; 3] }],
-        drives: vec![VelocityDrive {
-            name: "top".into(),
-            nodes: sel("zmax"),
-            velocity: Vec3::new(5.0, 0.0, -2.0),
-            components: [true; 3],
-            ramp: Ramp { ramp_time: 2e-6, stop_time: None },
-        }],
-        ..Loads::default()
-    };
-    let st = stable(&m, &loads, 300).with_contact(contact_omega(&m, PENALTY));
-    let mut s = Solver::new(m, loads, StepParams::new(0.9 * st.critical).unwrap()).unwrap();
-    let settings = ContactSettings { surfaces: false, friction: 0.6, buffer: 2e-4, ..ContactSettings::new(PENALTY) };
-    s.enable_contact(settings, &[]);
-    s
+    sheared_block(size, 2e-4, true)
 }
 
 fn want(n: u64) -> Want {
@@ -67,6 +36,8 @@ fn a_restored_solver_continues_bit_for_bit() {
     let failed = a.failures().len();
     let pairs = a.contact().unwrap().active_pairs;
     assert!(failed > 0 && pairs > 0, "the snapshot must be taken with joints failed ({failed}) and contacts ({pairs})");
+    let additions = a.contact().unwrap().additions;
+    assert!(additions > 0, "failures must have added candidates incrementally before the snapshot");
     let snap = a.snapshot();
 
     let mut b = block(size);
@@ -77,12 +48,31 @@ fn a_restored_solver_continues_bit_for_bit() {
         b.step(want(n));
     }
     assert!(a.failures().len() > failed, "joints keep failing after the snapshot");
+    assert!(b.contact().unwrap().additions > additions, "and add candidates after it");
     assert_eq!(a.state, b.state, "positions, velocities, joint histories");
     assert_eq!(a.energies(), b.energies());
     assert_eq!(a.imbalance(), b.imbalance(), "the energy watch");
     assert_eq!(a.failures(), b.failures());
     assert_eq!(a.record(), b.record());
     assert!(a.snapshot() == b.snapshot(), "the whole state, contact included, differs");
+}
+
+#[test]
+fn a_snapshot_of_another_layout_version_is_refused_by_name() {
+    let mut a = block([0.02, 0.01, 0.02]);
+    a.step(Want::default());
+    let mut snap = a.snapshot();
+    // A snapshot of layout 2, from before incremental detection.
+    snap[..4].copy_from_slice(&(femdem_solver::snapshot::SNAPSHOT_VERSION - 1).to_le_bytes());
+    let before = a.snapshot();
+    let err = a.restore(&snap).unwrap_err().to_string();
+    let expected = format!(
+        "layout version {}; this build reads {}",
+        femdem_solver::snapshot::SNAPSHOT_VERSION - 1,
+        femdem_solver::snapshot::SNAPSHOT_VERSION
+    );
+    assert!(err.contains(&expected), "{err}");
+    assert!(a.snapshot() == before, "a refused snapshot changed the solver");
 }
 
 #[test]

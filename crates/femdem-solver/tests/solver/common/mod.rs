@@ -6,7 +6,11 @@ use femdem_fracture::JointParams;
 use femdem_material::{ElasticParams, Law, Material};
 use femdem_mesh::generate::{BoxSpec, generate_box};
 use femdem_mesh::{JointedMesh, Region, TetMesh, insert_joints};
-use femdem_solver::{Loads, Model, RegionBehaviour, Solver, StableStep, StepParams, held_nodes, stable_time_step};
+use femdem_solver::select::{NodeSelection, select_nodes};
+use femdem_solver::{
+    ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, Solver, StableStep, StepParams, VelocityDrive,
+    contact_omega, held_nodes, stable_time_step,
+};
 
 /// The paper's rock (Table 1): ρ = 2340 kg/m³, E = 26 GPa, ν = 0.2.
 pub fn rock(viscosity: f64) -> Material {
@@ -249,4 +253,38 @@ pub fn pulled_bar_loads(jointed: &JointedMesh, w: f64, v: f64) -> Loads {
         }],
         ..Loads::default()
     }
+}
+
+/// A jointed block of `size` (m, element size 2.5 mm) with weak joints (a
+/// tenth of the paper's strengths), bottom held, top driven at `(5, 0, −2)`
+/// m/s: joints fail at most steps from about step 100 on. Contact without
+/// surfaces, friction 0.6, detection buffer `buffer` (m), incremental
+/// detection after failures as `incremental` says.
+pub fn sheared_block(size: [f64; 3], buffer: f64, incremental: bool) -> Solver {
+    const H: f64 = 0.0025;
+    const PENALTY: f64 = 26e9;
+    let mesh = box_mesh([0.0; 3], size, H, 0.15, true);
+    let jointed = insert_joints(&mesh).unwrap();
+    let visc = femdem_material::critical_viscosity(H, 26e9, 2340.0) * 0.1;
+    let params = JointParams { tensile_strength: 3e5, cohesion: 1.5e6, ..joints(10.0 * 26e9) };
+    let behaviour = [RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(visc), joints: Some(params) }];
+    let m = Model::new(&jointed, &behaviour, 1.0).unwrap();
+    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
+    let loads = Loads {
+        fixed: vec![Fixed { nodes: sel("zmin"), components: [true; 3] }],
+        drives: vec![VelocityDrive {
+            name: "top".into(),
+            nodes: sel("zmax"),
+            velocity: Vec3::new(5.0, 0.0, -2.0),
+            components: [true; 3],
+            ramp: Ramp { ramp_time: 2e-6, stop_time: None },
+        }],
+        ..Loads::default()
+    };
+    let st = stable(&m, &loads, 300).with_contact(contact_omega(&m, PENALTY));
+    let mut s = Solver::new(m, loads, StepParams::new(0.9 * st.critical).unwrap()).unwrap();
+    let settings =
+        ContactSettings { surfaces: false, friction: 0.6, buffer, incremental, ..ContactSettings::new(PENALTY) };
+    s.enable_contact(settings, &[]);
+    s
 }

@@ -43,6 +43,7 @@ fn block(size: [f64; 3]) -> Solver {
             velocity: Vec3::new(5.0, 0.0, -2.0),
             components: [true; 3],
             ramp: Ramp { ramp_time: 2e-6, stop_time: None },
+            start_time: None,
         }],
         ..Loads::default()
     };

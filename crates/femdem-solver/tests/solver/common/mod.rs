@@ -246,6 +246,7 @@ pub fn pulled_bar_loads(jointed: &JointedMesh, w: f64, v: f64) -> Loads {
             velocity: Vec3::new(0.0, 0.0, v),
             components: [false, false, true],
             ramp: Ramp { ramp_time: 5e-5, stop_time: None },
+            start_time: None,
         }],
         ..Loads::default()
     }

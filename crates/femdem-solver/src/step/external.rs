@@ -59,8 +59,8 @@ impl External {
     /// Evaluates the surface loads at `t_n = state.time` and the drives'
     /// targets at `t_n + Δt/2`, and records the load totals, the drives'
     /// reactions (given the internal and contact forces of this step; zero
-    /// for a drive not yet started) and their mean displacements. Returns the work the reactions do over the
-    /// step in its two halves, J: `½ Δt Σ r · v_{n−½}` (the half that
+    /// for a drive not yet started) and their mean displacements. Returns
+    /// the work the reactions do over the step in its two halves, J: `½ Δt Σ r · v_{n−½}` (the half that
     /// belongs to `t_n`) and `½ Δt Σ r · v_{n+½}` (the half that belongs to
     /// `t_{n+1}`; `v_{n+½}` of a driven component is its target).
     #[allow(clippy::too_many_arguments)]

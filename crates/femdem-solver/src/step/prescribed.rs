@@ -79,7 +79,7 @@ pub(crate) fn held(table: &Prescribed, drives: &[VelocityDrive]) -> Vec<bool> {
 }
 
 /// Whether a component tagged `tag` is prescribed from the first step on.
-fn held_from_start(tag: u16, drives: &[VelocityDrive]) -> bool {
+pub(crate) fn held_from_start(tag: u16, drives: &[VelocityDrive]) -> bool {
     match tag {
         FREE => false,
         FIXED => true,

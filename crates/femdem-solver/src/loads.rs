@@ -38,6 +38,11 @@ pub struct Fixed {
 
 /// A prescribed velocity on a node set, `v(t) = ramp(t) · velocity` on the
 /// components given; its reaction force is recorded under `name`.
+///
+/// With a `start_time`, the components are free before it (the nodes move
+/// under their forces; the recorded reaction is zero and does no work) and
+/// prescribed from it on: a zero `velocity` then holds the nodes where they
+/// are at `start_time` (e.g. faces held where a pressure ramp left them).
 #[derive(Clone, Debug, PartialEq)]
 pub struct VelocityDrive {
     /// Name of the recorded force (e.g. `"platen_top"`).
@@ -50,6 +55,28 @@ pub struct VelocityDrive {
     pub components: [bool; 3],
     /// Time history.
     pub ramp: Ramp,
+    /// Time from which the components are prescribed, s (`None`: from the
+    /// start). The ramp's times are absolute, not counted from it.
+    pub start_time: Option<Real>,
+}
+
+impl VelocityDrive {
+    /// Whether the drive prescribes the velocity at time `t`: the step from
+    /// `t_n` prescribes `v_{n+½}` when `t = t_n + Δt/2 ≥ start_time`, so a
+    /// node held at zero velocity keeps its position of the first `t_n ≥
+    /// start_time − Δt/2` from then on.
+    #[inline]
+    pub fn active(&self, t: Real) -> bool {
+        self.start_time.is_none_or(|s| t >= s)
+    }
+
+    /// Whether the drive prescribes its components from the first step on
+    /// (no `start_time`, or one ≤ 0 s): only then are its nodes held for
+    /// the stable-step estimate and the static start.
+    #[inline]
+    pub fn from_start(&self) -> bool {
+        self.start_time.is_none_or(|s| s <= 0.0)
+    }
 }
 
 /// What a surface load applies on each face.
@@ -122,6 +149,24 @@ mod tests {
         assert_eq!(r.factor(3.0), 1.0);
         assert_eq!(r.factor(5.5), 0.0);
         assert_eq!(Ramp::STEP.factor(0.0), 1.0);
+    }
+
+    #[test]
+    fn a_drive_acts_from_its_start_time() {
+        let mut d = VelocityDrive {
+            name: "d".into(),
+            nodes: vec![0],
+            velocity: Vec3::zeros(),
+            components: [true; 3],
+            ramp: Ramp::STEP,
+            start_time: None,
+        };
+        assert!(d.active(0.0) && d.from_start());
+        d.start_time = Some(1e-3);
+        assert!(!d.active(0.999e-3) && d.active(1e-3) && d.active(2e-3));
+        assert!(!d.from_start());
+        d.start_time = Some(0.0);
+        assert!(d.active(0.0) && d.from_start());
     }
 
     #[test]

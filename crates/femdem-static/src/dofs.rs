@@ -1,7 +1,8 @@
 //! The unknowns: one per free displacement component. A component is held
-//! at zero displacement when it is fixed, driven by a velocity (its
-//! displacement at `t = 0` is zero), or belongs to a node of a rigid
-//! (platen) region.
+//! at zero displacement when it is fixed, driven by a velocity from the
+//! first step on (its displacement at `t = 0` is zero; a drive with a later
+//! `start_time` leaves its components free), or belongs to a node of a
+//! rigid (platen) region.
 
 use femdem_solver::{Loads, Model};
 
@@ -33,7 +34,7 @@ impl Dofs {
             .fixed
             .iter()
             .map(|f| (&f.nodes, f.components))
-            .chain(loads.drives.iter().map(|d| (&d.nodes, d.components)));
+            .chain(loads.drives.iter().filter(|d| d.from_start()).map(|d| (&d.nodes, d.components)));
         for (nodes, components) in constraints {
             for &node in nodes {
                 for c in (0..3).filter(|&c| components[c]) {

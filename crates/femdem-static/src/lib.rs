@@ -15,7 +15,8 @@
 //!   are derived) — so the split nodes of the jointed mesh are tied as the
 //!   explicit joints tie them at small displacement;
 //! - held at zero: the nodes of rigid (platen) regions and every fixed or
-//!   velocity-driven component;
+//!   velocity-driven component (a drive's from the first step on: one with
+//!   a later `start_time` is free);
 //! - `f`: the surface loads at `t = 0` on the reference geometry and
 //!   gravity on the physical mass (`loads.rs`); a static start holds the
 //!   surface loads at their full value from `t = 0`

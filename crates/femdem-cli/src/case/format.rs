@@ -201,6 +201,11 @@ pub enum LoadSpec {
         nodes: NodeSpec,
         /// Components, letters of `"xyz"`.
         components: String,
+        /// Time from which the components are held, s (default: from the
+        /// start); before it they move freely. The nodes are held where
+        /// they are at that time (a zero-velocity drive, named
+        /// `fixed<i>` when `name` is not given).
+        start_time: Option<f64>,
     },
     /// A prescribed, ramped velocity; its reaction force is recorded.
     Velocity {
@@ -217,6 +222,10 @@ pub enum LoadSpec {
         ramp_time: f64,
         /// Time after which the velocity is zero, s.
         stop_time: Option<f64>,
+        /// Time from which the velocity is prescribed, s (default: from the
+        /// start); before it the components move freely and no reaction is
+        /// recorded. `ramp_time` and `stop_time` count from t = 0.
+        start_time: Option<f64>,
     },
     /// A pressure on a boundary group (positive pushes on it).
     Pressure {
@@ -227,6 +236,8 @@ pub enum LoadSpec {
         /// Rise time, s.
         #[serde(default)]
         ramp_time: f64,
+        /// Time after which the load is removed, s (default: never).
+        stop_time: Option<f64>,
     },
     /// A traction vector on a boundary group.
     Traction {
@@ -237,6 +248,8 @@ pub enum LoadSpec {
         /// Rise time, s.
         #[serde(default)]
         ramp_time: f64,
+        /// Time after which the load is removed, s (default: never).
+        stop_time: Option<f64>,
     },
 }
 

@@ -230,32 +230,36 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             velocity: Vec3::from(s.velocity),
             components: [true; 3],
             ramp: ramp(s.ramp_time, None).map_err(at)?,
+            start_time: None,
         });
     }
     for (i, l) in case.case.loads.iter().enumerate() {
         let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
         match l.get_ref() {
-            LoadSpec::Fixed { name, nodes, components: c } => {
+            LoadSpec::Fixed { name, nodes, components: c, start_time } => {
                 let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
                 }
                 let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
-                match name {
-                    // A named support records its reaction: a drive holding
-                    // the components at zero velocity moves its nodes as the
+                let start_time = start(*start_time).map_err(at)?;
+                match (name, start_time) {
+                    (None, None) => loads.fixed.push(Fixed { nodes, components }),
+                    // A named support records its reaction, and one that
+                    // starts later switches on: a drive holding the
+                    // components at zero velocity moves its nodes as the
                     // constraint does (v = 0 on them, no work done).
-                    Some(name) => loads.drives.push(VelocityDrive {
-                        name: name.clone(),
+                    _ => loads.drives.push(VelocityDrive {
+                        name: name.clone().unwrap_or_else(|| format!("fixed{i}")),
                         nodes,
                         velocity: Vec3::zeros(),
                         components,
                         ramp: Ramp { ramp_time: 0.0, stop_time: None },
+                        start_time,
                     }),
-                    None => loads.fixed.push(Fixed { nodes, components }),
                 }
             }
-            LoadSpec::Velocity { name, nodes, velocity, components: c, ramp_time, stop_time } => {
+            LoadSpec::Velocity { name, nodes, velocity, components: c, ramp_time, stop_time, start_time } => {
                 let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
@@ -269,26 +273,27 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                     velocity: Vec3::from(*velocity),
                     components,
                     ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
+                    start_time: start(*start_time).map_err(at)?,
                 });
             }
-            LoadSpec::Pressure { group, pressure, ramp_time } => {
+            LoadSpec::Pressure { group, pressure, ramp_time, stop_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
                 finite("pressure", &[*pressure], "Pa").map_err(at)?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
                     faces,
                     kind: SurfaceKind::Pressure(*pressure),
-                    ramp: ramp(*ramp_time, None).map_err(at)?,
+                    ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
                 });
             }
-            LoadSpec::Traction { group, traction, ramp_time } => {
+            LoadSpec::Traction { group, traction, ramp_time, stop_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
                 finite("traction", traction, "Pa").map_err(at)?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
                     faces,
                     kind: SurfaceKind::Traction(Vec3::from(*traction)),
-                    ramp: ramp(*ramp_time, None).map_err(at)?,
+                    ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
                 });
             }
         }
@@ -325,6 +330,14 @@ fn ramp(ramp_time: f64, stop_time: Option<f64>) -> Result<Ramp, String> {
         }
     }
     Ok(Ramp { ramp_time, stop_time })
+}
+
+/// A constraint's `start_time`, checked: finite and ≥ 0 s.
+fn start(start_time: Option<f64>) -> Result<Option<f64>, String> {
+    match start_time {
+        Some(t) if !(t.is_finite() && t >= 0.0) => Err(format!("`start_time` must be finite and ≥ 0 s, got {t} s")),
+        t => Ok(t),
+    }
 }
 
 /// Builds the model with the case's mass scaling.

@@ -211,6 +211,8 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("unknown_start", ":64:", "solver: `start`: `quasi-static` is not one of dynamic, static"),
         ("static_start_with_traces", ":39:", "start in contact across pre-existing fracture faces"),
         ("energy_tolerance_above_one", ":64:", "solver: `energy_tolerance` must lie in [0, 1]"),
+        ("negative_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got -0.002 s"),
+        ("infinite_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got inf s"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");
@@ -310,5 +312,41 @@ fn output_compression_is_the_case_setting() {
             Some(c) => assert!(header.contains(&format!("compressor=\"{c}\"")), "{name}: {header}"),
             None => assert!(!header.contains("compressor="), "{name}: {header}"),
         }
+    }
+}
+
+/// `stop_time` on a pressure and `start_time` on a fixed load: the xmax
+/// face is pulled by a pressure ramped over `t_r = 2 ms`, then held in x
+/// from 2 ms. Before it the hold records no reaction; after it the
+/// pressure is zero, the face's mean displacement does not change, and the
+/// hold carries the pressure's force to within `T₁ / t_r = 8.5%` (the
+/// bound of the solver's `hold_after` test: `T₁ = 4 L / √(E/ρ) = 170 µs`
+/// for the 0.2 m block, the oscillation a linear ramp leaves).
+#[test]
+fn a_pressure_stopped_and_a_face_held_from_the_same_time() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("hold-after-ramp-run");
+    let _ = std::fs::remove_dir_all(&out);
+    let case = "crates/femdem-cli/tests/cases/hold_after_ramp.toml";
+    let o = femdem(&["run", case, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let history = history_csv(&out);
+    let mut lines = history.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let (t_s, t) = (2e-3, col("time"));
+    let before: Vec<&Vec<f64>> = rows.iter().filter(|r| r[t] < 0.99 * t_s).collect();
+    let after: Vec<&Vec<f64>> = rows.iter().filter(|r| r[t] > t_s).collect();
+    assert!(before.len() > 5 && after.len() > 5, "{} rows before, {} after", before.len(), after.len());
+    assert!(before.iter().all(|r| r[col("hold_fx")] == 0.0), "a reaction before start_time");
+    let pulled = before.last().unwrap()[col("block.xmax_fx")];
+    assert!(pulled > 0.0, "the tension pulls along +x: {pulled}");
+    let ux = after[0][col("hold_ux")];
+    assert!(ux > 0.0, "the face moved out before it was held: {ux}");
+    for r in &after {
+        assert_eq!(r[col("block.xmax_fx")], 0.0, "the pressure acts after stop_time at t = {}", r[t]);
+        assert_eq!(r[col("hold_ux")], ux, "the held face moved at t = {}", r[t]);
+        let ratio = r[col("hold_fx")] / pulled;
+        assert!((ratio - 1.0).abs() < 0.085, "the hold carries {ratio} × the tension at t = {}", r[t]);
     }
 }

@@ -21,6 +21,10 @@ pub(super) struct External {
     pub f_surface: Vec<Vec3>,
     /// Each drive's target velocity at `t_n + Δt/2`, m/s.
     pub targets: Vec<Vec3>,
+    /// Whether each drive prescribes `v_{n+½}` in this step
+    /// ([`crate::VelocityDrive::active`] at `t_n + Δt/2`); an inactive
+    /// drive's components move freely.
+    pub active: Vec<bool>,
 }
 
 /// Gravity's force on node `i`, N: `g` times the node's physical mass
@@ -44,18 +48,19 @@ impl External {
             surface_nodes,
             f_surface: vec![Vec3::zeros(); model.num_nodes()],
             targets: vec![Vec3::zeros(); loads.drives.len()],
+            active: vec![true; loads.drives.len()],
         })
     }
 
-    pub fn held_nodes(&self) -> Vec<bool> {
-        held(&self.prescribed)
+    pub fn held_nodes(&self, loads: &Loads) -> Vec<bool> {
+        held(&self.prescribed, &loads.drives)
     }
 
     /// Evaluates the surface loads at `t_n = state.time` and the drives'
     /// targets at `t_n + Δt/2`, and records the load totals, the drives'
-    /// reactions (given the internal and contact forces of this step) and
-    /// their mean displacements. Returns the work the reactions do over the
-    /// step in its two halves, J: `½ Δt Σ r · v_{n−½}` (the half that
+    /// reactions (given the internal and contact forces of this step; zero
+    /// for a drive not yet started) and their mean displacements. Returns
+    /// the work the reactions do over the step in its two halves, J: `½ Δt Σ r · v_{n−½}` (the half that
     /// belongs to `t_n`) and `½ Δt Σ r · v_{n+½}` (the half that belongs to
     /// `t_{n+1}`; `v_{n+½}` of a driven component is its target).
     #[allow(clippy::too_many_arguments)]
@@ -89,11 +94,16 @@ impl External {
         for (d, drive) in loads.drives.iter().enumerate() {
             let target = drive.velocity * drive.ramp.factor(t_half);
             self.targets[d] = target;
+            let active = drive.active(t_half);
+            self.active[d] = active;
             let mut total = Vec3::zeros();
             let mut u = Vec3::zeros();
             for &node in &drive.nodes {
                 let i = node as usize;
                 u += state.x[i] - model.x0[i];
+                if !active {
+                    continue;
+                }
                 let f_in = match contact {
                     Some(c) => internal[i] + c[i],
                     None => internal[i],

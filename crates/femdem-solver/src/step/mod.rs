@@ -227,9 +227,10 @@ impl Solver {
         &self.record
     }
 
-    /// Which nodes have all three velocity components prescribed.
+    /// Which nodes have all three velocity components prescribed from the
+    /// first step on (as [`held_nodes`]).
     pub fn held_nodes(&self) -> Vec<bool> {
-        self.external.held_nodes()
+        self.external.held_nodes(&self.loads)
     }
 
     /// Position of node `i` at the time of the last record, `t_n`:

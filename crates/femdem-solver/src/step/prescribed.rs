@@ -2,7 +2,7 @@
 //! [`VelocityDrive`](crate::VelocityDrive), or free.
 
 use crate::error::SolverError;
-use crate::loads::Loads;
+use crate::loads::{Loads, VelocityDrive};
 use crate::model::Model;
 
 /// A component no constraint claims.
@@ -21,7 +21,8 @@ pub(crate) type Prescribed = Vec<[u16; 3]>;
 /// constraints, [`SolverError::RigidNodeNotDriven`] when a node of a rigid
 /// region is not driven in all three components,
 /// [`SolverError::MasslessFreeNode`] when a node without mass has a free
-/// component.
+/// component. A component whose only constraint is a drive with a later
+/// `start_time` is free at the start, and counts as such for the last two.
 pub(crate) fn prescribed(model: &Model, loads: &Loads) -> Result<Prescribed, SolverError> {
     let n = model.num_nodes();
     let mut table = vec![[FREE; 3]; n];
@@ -48,26 +49,40 @@ pub(crate) fn prescribed(model: &Model, loads: &Loads) -> Result<Prescribed, Sol
             }
         }
     }
-    if let Some(i) = (0..n).find(|&i| model.rigid_node[i] && table[i].contains(&FREE)) {
+    let loose = |i: usize| table[i].iter().any(|&tag| !held_from_start(tag, &loads.drives));
+    if let Some(i) = (0..n).find(|&i| model.rigid_node[i] && loose(i)) {
         return Err(SolverError::RigidNodeNotDriven { node: i as u32 });
     }
-    if let Some(i) = (0..n).find(|&i| model.mass[i] <= 0.0 && table[i].contains(&FREE)) {
+    if let Some(i) = (0..n).find(|&i| model.mass[i] <= 0.0 && loose(i)) {
         return Err(SolverError::MasslessFreeNode { node: i as u32 });
     }
     Ok(table)
 }
 
 /// Which nodes of `model` have all three velocity components prescribed by
-/// `loads` (fixed or driven; the nodes of rigid regions are): the nodes the
-/// stable-step estimate ([`crate::stable_time_step`]) leaves out.
+/// `loads` from the first step on (fixed or driven; the nodes of rigid
+/// regions are): the nodes the stable-step estimate
+/// ([`crate::stable_time_step`]) leaves out. A component held by a drive
+/// with a later `start_time` counts as free (holding it later only raises
+/// the critical step).
 ///
 /// # Errors
 /// As for [`crate::Solver::new`]: an inconsistent set of constraints.
 pub fn held_nodes(model: &Model, loads: &Loads) -> Result<Vec<bool>, SolverError> {
-    Ok(held(&prescribed(model, loads)?))
+    Ok(held(&prescribed(model, loads)?, &loads.drives))
 }
 
-/// The nodes of `table` with all three components prescribed.
-pub(crate) fn held(table: &Prescribed) -> Vec<bool> {
-    table.iter().map(|p| p.iter().all(|&c| c != FREE)).collect()
+/// The nodes of `table` with all three components prescribed from the
+/// first step on (`drives`: the drives the table's indices name).
+pub(crate) fn held(table: &Prescribed, drives: &[VelocityDrive]) -> Vec<bool> {
+    table.iter().map(|p| p.iter().all(|&tag| held_from_start(tag, drives))).collect()
+}
+
+/// Whether a component tagged `tag` is prescribed from the first step on.
+pub(crate) fn held_from_start(tag: u16, drives: &[VelocityDrive]) -> bool {
+    match tag {
+        FREE => false,
+        FIXED => true,
+        d => drives[d as usize].from_start(),
+    }
 }

@@ -5,7 +5,7 @@ use femdem_core::Vec3;
 use femdem_fracture::{JointHistory, joint_update};
 
 use super::Solver;
-use super::prescribed::FREE;
+use super::prescribed::held_from_start;
 use crate::SolverError;
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
 
@@ -28,7 +28,8 @@ impl Solver {
     /// # Errors
     /// [`SolverError::InitialDisplacement`] after the first step, for a
     /// displacement of the wrong length or not finite, or one that moves a
-    /// prescribed (fixed, driven or rigid) component.
+    /// prescribed (fixed, driven or rigid) component; a component whose
+    /// drive starts later is free at the start and may be displaced.
     pub fn start_displaced(&mut self, u: &[Vec3]) -> Result<f64, SolverError> {
         let bad = |why: String| Err(SolverError::InitialDisplacement(why));
         if self.state.step != 0 {
@@ -40,9 +41,10 @@ impl Solver {
         if let Some(i) = u.iter().position(|d| !d.iter().all(|c| c.is_finite())) {
             return bad(format!("node {i}: not finite"));
         }
-        let table = &self.external.prescribed;
-        if let Some((i, c)) =
-            (0..u.len()).flat_map(|i| (0..3).map(move |c| (i, c))).find(|&(i, c)| table[i][c] != FREE && u[i][c] != 0.0)
+        let (table, drives) = (&self.external.prescribed, &self.loads.drives);
+        if let Some((i, c)) = (0..u.len())
+            .flat_map(|i| (0..3).map(move |c| (i, c)))
+            .find(|&(i, c)| held_from_start(table[i][c], drives) && u[i][c] != 0.0)
         {
             return bad(format!("node {i} component {} is prescribed but displaced", ["x", "y", "z"][c]));
         }

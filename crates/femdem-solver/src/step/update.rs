@@ -43,7 +43,7 @@ impl Update {
     }
 
     /// `v_{n+½} = v_{n−½} + Δt f / m` with the prescribed components
-    /// imposed, `x_{n+1} = x_n + Δt v_{n+½}`. Returns the powers of the
+    /// imposed (those of started drives and fixed sets), `x_{n+1} = x_n + Δt v_{n+½}`. Returns the powers of the
     /// external forces (surface loads and gravity) against `v_{n−½}` and
     /// `v_{n+½}`, and, with `want_kinetic`, the kinetic energy of `t_n`
     /// ([`Powers`]). A non-empty `before` (the velocities of the step
@@ -94,7 +94,8 @@ fn advance_chunk(
     dt: Real,
     want_kinetic: bool,
 ) -> Powers {
-    let (prescribed, f_surface, targets) = (&external.prescribed, &external.f_surface, &external.targets);
+    let (prescribed, f_surface, targets, active) =
+        (&external.prescribed, &external.f_surface, &external.targets, &external.active);
     let mut sums = Powers::default();
     for (k, (x, v)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
         let i = first + k;
@@ -110,7 +111,8 @@ fn advance_chunk(
             match prescribed[i][comp] {
                 FREE => {}
                 FIXED => new[comp] = 0.0,
-                d => new[comp] = targets[d as usize][comp],
+                d if active[d as usize] => new[comp] = targets[d as usize][comp],
+                _ => {} // a drive not yet started: free
             }
         }
         sums.back += f_ext.dot(&old);

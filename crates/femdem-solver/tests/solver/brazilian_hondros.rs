@@ -227,6 +227,7 @@ fn brazilian(breakable: bool, h: f64, layers: Option<usize>, loading: Loading) -
         velocity: Vec3::new(0.0, vy, 0.0),
         components: [false, true, false],
         ramp,
+        start_time: None,
     };
     let drives = vec![drive("top", R, -v), drive("bottom", -R, v)];
     assert!(drives.iter().all(|d| d.nodes.len() > (T / h) as usize), "a contact line is missing nodes");

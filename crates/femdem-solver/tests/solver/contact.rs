@@ -108,6 +108,7 @@ fn block_on_a_rigid_plate_carries_its_weight() {
             velocity: Vec3::zeros(),
             components: [true; 3],
             ramp: Ramp::STEP,
+            start_time: None,
         }],
         ..Loads::default()
     };
@@ -160,6 +161,7 @@ fn broken_bar_halves_separate_without_contact_force() {
             velocity: Vec3::new(0.0, 0.0, 0.1),
             components: [true; 3],
             ramp: Ramp { ramp_time: 2e-5, stop_time: None },
+            start_time: None,
         }],
         ..Loads::default()
     };
@@ -233,6 +235,7 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
                 velocity: Vec3::zeros(),
                 components: [true; 3],
                 ramp: Ramp::STEP,
+                start_time: None,
             }],
             ..Loads::default()
         };

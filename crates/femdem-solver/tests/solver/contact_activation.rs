@@ -98,6 +98,7 @@ fn block(kink: bool) -> (Solver, Vec<u32>) {
             velocity,
             components: [true; 3],
             ramp: Ramp { ramp_time: 2e-5, stop_time: None },
+            start_time: None,
         }],
         ..Loads::default()
     };

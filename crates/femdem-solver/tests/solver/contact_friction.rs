@@ -79,6 +79,7 @@ fn on_plate(body: TetMesh, lo: [f64; 2], hi: [f64; 2], hp: f64, gravity: Vec3, m
             velocity: Vec3::zeros(),
             components: [true; 3],
             ramp: Ramp::STEP,
+            start_time: None,
         }],
         ..Loads::default()
     };

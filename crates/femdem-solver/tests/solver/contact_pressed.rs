@@ -48,6 +48,7 @@ fn loads(jointed: &JointedMesh, ramp: f64) -> Loads {
             velocity: Vec3::zeros(),
             components: [true; 3],
             ramp: Ramp::STEP,
+            start_time: None,
         }],
         surfaces: vec![SurfaceLoad {
             name: "top".into(),

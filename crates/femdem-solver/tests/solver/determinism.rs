@@ -29,6 +29,7 @@ fn run_asking(want: impl Fn(usize) -> Want) -> Solver {
             velocity: Vec3::new(0.05, 0.0, 0.0),
             components: [true, false, false],
             ramp: Ramp { ramp_time: 1e-5, stop_time: None },
+            start_time: None,
         }],
         surfaces: vec![SurfaceLoad {
             name: "top".into(),

@@ -56,6 +56,7 @@ fn damped_driven_block_balances_its_energy_account() {
                 velocity: Vec3::zeros(),
                 components: [true; 3],
                 ramp: Ramp::STEP,
+                start_time: None,
             },
             VelocityDrive {
                 name: "top".into(),
@@ -63,6 +64,7 @@ fn damped_driven_block_balances_its_energy_account() {
                 velocity: Vec3::new(0.0, 0.0, 0.02),
                 components: [false, false, true],
                 ramp: Ramp { ramp_time: 2e-5, stop_time: None },
+                start_time: None,
             },
         ],
         ..Loads::default()

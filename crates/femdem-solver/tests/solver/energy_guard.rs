@@ -85,6 +85,7 @@ fn a_linear_elastic_run_balances_to_round_off() {
             velocity: Vec3::new(0.0, 0.0, -0.5),
             components: [false, false, true],
             ramp: Ramp { ramp_time: 0.0, stop_time: Some(1e-4) },
+            start_time: None,
         }],
         surfaces: vec![SurfaceLoad {
             name: "side".into(),

@@ -45,6 +45,7 @@ fn support_reaction(s: f64) -> (f64, f64) {
             velocity: Vec3::zeros(),
             components: [true; 3],
             ramp: Ramp::STEP,
+            start_time: None,
         }],
         ..Loads::default()
     };

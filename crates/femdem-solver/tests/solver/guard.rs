@@ -28,6 +28,7 @@ fn crushed_cube() -> (Solver, f64) {
         velocity: Vec3::new(0.0, 0.0, vz),
         components: [true; 3],
         ramp: Ramp::STEP,
+        start_time: None,
     };
     let loads = Loads {
         drives: vec![drive("base", sel("zmin"), 0.0), drive("press", sel("zmax"), -200.0)],

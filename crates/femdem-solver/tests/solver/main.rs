@@ -18,6 +18,7 @@ mod energy_guard;
 mod extremes;
 mod gravity;
 mod guard;
+mod hold_after;
 mod joint_compliance;
 mod joint_zone;
 mod objectivity;

@@ -155,6 +155,7 @@ fn wave_speed(breakable: bool, p0: f64) -> Speeds {
         velocity: Vec3::new(0.0, 0.0, V0),
         components: [false, false, true],
         ramp: Ramp { ramp_time: t_ramp, stop_time: None },
+        start_time: None,
     };
     let slabs = STATIONS.map(|z| nodes_in_box(&m, [-1.0, -1.0, (z - 0.3) * H], [1.0, 1.0, (z + 0.3) * H]));
     assert!(slabs.iter().all(|s| !s.is_empty()));

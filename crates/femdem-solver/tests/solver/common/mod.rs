@@ -250,6 +250,7 @@ pub fn pulled_bar_loads(jointed: &JointedMesh, w: f64, v: f64) -> Loads {
             velocity: Vec3::new(0.0, 0.0, v),
             components: [false, false, true],
             ramp: Ramp { ramp_time: 5e-5, stop_time: None },
+            start_time: None,
         }],
         ..Loads::default()
     }
@@ -278,6 +279,7 @@ pub fn sheared_block(size: [f64; 3], buffer: f64, incremental: bool) -> Solver {
             velocity: Vec3::new(5.0, 0.0, -2.0),
             components: [true; 3],
             ramp: Ramp { ramp_time: 2e-6, stop_time: None },
+            start_time: None,
         }],
         ..Loads::default()
     };

@@ -3,7 +3,7 @@
 //! whose energy account balances; bad solver settings are refused with the
 //! estimate or the parameter named.
 
-use crate::common::{femdem, history_csv, root};
+use crate::common::{History, femdem, history_csv, root};
 use std::path::Path;
 use std::process::Command;
 
@@ -232,11 +232,8 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
     let stdout = String::from_utf8(o.stdout).unwrap();
     assert!(stdout.contains("ended       past the peak"), "{stdout}");
 
-    let history = history_csv(&out);
-    let mut lines = history.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let history = History::read(&out);
+    let (rows, col) = (&history.rows, |name: &str| history.col(name));
     let peak = rows.iter().map(|r| r[col("load")]).fold(f64::MIN, f64::max);
     let last = rows.last().unwrap();
     assert!(last[col("load")] < 0.5 * peak, "last load {} vs peak {peak}", last[col("load")]);
@@ -266,11 +263,8 @@ fn negative_pressure_pulls_on_its_side_only() {
     let _ = std::fs::remove_dir_all(&out);
     let o = femdem(&["run", "crates/femdem-cli/tests/cases/tensile_pressure.toml", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let history = history_csv(&out);
-    let mut lines = history.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let history = History::read(&out);
+    let (rows, col) = (&history.rows, |name: &str| history.col(name));
     let last = rows.last().unwrap();
     assert!(last[col("time")] > 1.0e-5, "the ramp is over");
     let f = [col("block.xmax_fx"), col("block.xmax_fy"), col("block.xmax_fz")].map(|c| last[c]);
@@ -329,11 +323,8 @@ fn a_pressure_stopped_and_a_face_held_from_the_same_time() {
     let case = "crates/femdem-cli/tests/cases/hold_after_ramp.toml";
     let o = femdem(&["run", case, "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let history = history_csv(&out);
-    let mut lines = history.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let history = History::read(&out);
+    let (rows, col) = (&history.rows, |name: &str| history.col(name));
     let (t_s, t) = (2e-3, col("time"));
     let before: Vec<&Vec<f64>> = rows.iter().filter(|r| r[t] < 0.99 * t_s).collect();
     let after: Vec<&Vec<f64>> = rows.iter().filter(|r| r[t] > t_s).collect();

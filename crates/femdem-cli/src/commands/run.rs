@@ -166,10 +166,12 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         let row_due = frame_due || t >= next_row - 0.5 * dt;
         let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
         // The energy check reads the energies of the step it checks; probes
-        // record stress in every history row.
+        // record stress in every history row; a checked step evaluates the
+        // stresses too, so that the frame and row a guard stop adds below
+        // carry the stresses of their own step (they are output only).
         let energy_checked = checked && run.energy_tolerance.is_some();
         let probing = row_due && !run.probes.is_empty();
-        solver.step(Want { stress: frame_due || probing, energy: row_due || energy_checked });
+        solver.step(Want { stress: frame_due || probing || checked, energy: row_due || energy_checked });
         let record = solver.record();
         if !record.new_failures.is_empty() {
             output.failure_rows(solver, record)?;
@@ -191,12 +193,15 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
             })
             .flatten();
         if let Some(trouble) = trouble {
-            // Keep what shows the trouble: the current frame and the history
-            // so far, with this step's row (its energies, if evaluated).
+            // Keep what shows the trouble: the history so far with this
+            // step's row (its energies, if evaluated) and this step's frame,
+            // both of t_n, as every row and frame (unless already written).
             if !row_due && solver.record().energies_current {
                 output.history_row(solver, solver.record())?;
             }
-            output.frames(solver, solver.state.time)?;
+            if !frame_due {
+                output.frames(solver, t)?;
+            }
             progress.finish();
             bail!(
                 "the run guard stopped the run: {trouble}\nthe state at that point was written to {}",

@@ -191,6 +191,39 @@ fn a_crushed_cube_is_stopped_by_the_run_guard_with_its_state_written() {
     assert!(pvd.matches("file=\"").count() >= 2, "the state at the stop must be written: {pvd}");
 }
 
+/// The row and the frame a guard stop adds between the scheduled ones are
+/// those of the stopped step, `t_n`, with its own stresses: the crushed
+/// cube with rows and frames only at the start (intervals longer than the
+/// run) and a probe at its centre. Before the fix the added row carried
+/// the stresses of the last step that evaluated them (zero, at t = 0) and
+/// the frame was labelled `t_{n+1}`.
+#[test]
+fn a_guard_stop_writes_the_stopped_steps_stresses() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("crushed-cube-probe");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(root().join("crates/femdem-cli/tests/cases/bad/crushed_cube.toml")).unwrap();
+    let case = dir.join("cube.toml");
+    let extra = "\n[output]\ninterval = 1.0\nhistory_interval = 1.0\n\n[[output.probes]]\nname = \"mid\"\nat = [0.01, 0.01, 0.01]\n";
+    std::fs::write(&case, format!("{base}{extra}")).unwrap();
+    let out = dir.join("out");
+    let o = femdem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(!o.status.success(), "the guard must stop this run");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("the run guard stopped the run"));
+    let history = History::read(&out);
+    let (t, szz) = (history.col("time"), history.col("mid_szz"));
+    let last = history.rows.last().unwrap();
+    assert!(history.rows.len() >= 2 && last[t] > 0.0, "the stop adds a row: {} rows", history.rows.len());
+    // Crushed at 200 m/s for dozens of steps: the centre is in compression
+    // of the order of ρ c v ≈ 1.6 GPa; stale, it would read 0.
+    assert!(last[szz] < -1e6, "mid_szz at the stop = {} Pa", last[szz]);
+    let pvd = std::fs::read_to_string(out.join("cube.pvd")).unwrap();
+    let times: Vec<f64> =
+        pvd.split("timestep=\"").skip(1).map(|s| s[..s.find('"').unwrap()].parse().unwrap()).collect();
+    assert!(times.windows(2).all(|w| w[0] < w[1]), "frame times {times:?}");
+    assert_eq!(*times.last().unwrap(), last[t], "the last frame is the stopped step's, at t_n");
+}
+
 /// Bad run settings found by trying the CLI as a new user would: each is
 /// refused by `femdem check` (so before any run) with the file, the line of
 /// the section and the key named.

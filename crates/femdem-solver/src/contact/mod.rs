@@ -61,18 +61,19 @@
 //! coordinates (`pair::evaluate`), so it has the right moment and slows a
 //! spinning body.
 
+mod detection;
 mod incremental;
 mod pair;
 mod settings;
+mod snapshot;
 mod stars;
 
-use femdem_contact::{Nbs, separated_by_face_plane};
+use femdem_contact::Nbs;
 use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
-use crate::SolverError;
 use crate::model::{Model, RIGID};
-use crate::snapshot::{Decoder, Encoder, expect_count, snapshot_error};
+use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 pub use settings::ContactSettings;
 use settings::FrictionTable;
@@ -381,123 +382,6 @@ impl Contact {
         }
     }
 
-    /// The bounding spheres of the contactable tets at positions `x` into
-    /// `centers` and `radii` (indexed as `list`): centroid and largest
-    /// distance to a node.
-    fn spheres(&mut self, model: &Model, x: &[Vec3]) {
-        self.centers.clear();
-        self.radii.clear();
-        for &t in &self.list {
-            let p = model.tets[t as usize].map(|n| x[n as usize]);
-            let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
-            let r = p.iter().map(|q| (q - c).norm()).fold(0.0, Real::max);
-            self.centers.push(c);
-            self.radii.push(r);
-        }
-    }
-
-    /// Runs NBS over the contactable tets at positions `x` with margin
-    /// `b/2`, keeping the pairs that may touch as the candidates; every
-    /// contactable node's reference position becomes its position now. Not
-    /// inlined, so that a profile names it.
-    #[inline(never)]
-    fn detect(&mut self, model: &Model, x: &[Vec3]) {
-        self.spheres(model, x);
-        self.pairs.clear();
-        self.nbs.detect(&self.centers, &self.radii, 0.5 * self.settings.buffer, &mut self.pairs);
-        // A canonical order, ascending `(a, b)`: the forces are then summed
-        // in the same order whatever the buffer (which changes NBS's grid and
-        // so its order). `list` is ascending, so this is the order of the
-        // sphere indices `(i, j)`, `i < j`: a counting sort by `i` into
-        // `by_first`, then each `i`'s partners sorted (a handful each), in
-        // O(pairs) rather than a comparison sort of all of them (which was
-        // 17% of a fragmented step).
-        let n = self.list.len();
-        self.first.clear();
-        self.first.resize(n + 1, 0);
-        for p in &self.pairs {
-            self.first[p.a() as usize + 1] += 1;
-        }
-        for i in 0..n {
-            self.first[i + 1] += self.first[i];
-        }
-        self.by_first.clear();
-        self.by_first.resize(self.pairs.len(), 0);
-        let mut fill = std::mem::take(&mut self.fill);
-        fill.clear();
-        fill.extend_from_slice(&self.first[..n]);
-        for p in &self.pairs {
-            let slot = &mut fill[p.a() as usize];
-            self.by_first[*slot as usize] = p.b();
-            *slot += 1;
-        }
-        self.fill = fill;
-        let mut candidates = std::mem::take(&mut self.candidates);
-        candidates.clear();
-        for i in 0..n {
-            self.by_first[self.first[i] as usize..self.first[i + 1] as usize].sort_unstable();
-        }
-        // Pairs a face plane keeps more than the buffer apart cannot touch
-        // before the next detection (`separated_by_face_plane`): dropping
-        // them changes no force, and most sphere pairs of a mesh with
-        // pre-existing fractures are such neighbours a layer apart.
-        let gap = self.settings.buffer;
-        for i in 0..n {
-            let a = self.list[i];
-            let pa = model.tets[a as usize].map(|k| x[k as usize]);
-            for &j in &self.by_first[self.first[i] as usize..self.first[i + 1] as usize] {
-                let b = self.list[j as usize];
-                if self.may_touch(model, a, b)
-                    && !separated_by_face_plane(&pa, &model.tets[b as usize].map(|k| x[k as usize]), gap)
-                {
-                    candidates.push((a, b));
-                }
-            }
-        }
-        self.candidates = candidates;
-        if self.stale || !self.pending.is_empty() {
-            self.nodes.clear();
-            self.nodes.extend(self.list.iter().flat_map(|&t| model.tets[t as usize]));
-            self.nodes.sort_unstable();
-            self.nodes.dedup();
-        }
-        self.x_ref.clear();
-        self.x_ref.extend(self.nodes.iter().map(|&n| x[n as usize]));
-        self.stale = false;
-        self.pending.clear();
-        self.detections += 1;
-    }
-
-    /// What the candidates need before the pair loop at positions `x`: a
-    /// full detection when one is stale or a contactable node moved more
-    /// than `b/2` from its reference position, else the pairs of the
-    /// pending tets, if any (a full detection too when
-    /// [`ContactSettings::incremental`] is off).
-    ///
-    /// Why `b/2` suffices: let `d` bound every node's move. A point `q` in
-    /// both tets now is a convex combination of each tet's current nodes;
-    /// the same combination of the nodes at detection lies in that tet then,
-    /// within `d` of `q`, so `|c_A − c_B| ≤ r_A + r_B + 2d` for the centres
-    /// and radii at detection, and NBS with margin `b/2` kept every pair with
-    /// `|c_A − c_B| ≤ r_A + r_B + b`. (The comparison is strict, so `b = 0`
-    /// detects again whenever anything moved.) An addition keeps the same
-    /// guarantee with a larger margin (`incremental.rs`).
-    fn needs_detection(&self, x: &[Vec3]) -> Update {
-        if self.stale || (!self.pending.is_empty() && !self.settings.incremental) {
-            return Update::Full;
-        }
-        let half = 0.5 * self.settings.buffer;
-        let limit = half * half;
-        let moved2 = |(&n, r): (&u32, &Vec3)| (x[n as usize] - r).norm_squared();
-        if self.pending.is_empty() {
-            let far = self.nodes.par_iter().zip(&self.x_ref).any(|p| moved2(p) > limit);
-            return if far { Update::Full } else { Update::None };
-        }
-        // The largest move (a maximum: the same whatever the thread count).
-        let largest = self.nodes.par_iter().zip(&self.x_ref).map(moved2).reduce(|| 0.0, Real::max);
-        if largest > limit { Update::Full } else { Update::Add { moved: largest.sqrt() } }
-    }
-
     /// Detects contacts at positions `x` (when needed) and computes the
     /// contact forces on every node into [`Contact::force`] (normal) and
     /// [`Contact::friction_force`] (zero elsewhere; the nodes with a force
@@ -574,157 +458,4 @@ impl Contact {
         std::mem::swap(&mut self.stick, &mut self.stick_next);
         self.stick_next.clear();
     }
-
-    /// Writes the pass's evolving state to a solver snapshot (see
-    /// `crate::snapshot`): the contactable set, cracked vertices and their
-    /// pieces, bonded pairs, the candidates with the watched nodes and their
-    /// reference positions, staleness and the pending tets, the last pass's
-    /// touched nodes with their forces and velocities, the energy account
-    /// and counters, the friction springs and the Eq. 18 ramp counters (maps
-    /// sorted by key). Scratch buffers (NBS, spheres, pair results) are not
-    /// written.
-    pub(crate) fn encode(&self, e: &mut Encoder) {
-        e.bools(&self.contactable);
-        e.u32s(self.stars.pieces());
-        e.bools(&self.cracked);
-        e.u32s(&self.list);
-        let mut bonded: Vec<(u32, u32)> = self.bonded.iter().copied().collect();
-        bonded.sort_unstable();
-        put_pairs(e, &bonded);
-        put_pairs(e, &self.candidates);
-        e.u32s(&self.nodes);
-        e.vec3s(&self.x_ref);
-        e.bool(self.stale);
-        e.u32s(&self.pending);
-        e.u32s(&self.touched);
-        for &n in &self.touched {
-            e.vec3(&self.force[n as usize]);
-            e.vec3(&self.friction_force[n as usize]);
-        }
-        e.vec3s(&self.v_before);
-        let en = &self.energy;
-        [en.contact, en.friction, en.friction_absorbed, en.spring_booked, en.normal_ahead, en.friction_ahead]
-            .into_iter()
-            .for_each(|x| e.f64(x));
-        e.count(self.active_pairs);
-        e.u64(self.detections);
-        e.u64(self.additions);
-        e.f64(self.spring_energy);
-        let mut stick: Vec<_> = self.stick.iter().map(|(&k, &s)| (k, s)).collect();
-        stick.sort_unstable_by_key(|&(k, _)| k);
-        e.count(stick.len());
-        for ((a, b), s) in stick {
-            e.u32(a);
-            e.u32(b);
-            e.vec3(&s);
-        }
-        let mut ramp: Vec<_> = self.ramp.iter().map(|(&k, &n)| (k, n)).collect();
-        ramp.sort_unstable();
-        e.count(ramp.len());
-        for ((a, b), n) in ramp {
-            e.u32(a);
-            e.u32(b);
-            e.u32(n);
-        }
-    }
-
-    /// This pass (its settings and the model's fixed tables) with the
-    /// evolving state read from a snapshot written by [`Contact::encode`];
-    /// sizes and indices are checked against `model`.
-    pub(crate) fn decoded(&self, model: &Model, d: &mut Decoder<'_>) -> Result<Contact, SolverError> {
-        let (n_tets, n_nodes) = (model.tets.len(), model.num_nodes());
-        let tet = |t: u32| -> Result<u32, SolverError> {
-            if (t as usize) < n_tets { Ok(t) } else { Err(snapshot_error(format!("contact: tet {t} of {n_tets}"))) }
-        };
-        let node = |n: u32| -> Result<u32, SolverError> {
-            if (n as usize) < n_nodes { Ok(n) } else { Err(snapshot_error(format!("contact: node {n} of {n_nodes}"))) }
-        };
-        let mut c = self.clone();
-        c.contactable = d.bools()?;
-        expect_count("contactable tets", c.contactable.len(), n_tets)?;
-        let pieces = d.u32s()?;
-        expect_count("star entries", pieces.len(), self.stars.pieces().len())?;
-        c.stars.set_pieces(pieces);
-        c.cracked = d.bools()?;
-        expect_count("original vertices", c.cracked.len(), self.cracked.len())?;
-        c.list = d.u32s()?.into_iter().map(tet).collect::<Result<_, _>>()?;
-        c.bonded = get_pairs(d, &tet)?.into_iter().collect();
-        c.candidates = get_pairs(d, &tet)?;
-        c.nodes = d.u32s()?.into_iter().map(node).collect::<Result<_, _>>()?;
-        c.x_ref = d.vec3s()?;
-        expect_count("detection positions", c.x_ref.len(), c.nodes.len())?;
-        c.stale = d.bool()?;
-        c.pending = d.u32s()?.into_iter().map(tet).collect::<Result<_, _>>()?;
-        if let Some(t) = c.pending.iter().find(|t| c.list.binary_search(t).is_err()) {
-            return Err(snapshot_error(format!("contact: pending tet {t} is not contactable")));
-        }
-        c.force.iter_mut().chain(c.friction_force.iter_mut()).chain(c.total.iter_mut()).for_each(|f| {
-            *f = Vec3::zeros();
-        });
-        c.is_touched.fill(false);
-        c.touched = d.u32s()?.into_iter().map(node).collect::<Result<_, _>>()?;
-        for &n in &c.touched {
-            let n = n as usize;
-            c.force[n] = d.vec3()?;
-            c.friction_force[n] = d.vec3()?;
-            c.total[n] = c.force[n] + c.friction_force[n];
-            c.is_touched[n] = true;
-        }
-        c.v_before = d.vec3s()?;
-        expect_count("velocities of touched nodes", c.v_before.len(), c.touched.len())?;
-        c.energy = ContactEnergy {
-            contact: d.f64()?,
-            friction: d.f64()?,
-            friction_absorbed: d.f64()?,
-            spring_booked: d.f64()?,
-            normal_ahead: d.f64()?,
-            friction_ahead: d.f64()?,
-        };
-        c.active_pairs = d.count()?;
-        c.detections = d.u64()?;
-        c.additions = d.u64()?;
-        c.spring_energy = d.f64()?;
-        c.stick.clear();
-        for _ in 0..d.count()? {
-            let key = (tet(d.u32()?)?, tet(d.u32()?)?);
-            c.stick.insert(key, d.vec3()?);
-        }
-        c.stick_next.clear();
-        c.ramp.clear();
-        for _ in 0..d.count()? {
-            let key = (tet(d.u32()?)?, tet(d.u32()?)?);
-            c.ramp.insert(key, d.u32()?);
-        }
-        Ok(c)
-    }
-}
-
-/// What the candidates need before a pass's pair loop
-/// (`Contact::needs_detection`).
-enum Update {
-    /// Nothing: they hold every pair that can touch.
-    None,
-    /// A full detection (`Contact::detect`).
-    Full,
-    /// The pairs of the pending tets (`Contact::add_candidates`); every
-    /// watched node is at most `moved` (m) from its reference position.
-    Add { moved: Real },
-}
-
-/// A length-prefixed list of tet pairs.
-fn put_pairs(e: &mut Encoder, pairs: &[(u32, u32)]) {
-    e.count(pairs.len());
-    for &(a, b) in pairs {
-        e.u32(a);
-        e.u32(b);
-    }
-}
-
-/// Reads what [`put_pairs`] wrote, each index checked by `tet`.
-fn get_pairs(
-    d: &mut Decoder<'_>,
-    tet: &impl Fn(u32) -> Result<u32, SolverError>,
-) -> Result<Vec<(u32, u32)>, SolverError> {
-    let n = d.count()?;
-    (0..n).map(|_| Ok((tet(d.u32()?)?, tet(d.u32()?)?))).collect()
 }

@@ -19,8 +19,9 @@
 //! `--sensitivity` adds the Brazilian one-change-at-a-time runs (what moves
 //! f_bt; seven more runs).
 //!
-//! A run that finished before with the same case text is reused, so an
-//! interrupted validation resumes at the first unfinished run.
+//! A run that finished before with the same case text is reused, and one
+//! that did not finish continues from its latest checkpoint
+//! (`runner.rs`), so an interrupted validation resumes where it stopped.
 
 pub(crate) mod brazilian;
 pub(crate) mod failures;

@@ -1,11 +1,21 @@
-//! Running `femdem run` on a generated case, as a user would, and reusing a
-//! run that already finished with the same case text.
+//! Running `femdem run` on a generated case, as a user would: reusing a run
+//! that already finished with the same case text, and resuming one that was
+//! interrupted from its latest checkpoint.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::time::Instant;
+use std::process::{Child, Command};
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
+use toml::{Table, Value};
+
+/// Wall-clock seconds between the checkpoints of every validation run
+/// (`[output.checkpoint] interval_wall`, unless the case sets it): a paper
+/// profile run interrupted after hours loses at most this much.
+pub const CHECKPOINT_WALL: f64 = 600.0;
+
+/// Seconds between updates of a run's `elapsed` file while it runs.
+const ELAPSED_EVERY: Duration = Duration::from_secs(5);
 
 /// The `femdem` binary this validation uses.
 #[derive(Debug, Clone)]
@@ -20,10 +30,87 @@ pub struct RunOutput {
     pub dir: PathBuf,
     /// The case file's stem (the frames are `<stem>_*.vtu`).
     pub stem: String,
-    /// Wall time of the run, s (of the earlier run when reused).
+    /// Wall time of the run, s (of the earlier run when reused), summed
+    /// over its attempts when it was resumed.
     pub wall: f64,
     /// Whether the results are those of an earlier, finished run.
     pub reused: bool,
+    /// How many times the run was continued from a checkpoint.
+    pub resumed: u32,
+}
+
+impl RunOutput {
+    /// How the run's results were obtained, for a report's wall-time
+    /// column: `""`, `" (reused)"` or `" (resumed N×)"`.
+    pub fn provenance(&self) -> String {
+        match (self.reused, self.resumed) {
+            (true, _) => " (reused)".into(),
+            (false, 0) => String::new(),
+            (false, n) => format!(" (resumed {n}×)"),
+        }
+    }
+}
+
+/// The bookkeeping files of a run directory.
+struct Files {
+    case: PathBuf,
+    out: PathBuf,
+    /// Written when the run has finished: its total wall time.
+    finished: PathBuf,
+    /// Wall time of all attempts so far and how many were resumes,
+    /// rewritten every few seconds while a run goes on.
+    elapsed: PathBuf,
+    log: PathBuf,
+}
+
+impl Files {
+    fn new(dir: &Path, stem: &str) -> Files {
+        Files {
+            case: dir.join(format!("{stem}.toml")),
+            out: dir.join("out"),
+            finished: dir.join("finished"),
+            elapsed: dir.join("elapsed"),
+            log: dir.join("run.log"),
+        }
+    }
+
+    /// `(seconds, resumes)` of the earlier attempts.
+    fn elapsed(&self) -> (f64, u32) {
+        let text = std::fs::read_to_string(&self.elapsed).unwrap_or_default();
+        let mut words = text.split_whitespace();
+        let seconds = words.next().and_then(|w| w.parse().ok()).unwrap_or(0.0);
+        let resumes = words.next().and_then(|w| w.parse().ok()).unwrap_or(0);
+        (seconds, resumes)
+    }
+}
+
+/// Whether `out` holds a checkpoint femdem can continue from (a file
+/// `checkpoint_<step>.femdem-ckpt`; femdem itself checks that it is
+/// complete and belongs to the case).
+pub fn has_checkpoint(out: &Path) -> bool {
+    std::fs::read_dir(out).is_ok_and(|entries| {
+        entries.filter_map(|e| e.ok()).any(|e| {
+            let name = e.file_name();
+            let name = name.to_string_lossy();
+            name.starts_with("checkpoint_") && name.ends_with(".femdem-ckpt")
+        })
+    })
+}
+
+/// `case` with `[output.checkpoint] interval_wall` set to
+/// [`CHECKPOINT_WALL`] unless it sets one; its leading comment lines kept.
+pub fn with_checkpoints(case: &str) -> Result<String> {
+    let mut table: Table = case.parse().context("parsing a generated case")?;
+    let output = table.entry("output").or_insert_with(|| Value::Table(Table::new()));
+    let output = output.as_table_mut().context("`output` is not a table")?;
+    let checkpoint = output.entry("checkpoint").or_insert_with(|| Value::Table(Table::new()));
+    let checkpoint = checkpoint.as_table_mut().context("`output.checkpoint` is not a table")?;
+    if checkpoint.contains_key("interval_wall") {
+        return Ok(case.to_string());
+    }
+    checkpoint.insert("interval_wall".into(), CHECKPOINT_WALL.into());
+    let header: String = case.lines().take_while(|l| l.starts_with('#')).map(|l| format!("{l}\n")).collect();
+    Ok(format!("{header}{}", toml::to_string(&table)?))
 }
 
 impl Femdem {
@@ -49,41 +136,208 @@ impl Femdem {
         Ok(Femdem { bin })
     }
 
-    /// Writes `case` to `dir/<stem>.toml` and runs it with `--out dir/out`,
-    /// logging to `dir/run.log`. A run that finished before with the same
-    /// case text is not repeated (its results are reused): an interrupted
-    /// validation resumes at the first unfinished run.
+    /// A `femdem` at `bin` (for tests).
+    #[cfg(test)]
+    pub fn at(bin: PathBuf) -> Femdem {
+        Femdem { bin }
+    }
+
+    /// Writes `case` (with checkpoints every [`CHECKPOINT_WALL`] s, see
+    /// [`with_checkpoints`]) to `dir/<stem>.toml` and runs it with
+    /// `--out dir/out`, logging to `dir/run.log`.
+    ///
+    /// - A run that finished before with the same case text is not repeated
+    ///   (its results are reused): an interrupted validation goes on at the
+    ///   first unfinished run.
+    /// - A run of the same case text that did not finish (the machine's
+    ///   time ran out, a signal, a crash) continues from its latest
+    ///   checkpoint with `femdem run --resume`, whose results are those of
+    ///   an uninterrupted run; the log is appended to.
+    /// - Otherwise the run starts over (`--overwrite`).
     pub fn run(&self, dir: &Path, stem: &str, case: &str) -> Result<RunOutput> {
+        let case = with_checkpoints(case)?;
         std::fs::create_dir_all(dir)?;
-        let case_path = dir.join(format!("{stem}.toml"));
-        let out = dir.join("out");
-        let stamp = dir.join("finished");
-        let same = std::fs::read_to_string(&case_path).is_ok_and(|c| c == case);
-        let done = same.then(|| std::fs::read_to_string(&stamp).ok()?.trim().parse::<f64>().ok()).flatten();
+        let files = Files::new(dir, stem);
+        let same = std::fs::read_to_string(&files.case).is_ok_and(|c| c == case);
+        let done = same.then(|| std::fs::read_to_string(&files.finished).ok()?.trim().parse::<f64>().ok()).flatten();
         if let Some(wall) = done {
             eprintln!("validate: reusing the finished run in {}", dir.display());
-            return Ok(RunOutput { dir: out, stem: stem.into(), wall, reused: true });
+            let (_, resumed) = files.elapsed();
+            return Ok(RunOutput { dir: files.out, stem: stem.into(), wall, reused: true, resumed });
         }
-        let _ = std::fs::remove_file(&stamp);
-        std::fs::write(&case_path, case)?;
-        let log = std::fs::File::create(dir.join("run.log"))?;
-        eprintln!("validate: femdem run {}", case_path.display());
-        let start = Instant::now();
-        let status = Command::new(&self.bin)
-            .arg("run")
-            .arg(&case_path)
-            .arg("--out")
-            .arg(&out)
-            .arg("--overwrite")
+        let _ = std::fs::remove_file(&files.finished);
+        let resume = same && has_checkpoint(&files.out);
+        let (before, resumes) = if resume { files.elapsed() } else { (0.0, 0) };
+        let resumes = resumes + u32::from(resume);
+        let mut command = Command::new(&self.bin);
+        command.arg("run").arg(&files.case).arg("--out").arg(&files.out);
+        let log = if resume {
+            eprintln!("validate: femdem run {} --resume (from its latest checkpoint)", files.case.display());
+            command.arg("--resume");
+            std::fs::OpenOptions::new().append(true).create(true).open(&files.log)?
+        } else {
+            std::fs::write(&files.case, &case)?;
+            eprintln!("validate: femdem run {}", files.case.display());
+            command.arg("--overwrite");
+            std::fs::File::create(&files.log)?
+        };
+        let child = command
             .stdout(log.try_clone()?)
             .stderr(log)
-            .status()
+            .spawn()
             .with_context(|| format!("starting {}", self.bin.display()))?;
-        let wall = start.elapsed().as_secs_f64();
+        let (status, wall) = wait_counting(child, &files, before, resumes)?;
         if !status.success() {
-            bail!("femdem run {} failed ({status}); see {}", case_path.display(), dir.join("run.log").display());
+            let hint = if resume {
+                format!("; if its checkpoint cannot be continued, remove {} to start the run over", dir.display())
+            } else {
+                String::new()
+            };
+            bail!("femdem run {} failed ({status}); see {}{hint}", files.case.display(), files.log.display());
         }
-        std::fs::write(&stamp, format!("{wall}\n"))?;
-        Ok(RunOutput { dir: out, stem: stem.into(), wall, reused: false })
+        std::fs::write(&files.finished, format!("{wall}\n"))?;
+        Ok(RunOutput { dir: files.out, stem: stem.into(), wall, reused: false, resumed: resumes })
+    }
+}
+
+/// Waits for `child`, rewriting `files.elapsed` with `before` plus its wall
+/// time every [`ELAPSED_EVERY`], so that a validation killed with its run
+/// still knows how long the run took; returns the exit status and the total.
+fn wait_counting(
+    mut child: Child,
+    files: &Files,
+    before: f64,
+    resumes: u32,
+) -> Result<(std::process::ExitStatus, f64)> {
+    let start = Instant::now();
+    let mut last = Instant::now();
+    let write = |seconds: f64| std::fs::write(&files.elapsed, format!("{seconds} {resumes}\n"));
+    write(before)?;
+    loop {
+        if let Some(status) = child.try_wait()? {
+            let total = before + start.elapsed().as_secs_f64();
+            write(total)?;
+            return Ok((status, total));
+        }
+        if last.elapsed() >= ELAPSED_EVERY {
+            write(before + start.elapsed().as_secs_f64())?;
+            last = Instant::now();
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    //! The runner's decisions (start, reuse, resume, start over), with a
+    //! stand-in `femdem`: a shell script that records its arguments and
+    //! either leaves a checkpoint and fails (an interrupted run) or
+    //! succeeds. That `--resume` continues bit for bit is femdem's own
+    //! test (`tests/cli`).
+
+    use super::*;
+    use std::os::unix::fs::PermissionsExt;
+
+    /// A fresh directory under the system's temporary one.
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("xtask-runner-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// A stand-in femdem: appends its arguments to `calls`; fails after
+    /// writing a checkpoint into `--out` while the file `interrupt` exists.
+    fn stand_in(dir: &Path) -> Femdem {
+        let bin = dir.join("femdem");
+        let script = format!(
+            "#!/bin/sh\necho \"$@\" >> {calls}\nout=$4\nmkdir -p \"$out\"\necho attempt\n\
+             if [ -e {interrupt} ]; then touch \"$out/checkpoint_000000000010.femdem-ckpt\"; exit 3; fi\nexit 0\n",
+            calls = dir.join("calls").display(),
+            interrupt = dir.join("interrupt").display(),
+        );
+        std::fs::write(&bin, script).unwrap();
+        std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
+        Femdem::at(bin)
+    }
+
+    fn calls(dir: &Path) -> Vec<String> {
+        std::fs::read_to_string(dir.join("calls")).unwrap_or_default().lines().map(String::from).collect()
+    }
+
+    const CASE: &str = "# generated\n[solver]\nend_time = 1.0\n";
+
+    #[test]
+    fn an_interrupted_run_is_resumed_then_reused_and_a_changed_case_starts_over() {
+        let dir = scratch("resume");
+        let femdem = stand_in(&dir);
+        let run_dir = dir.join("v1");
+
+        std::fs::write(dir.join("interrupt"), "").unwrap();
+        let err = femdem.run(&run_dir, "case", CASE).unwrap_err().to_string();
+        assert!(err.contains("failed"), "{err}");
+        assert!(!err.contains("remove"), "a first attempt has nothing to resume: {err}");
+        assert!(calls(&dir)[0].ends_with("--overwrite"), "{:?}", calls(&dir));
+        assert!(has_checkpoint(&run_dir.join("out")));
+        assert!(!run_dir.join("finished").exists());
+
+        // Interrupted again while resuming: the error says how to start over.
+        let err = femdem.run(&run_dir, "case", CASE).unwrap_err().to_string();
+        assert!(err.contains("remove") && err.contains("start the run over"), "{err}");
+        assert!(calls(&dir)[1].ends_with("--resume"), "{:?}", calls(&dir));
+
+        std::fs::remove_file(dir.join("interrupt")).unwrap();
+        let out = femdem.run(&run_dir, "case", CASE).unwrap();
+        assert!(calls(&dir)[2].ends_with("--resume"), "{:?}", calls(&dir));
+        assert_eq!((out.reused, out.resumed), (false, 2));
+        assert_eq!(out.provenance(), " (resumed 2×)");
+        let log = std::fs::read_to_string(run_dir.join("run.log")).unwrap();
+        assert_eq!(log.matches("attempt").count(), 3, "the log of every attempt is kept: {log}");
+        let (elapsed, resumes) = Files::new(&run_dir, "case").elapsed();
+        assert_eq!(resumes, 2);
+        assert!(elapsed >= 0.0 && (elapsed - out.wall).abs() < 1e-9);
+
+        let again = femdem.run(&run_dir, "case", CASE).unwrap();
+        assert_eq!(calls(&dir).len(), 3, "a finished run is not run again");
+        assert!(again.reused && again.provenance() == " (reused)");
+        assert_eq!(again.wall, out.wall);
+
+        let changed = CASE.replace("1.0", "2.0");
+        let fresh = femdem.run(&run_dir, "case", &changed).unwrap();
+        assert!(calls(&dir)[3].ends_with("--overwrite"), "{:?}", calls(&dir));
+        assert_eq!((fresh.reused, fresh.resumed), (false, 0));
+        let written = std::fs::read_to_string(run_dir.join("case.toml")).unwrap();
+        assert!(written.contains("end_time = 2.0"), "{written}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_changed_case_starts_over_even_with_a_checkpoint() {
+        let dir = scratch("changed");
+        let femdem = stand_in(&dir);
+        let run_dir = dir.join("v1");
+        std::fs::write(dir.join("interrupt"), "").unwrap();
+        assert!(femdem.run(&run_dir, "case", CASE).is_err());
+        std::fs::remove_file(dir.join("interrupt")).unwrap();
+        let out = femdem.run(&run_dir, "case", &CASE.replace("1.0", "3.0")).unwrap();
+        assert!(calls(&dir)[1].ends_with("--overwrite"), "{:?}", calls(&dir));
+        assert_eq!(out.resumed, 0);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn every_case_checkpoints_on_the_wall_clock_unless_it_says_otherwise() {
+        let with = with_checkpoints(CASE).unwrap();
+        assert!(with.starts_with("# generated\n"), "{with}");
+        let table: Table = with.parse().unwrap();
+        assert_eq!(table["output"]["checkpoint"]["interval_wall"].as_float(), Some(CHECKPOINT_WALL));
+        assert_eq!(table["solver"]["end_time"].as_float(), Some(1.0));
+
+        let own = "[output]\ninterval = 1.0\n[output.checkpoint]\ninterval_wall = 60.0\n";
+        assert_eq!(with_checkpoints(own).unwrap(), own);
+        let steps = "[output.checkpoint]\ninterval_steps = 100\n";
+        let table: Table = with_checkpoints(steps).unwrap().parse().unwrap();
+        assert_eq!(table["output"]["checkpoint"]["interval_steps"].as_integer(), Some(100));
+        assert_eq!(table["output"]["checkpoint"]["interval_wall"].as_float(), Some(CHECKPOINT_WALL));
     }
 }

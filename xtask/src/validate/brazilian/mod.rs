@@ -100,7 +100,7 @@ pub fn validate(
             o.modes().text(),
             o.steps,
             o.run.wall,
-            if o.run.reused { " (reused)" } else { "" }
+            o.run.provenance()
         );
         report.check(
             c,

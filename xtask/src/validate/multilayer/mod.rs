@@ -231,7 +231,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         1e3 * o.end,
         o.steps,
         o.run.wall,
-        if o.run.reused { " (reused)" } else { "" },
+        o.run.provenance(),
         100.0 * o.kinetic / o.work.max(f64::MIN_POSITIVE)
     );
     let _ = writeln!(

@@ -190,7 +190,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, timing: Timing, out: &Path, r
             100.0 * o.energy_error,
             o.steps,
             o.run.wall,
-            if o.run.reused { " (reused)" } else { "" }
+            o.run.provenance()
         );
     }
     for o in runs.iter().filter(|o| o.mesh == unstructured.label()) {

@@ -8,6 +8,8 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use toml::{Table, Value};
 
+use super::mechanism::FarField;
+
 /// The bundled case every run starts from.
 pub const BASE: &str = "cases/paper/multilayer.toml";
 
@@ -26,6 +28,9 @@ pub struct Block {
     pub tensile_strength: f64,
     /// The longest ramp of the loads, s: the stresses are held after it.
     pub ramp: f64,
+    /// The stresses the held pressures set far from the fractures, and the
+    /// fractures' friction (`[contact] friction`).
+    pub far: FarField,
 }
 
 /// The base case, parsed.
@@ -79,6 +84,21 @@ impl Base {
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .fold(0.0, f64::max);
+        let loads = table.get("loads").and_then(Value::as_array).context("[[loads]]")?;
+        // σ = −p on the faces normal to an axis: the pressure on `*.xmin`
+        // (or `*.ymin`).
+        let stress = |side: &str| -> Result<f64> {
+            let load = loads
+                .iter()
+                .find(|l| {
+                    l.get("kind").and_then(Value::as_str) == Some("pressure")
+                        && l.get("group").and_then(Value::as_str).is_some_and(|g| g.ends_with(side))
+                })
+                .with_context(|| format!("{BASE}: no pressure on a group `*{side}`"))?;
+            Ok(-num(load.get("pressure"), "loads.pressure")?)
+        };
+        let friction = num(table.get("contact").and_then(|c| c.get("friction")), "contact.friction")?;
+        let far = FarField { sxx: stress(".xmin")?, syy: stress(".ymin")?, friction };
         let block = Block {
             outline,
             z0: num(p.get("z0"), "mesh.parts[0].z0")?,
@@ -86,6 +106,7 @@ impl Base {
             map,
             tensile_strength: num(material.get("tensile_strength"), "materials[0].tensile_strength")?,
             ramp,
+            far,
         };
         Ok(Base { table, block })
     }

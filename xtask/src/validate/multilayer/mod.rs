@@ -8,6 +8,7 @@
 
 mod case;
 mod figures;
+mod mechanism;
 mod tips;
 
 use std::fmt::Write as _;
@@ -129,6 +130,8 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     let traces = tips::read_traces(&block.map)?;
     let sites: Sites = tips::sites(&block.outline, &traces)?;
     let all_sites = sites.all();
+    let network = femdem_mesh::generate::trace_network(&block.outline, &traces).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mechanism = mechanism::weakest(&block.outline, &network, block.far)?;
     let lo = block.outline.iter().fold([f64::INFINITY; 2], |m, q| [m[0].min(q[0]), m[1].min(q[1])]);
     let hi = block.outline.iter().fold([f64::NEG_INFINITY; 2], |m, q| [m[0].max(q[0]), m[1].max(q[1])]);
     let baseline = tips::uniform_points(BASELINE_POINTS, lo, hi, BASELINE_SEED);
@@ -215,6 +218,29 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         "0",
         late == 0 && !o.failures.is_empty(),
         gate_paper,
+    );
+
+    report.check(
+        c,
+        "can the pre-existing fractures alone hold the x faces' dead load? (weakest piece, limit equilibrium)",
+        "a stable final pattern (§3.3.2)".into(),
+        mechanism.as_ref().map_or_else(
+            || "no piece can come away along the fractures alone".into(),
+            |m| {
+                format!(
+                    "friction {:.2} of the pull: the piece at {} from y = {:.3} to {:.3} m, {:.0} kN/m of friction against {:.0} kN/m",
+                    m.factor(),
+                    if m.face == mechanism::Face::XMin { "x_min" } else { "x_max" },
+                    m.from,
+                    m.to,
+                    1e-3 * m.capacity,
+                    1e-3 * m.load
+                )
+            },
+        ),
+        "≥ 1 (reported)",
+        mechanism.as_ref().is_none_or(|m| m.factor() >= 1.0),
+        Kind::Info,
     );
 
     // The section: the run, the distance shares, the figures.

@@ -10,7 +10,10 @@
 //!   the band's normal and the slab of width `w` holding the most failed
 //!   area scores `θ`; the best `θ` is the main band, the best `θ` at least
 //!   [`CONJUGATE_GAP`] away from it is the conjugate set. Ties go to the
-//!   direction whose slab is thinnest (smallest RMS spread).
+//!   direction whose slab is thinnest (smallest RMS spread). Since the
+//!   conjugate set is scored on all the faces, a slab through the dense
+//!   cluster where failure started can win it; [`mirrored`] scores the
+//!   mirrored family alone, with the main band's faces set aside.
 //! - **Facets** (the element-scale criterion): the angle to x of each
 //!   shear-failed face's trace on the x–y plane, `β = 90° − atan(|n_y| /
 //!   |n_x|)` from its unit normal `n` (61.7° for a face on the Test 1 plane),
@@ -53,6 +56,12 @@ impl Band {
 /// area-weighted RMS distance of its facets from their mean (m), which
 /// breaks ties between directions in favour of the thinnest band.
 fn slab(facets: &[Facet], theta: f64, width: f64) -> (f64, f64) {
+    let (share, rms, _) = slab_at(facets, theta, width);
+    (share, rms)
+}
+
+/// [`slab`], with the best slab's bounds along the normal `(lo, hi)`, m.
+fn slab_at(facets: &[Facet], theta: f64, width: f64) -> (f64, f64, (f64, f64)) {
     let (s, c) = theta.to_radians().sin_cos();
     let mut proj: Vec<(f64, f64)> = facets.iter().map(|f| (-s * f.at.0 + c * f.at.1, f.area)).collect();
     proj.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -62,7 +71,7 @@ fn slab(facets: &[Facet], theta: f64, width: f64) -> (f64, f64) {
         let mean = w.iter().map(|p| p.0 * p.1).sum::<f64>() / a;
         (w.iter().map(|p| (p.0 - mean).powi(2) * p.1).sum::<f64>() / a).sqrt()
     };
-    let (mut best, mut rms, mut inside, mut lo) = (0.0f64, f64::INFINITY, 0.0, 0);
+    let (mut best, mut rms, mut inside, mut lo, mut bounds) = (0.0f64, f64::INFINITY, 0.0, 0, (0.0, 0.0));
     for hi in 0..proj.len() {
         inside += proj[hi].1;
         while proj[hi].0 - proj[lo].0 > width {
@@ -72,11 +81,48 @@ fn slab(facets: &[Facet], theta: f64, width: f64) -> (f64, f64) {
         if inside >= best {
             let r = spread(&proj[lo..=hi]);
             if inside > best || r < rms {
-                (best, rms) = (inside, r);
+                (best, rms, bounds) = (inside, r, (proj[lo].0, proj[hi].0));
             }
         }
     }
-    if total > 0.0 { (best / total, rms) } else { (0.0, 0.0) }
+    if total > 0.0 { (best / total, rms, bounds) } else { (0.0, 0.0, bounds) }
+}
+
+/// Half-width of the window of directions around the mirror of the main
+/// band, 180° − θ, that [`mirrored`] searches, degrees.
+pub const MIRROR_WINDOW: f64 = 15.0;
+
+/// The mirrored family beside the main band `main` (found by [`bands`] on
+/// `facets` with slab width `width`): the facets inside the main band's
+/// best slab are set aside, and the direction within [`MIRROR_WINDOW`] of
+/// 180° − θ whose best slab holds the most of the rest scores, by its share
+/// of the area of all `facets`. `None` when nothing is left.
+pub fn mirrored(facets: &[Facet], main: Band, width: f64) -> Option<Band> {
+    let total: f64 = facets.iter().map(|f| f.area).sum();
+    let (_, _, (lo, hi)) = slab_at(facets, main.theta, width);
+    let (s, c) = main.theta.to_radians().sin_cos();
+    let rest: Vec<Facet> = facets
+        .iter()
+        .filter(|f| {
+            let d = -s * f.at.0 + c * f.at.1;
+            d < lo || d > hi
+        })
+        .copied()
+        .collect();
+    let rest_area: f64 = rest.iter().map(|f| f.area).sum();
+    if rest.is_empty() || total <= 0.0 {
+        return None;
+    }
+    let centre = 180.0 - main.theta;
+    let window = MIRROR_WINDOW as i32;
+    (-window..=window)
+        .map(|k| (centre + f64::from(k)).rem_euclid(180.0))
+        .map(|theta| {
+            let (share, rms) = slab(&rest, theta, width);
+            (Band { theta, share: share * rest_area / total }, rms)
+        })
+        .max_by(|a, b| a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta)))
+        .map(|b| b.0)
 }
 
 /// The main band and, if any direction at least [`CONJUGATE_GAP`] away
@@ -159,6 +205,36 @@ mod tests {
         assert!((main.angle_to_x() - 61.7).abs() <= 1.0 && (conj.angle_to_x() - 61.7).abs() <= 1.0);
         // The main band holds its own 60 facets and about one of the other's.
         assert!(main.share > 60.0 / 90.0 && main.share < 63.0 / 90.0, "{main:?}");
+    }
+
+    #[test]
+    fn the_mirrored_family_is_scored_without_the_main_band_or_a_corner_cluster() {
+        // A main band at 61.7°, a shorter mirrored one crossing it, and a
+        // dense cluster at a corner on the main band's line, which the
+        // conjugate measure of `bands` takes for the second set.
+        let mut f = line(0.25, 0.25, 61.7, 60, 1.0);
+        f.extend(line(0.3, 0.2, 180.0 - 61.7, 20, 1.0));
+        let (s, c) = 61.7f64.to_radians().sin_cos();
+        f.extend((0..25).map(|i| Facet {
+            at: (0.25 + 0.3 * c + 0.004 * f64::from(i % 5), 0.25 + 0.3 * s + 0.004 * f64::from(i / 5)),
+            area: 1.0,
+            normal: [1.0, 0.0, 0.0],
+        }));
+        let total = f.len() as f64;
+        let (main, conj) = bands(&f, 0.02).unwrap();
+        assert!((main.theta - 62.0).abs() <= 1.0, "{main:?}");
+        // `bands` scores its second set on all the faces: the slab through
+        // the cluster and part of the main band outscores the mirrored line.
+        assert!((conj.theta - 118.0).abs() > 8.0, "{conj:?}");
+        let m = mirrored(&f, main, 0.02).unwrap();
+        assert!((m.theta - 118.0).abs() <= 1.0, "{m:?}");
+        // The mirrored line's 20 facets, less the one or two inside the
+        // main band's slab.
+        assert!(m.share > 17.0 / total && m.share <= 20.0 / total, "{m:?}");
+        // One band alone leaves nothing in the mirrored family.
+        let one = line(0.25, 0.25, 61.7, 60, 1.0);
+        let (main, _) = bands(&one, 0.02).unwrap();
+        assert_eq!(mirrored(&one, main, 0.02), None);
     }
 
     #[test]

@@ -224,6 +224,24 @@ pub fn validate(femdem: &Femdem, profile: Profile, timing: Timing, out: &Path, r
                 ("main", format!("{expected:.1}° (45° + φ/2, Eq. 24)"), |b| b.0, Kind::Gate),
                 ("conjugate", format!("{expected:.1}°, mirrored (Fig. 10-11)"), |b| b.1, gate_paper),
             ];
+            if let Some((main, _)) = found {
+                let m = bands::mirrored(&o.shear, main, width);
+                report.check(
+                    c,
+                    &format!("mirrored family beside the main band, {name} (its faces set aside)"),
+                    format!("{expected:.1}°, mirrored (Fig. 10-11)"),
+                    m.map_or("no shear failure outside the main band".into(), |b| {
+                        format!(
+                            "{:.0}° ({:.0}% of the shear area; scattered failures score about 20-28%)",
+                            b.angle_to_x(),
+                            100.0 * b.share
+                        )
+                    }),
+                    "±8°",
+                    m.is_some_and(|b| within(b.angle_to_x())),
+                    Kind::Info,
+                );
+            }
             for (set, reference, pick, kind) in sets {
                 let band = found.as_ref().map(pick);
                 report.check(

@@ -128,9 +128,9 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     let run = femdem.run(&out.join("multilayer").join("run"), "multilayer", &case)?;
     let o = Outcome::read(run)?;
     let traces = tips::read_traces(&block.map)?;
-    let sites: Sites = tips::sites(&block.outline, &traces)?;
+    let network = tips::network(&block.outline, &traces)?;
+    let sites: Sites = tips::sites(&network);
     let all_sites = sites.all();
-    let network = femdem_mesh::generate::trace_network(&block.outline, &traces).map_err(|e| anyhow::anyhow!("{e}"))?;
     let mechanism = mechanism::weakest(&block.outline, &network, block.far)?;
     let lo = block.outline.iter().fold([f64::INFINITY; 2], |m, q| [m[0].min(q[0]), m[1].min(q[1])]);
     let hi = block.outline.iter().fold([f64::NEG_INFINITY; 2], |m, q| [m[0].max(q[0]), m[1].max(q[1])]);

@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow};
+use femdem_mesh::generate::TraceNetwork;
 
 /// The parser `femdem` reads `traces_file` with. The CLI is a binary, so
 /// its module is compiled in here from its own source rather than copied:
@@ -42,13 +43,18 @@ impl Sites {
     }
 }
 
-/// The tips and junctions of `traces` inside `outline`.
+/// `traces` inside `outline` split at their junctions, as the mesher
+/// splits them.
 ///
 /// # Errors
 /// The mesher's error for traces it would refuse (a point outside the
 /// outline, overlapping traces, …).
-pub fn sites(outline: &[[f64; 2]], traces: &[Vec<[f64; 2]>]) -> Result<Sites> {
-    let network = femdem_mesh::generate::trace_network(outline, traces).map_err(|e| anyhow!("{e}"))?;
+pub fn network(outline: &[[f64; 2]], traces: &[Vec<[f64; 2]>]) -> Result<TraceNetwork> {
+    femdem_mesh::generate::trace_network(outline, traces).map_err(|e| anyhow!("{e}"))
+}
+
+/// The tips and junctions of the split fracture map `network`.
+pub fn sites(network: &TraceNetwork) -> Sites {
     let key = |p: [f64; 2]| (p[0].to_bits(), p[1].to_bits());
     let mut degree: BTreeMap<(u64, u64), ([f64; 2], usize)> = BTreeMap::new();
     for piece in &network.pieces {
@@ -68,7 +74,7 @@ pub fn sites(outline: &[[f64; 2]], traces: &[Vec<[f64; 2]>]) -> Result<Sites> {
             _ => {}
         }
     }
-    Ok(s)
+    s
 }
 
 /// The polylines of the trace file `path`, parsed as `femdem` parses them.
@@ -126,7 +132,7 @@ mod tests {
             // with a bend at (0.7, 0.3).
             vec![[0.7, 0.0], [0.7, 0.3], [0.75, 0.8]],
         ];
-        let s = sites(&SQUARE, &traces).unwrap();
+        let s = sites(&network(&SQUARE, &traces).unwrap());
         assert_eq!(sorted(s.tips.clone()), vec![[0.3, 0.2], [0.75, 0.8]]);
         assert_eq!(s.junctions.len(), 2, "{s:?}");
         let j = sorted(s.junctions.clone());
@@ -138,7 +144,7 @@ mod tests {
 
     #[test]
     fn a_trace_ending_on_the_outline_is_no_site() {
-        let s = sites(&SQUARE, &[vec![[0.0, 0.4], [1.0, 0.6]]]).unwrap();
+        let s = sites(&network(&SQUARE, &[vec![[0.0, 0.4], [1.0, 0.6]]]).unwrap());
         assert_eq!(s, Sites::default());
     }
 
@@ -169,7 +175,7 @@ mod tests {
         let path = crate::root().join("cases/paper/multilayer-map.txt");
         let traces = read_traces(&path).unwrap();
         let outline = [[0.0, 0.0], [1.5, 0.0], [1.5, 1.5], [0.0, 1.5]];
-        let s = sites(&outline, &traces).unwrap();
+        let s = sites(&network(&outline, &traces).unwrap());
         // 8 cross fractures end inside their layer: one tip each. Of the
         // 23, 3 cross an interface (an X each) and the ends on interfaces
         // make 28 Ts (counted by hand from the file).

@@ -121,8 +121,14 @@ pub fn mirrored(facets: &[Facet], main: Band, width: f64) -> Option<Band> {
             let (share, rms) = slab(&rest, theta, width);
             (Band { theta, share: share * rest_area / total }, rms)
         })
-        .max_by(|a, b| a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta)))
+        .max_by(ranked)
         .map(|b| b.0)
+}
+
+/// The order of scored directions `(band, rms)`: the larger share, then the
+/// thinner slab, then the smaller angle wins.
+fn ranked(a: &(Band, f64), b: &(Band, f64)) -> std::cmp::Ordering {
+    a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta))
 }
 
 /// The main band and, if any direction at least [`CONJUGATE_GAP`] away
@@ -138,15 +144,8 @@ pub fn bands(facets: &[Facet], width: f64) -> Option<(Band, Band)> {
             (Band { theta, share }, rms)
         })
         .collect();
-    let best = |ok: &dyn Fn(f64) -> bool| {
-        scores
-            .iter()
-            .filter(|b| ok(b.0.theta))
-            .max_by(|a, b| {
-                a.0.share.total_cmp(&b.0.share).then(b.1.total_cmp(&a.1)).then(b.0.theta.total_cmp(&a.0.theta))
-            })
-            .map(|b| b.0)
-    };
+    let best =
+        |ok: &dyn Fn(f64) -> bool| scores.iter().filter(|b| ok(b.0.theta)).max_by(|a, b| ranked(a, b)).map(|b| b.0);
     let main = best(&|_| true)?;
     let gap = |t: f64| {
         let d = (t - main.theta).abs();

@@ -69,12 +69,16 @@ impl Imbalance {
 }
 
 /// The bookkeeping (part of a solver's snapshot).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Account {
     /// Work of the external forces and the drives' reactions of the last
     /// step over the half step after its `t_n`, `½ Δt Σ f_n · v_{n+½}`, J:
     /// booked with the next step.
     pub ahead: Real,
+    /// The same for each surface load alone (in [`crate::Loads::surfaces`]
+    /// order), J: booked into [`crate::StepRecord::surface_work`] with the
+    /// next step.
+    pub surface_ahead: Vec<Real>,
     /// `B_0`, once step 0 has been evaluated.
     pub initial: Option<Real>,
     /// The largest `K + U + C` evaluated so far, J.

@@ -8,7 +8,7 @@
 //! viscous materials `v_{n−3/2}` too, which the dissipation reads) and every
 //! joint's history (damage at each integration point, last opening, slip
 //! and tractions, softened flags, work, failed flag); the energy account
-//! with the half step of work it holds over and its watch
+//! with the half step of work it holds over (in all and per surface load) and its watch
 //! (`crate::account`);
 //! the failure record; the last [`StepRecord`] (it carries the failure
 //! counts); the contact pass's state (contactable tets, cracked vertices
@@ -46,7 +46,9 @@ use crate::step::{Solver, StepRecord};
 /// 3: incremental contact detection (the tets pending an addition and the
 /// count of additions; each watched node's reference position is where it
 /// was at the last full detection or at the addition that made it watched).
-pub const SNAPSHOT_VERSION: u32 = 3;
+/// 4: each surface load's work (in the record) and its half step held over
+/// (in the account).
+pub const SNAPSHOT_VERSION: u32 = 4;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]
@@ -337,6 +339,7 @@ fn put_account(e: &mut Encoder, a: &Account) {
     let last = a.last.unwrap_or(Imbalance { step: 0, time: 0.0, error: 0.0, scale: 0.0 });
     e.u64(last.step);
     [last.time, last.error, last.scale].into_iter().for_each(|x| e.f64(x));
+    e.f64s(&a.surface_ahead);
 }
 
 fn get_account(d: &mut Decoder<'_>) -> Result<Account, SolverError> {
@@ -345,7 +348,14 @@ fn get_account(d: &mut Decoder<'_>) -> Result<Account, SolverError> {
     let peak_held = d.f64()?;
     let has_last = d.bool()?;
     let last = Imbalance { step: d.u64()?, time: d.f64()?, error: d.f64()?, scale: d.f64()? };
-    Ok(Account { ahead, initial: initial.0.then_some(initial.1), peak_held, last: has_last.then_some(last) })
+    let surface_ahead = d.f64s()?;
+    Ok(Account {
+        ahead,
+        surface_ahead,
+        initial: initial.0.then_some(initial.1),
+        peak_held,
+        last: has_last.then_some(last),
+    })
 }
 
 fn get_mode(d: &mut Decoder<'_>) -> Result<FailureMode, SolverError> {
@@ -359,6 +369,7 @@ fn put_record(e: &mut Encoder, r: &StepRecord) {
     e.vec3s(&r.drive_forces);
     e.vec3s(&r.drive_displacements);
     e.vec3s(&r.surface_forces);
+    e.f64s(&r.surface_work);
     e.count(r.new_failures.start);
     e.count(r.new_failures.end);
     let c = &r.failures;
@@ -374,9 +385,11 @@ fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, Solv
     let drive_forces = d.vec3s()?;
     let drive_displacements = d.vec3s()?;
     let surface_forces = d.vec3s()?;
+    let surface_work = d.f64s()?;
     expect_count("drives", drive_forces.len(), like.drive_forces.len())?;
     expect_count("drive displacements", drive_displacements.len(), like.drive_displacements.len())?;
     expect_count("surface loads", surface_forces.len(), like.surface_forces.len())?;
+    expect_count("surface loads' work", surface_work.len(), like.surface_work.len())?;
     let new_failures = d.count()?..d.count()?;
     let failures =
         crate::FailureCounts { tensile: d.count()?, shear: d.count()?, mixed: d.count()?, collapsed: d.count()? };
@@ -386,6 +399,7 @@ fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, Solv
         drive_forces,
         drive_displacements,
         surface_forces,
+        surface_work,
         new_failures,
         failures,
         energies: get_energies(d)?,
@@ -468,6 +482,7 @@ impl Solver {
         let joints = (0..n_joints).map(|_| get_joint(&mut d)).collect::<Result<Vec<_>, _>>()?;
         let energies = get_energies(&mut d)?;
         let account = get_account(&mut d)?;
+        expect_count("surface loads (work held over)", account.surface_ahead.len(), self.account.surface_ahead.len())?;
         let n_failures = d.count()?;
         let mut failures = Vec::with_capacity(n_failures);
         for _ in 0..n_failures {

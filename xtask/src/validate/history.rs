@@ -36,6 +36,11 @@ impl Table {
         Ok(Table { columns, rows })
     }
 
+    /// The column names, in order.
+    pub fn names(&self) -> &[String] {
+        &self.columns
+    }
+
     /// The column `name`.
     pub fn col(&self, name: &str) -> Result<Vec<f64>> {
         let i = self.columns.iter().position(|c| c == name).with_context(|| format!("no column `{name}`"))?;

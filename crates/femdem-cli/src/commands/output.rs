@@ -73,7 +73,7 @@ pub struct Recorded {
 }
 
 /// The columns of `history.csv`: energies and failure counts, each drive's
-/// force and displacement, each surface load's force, the load–strain pair
+/// force and displacement, each surface load's force and work, the load–strain pair
 /// when asked for, and each probe's twelve columns.
 fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
     let mut columns: Vec<String> = ["time", "step"]
@@ -86,7 +86,7 @@ fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
         columns.extend(["fx", "fy", "fz", "ux", "uy", "uz"].map(|c| format!("{}_{c}", d.name)));
     }
     for s in &solver.loads.surfaces {
-        columns.extend(["fx", "fy", "fz"].map(|c| format!("{}_{c}", s.name)));
+        columns.extend(["fx", "fy", "fz", "work"].map(|c| format!("{}_{c}", s.name)));
     }
     if recorded.load_strain.is_some() {
         columns.extend(["load".to_string(), "strain".to_string()]);
@@ -236,8 +236,8 @@ impl Output {
         for (f, u) in r.drive_forces.iter().zip(&r.drive_displacements) {
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);
         }
-        for f in &r.surface_forces {
-            row.extend([f.x, f.y, f.z]);
+        for (f, w) in r.surface_forces.iter().zip(&r.surface_work) {
+            row.extend([f.x, f.y, f.z, *w]);
         }
         if let Some(ls) = &self.recorded.load_strain {
             let (load, strain) = ls.evaluate(&r.drive_forces, &r.drive_displacements);

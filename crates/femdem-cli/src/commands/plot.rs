@@ -134,7 +134,7 @@ fn header_names(line: &str) -> Vec<String> {
 fn unit(column: &str) -> Option<&'static str> {
     if column == "time" {
         Some("s")
-    } else if ENERGIES.contains(&column) {
+    } else if ENERGIES.contains(&column) || column.ends_with("_work") {
         Some("J")
     } else if column == "load" || ["_fx", "_fy", "_fz"].iter().any(|s| column.ends_with(s)) {
         Some("N")

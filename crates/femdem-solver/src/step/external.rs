@@ -19,6 +19,11 @@ pub(super) struct External {
     surface_nodes: Vec<u32>,
     /// Surface-load force per node at `t_n` (zero off `surface_nodes`), N.
     pub f_surface: Vec<Vec3>,
+    /// Each surface load's own nodal forces at `t_n` (a node once per
+    /// loaded face it lies on), N: for each load's work.
+    load_forces: Vec<Vec<(u32, Vec3)>>,
+    /// Each surface load's power against `v_{n−½}`, `Σ f_n · v_{n−½}`, W.
+    load_back: Vec<Real>,
     /// Each drive's target velocity at `t_n + Δt/2`, m/s.
     pub targets: Vec<Vec3>,
     /// Whether each drive prescribes `v_{n+½}` in this step
@@ -47,9 +52,21 @@ impl External {
             prescribed,
             surface_nodes,
             f_surface: vec![Vec3::zeros(); model.num_nodes()],
+            load_forces: vec![Vec::new(); loads.surfaces.len()],
+            load_back: vec![0.0; loads.surfaces.len()],
             targets: vec![Vec3::zeros(); loads.drives.len()],
             active: vec![true; loads.drives.len()],
         })
+    }
+
+    /// Each surface load's powers at `t_n`, `(Σ f_n · v_{n−½}, Σ f_n ·
+    /// v_{n+½})` in W, given the velocities `v_{n+½}` of the update (the
+    /// first was taken by [`External::evaluate`]), in load order.
+    pub fn surface_powers<'a>(&'a self, v: &'a [Vec3]) -> impl Iterator<Item = (Real, Real)> + 'a {
+        self.load_forces
+            .iter()
+            .zip(&self.load_back)
+            .map(move |(own, &back)| (back, own.iter().map(|&(n, f)| f.dot(&v[n as usize])).sum()))
     }
 
     pub fn held_nodes(&self, loads: &Loads) -> Vec<bool> {
@@ -81,12 +98,15 @@ impl External {
         }
         for (k, load) in loads.surfaces.iter().enumerate() {
             let mut total = Vec3::zeros();
-            let f_surface = &mut self.f_surface;
+            let (f_surface, own) = (&mut self.f_surface, &mut self.load_forces[k]);
+            own.clear();
             surface_forces(load, &state.x, load.ramp.factor(t), |n, f| {
                 f_surface[n as usize] += f;
+                own.push((n, f));
                 total += f;
             });
             record.surface_forces[k] = total;
+            self.load_back[k] = own.iter().map(|&(n, f)| f.dot(&state.v[n as usize])).sum();
         }
         // Reactions of the drives (sequential, small).
         let t_half = t + 0.5 * dt;

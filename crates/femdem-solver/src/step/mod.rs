@@ -176,12 +176,13 @@ impl Solver {
             drive_forces: vec![Vec3::zeros(); loads.drives.len()],
             drive_displacements: vec![Vec3::zeros(); loads.drives.len()],
             surface_forces: vec![Vec3::zeros(); loads.surfaces.len()],
+            surface_work: vec![0.0; loads.surfaces.len()],
             ..StepRecord::default()
         };
         Ok(Solver {
             v_before: if viscous { vec![Vec3::zeros(); n] } else { Vec::new() },
             floor: energy_floor(&model),
-            account: Account::default(),
+            account: Account { surface_ahead: vec![0.0; loads.surfaces.len()], ..Account::default() },
             workspace: Workspace::new(&model),
             update: Update::new(n),
             model,
@@ -310,6 +311,11 @@ impl Solver {
         let e = &mut self.energies;
         e.external_work += self.account.ahead + 0.5 * dt * powers.back + reaction_back;
         self.account.ahead = 0.5 * dt * powers.ahead + reaction_ahead;
+        let surface = self.external.surface_powers(&self.state.v);
+        for (k, (back, ahead)) in surface.enumerate() {
+            self.record.surface_work[k] += self.account.surface_ahead[k] + 0.5 * dt * back;
+            self.account.surface_ahead[k] = 0.5 * dt * ahead;
+        }
         if let Some(contact) = &mut self.contact {
             contact.book_work(&self.state.v, dt);
             e.contact = contact.energy.contact;

@@ -55,6 +55,11 @@ pub struct StepRecord {
     /// Total force of each surface load (in [`crate::Loads::surfaces`]
     /// order), N.
     pub surface_forces: Vec<Vec3>,
+    /// Work done by each surface load from the start to `t_n`, J, booked
+    /// as the external work is (the trapezoidal rule centred on `t_n`,
+    /// module documentation of `step`): over all surface loads it is the
+    /// external work less gravity's and the drives'.
+    pub surface_work: Vec<Real>,
     /// The joints that failed in this step: indices into
     /// [`crate::Solver::failures`].
     pub new_failures: Range<usize>,

@@ -25,4 +25,5 @@ mod objectivity;
 mod patch;
 mod snapshot;
 mod stability;
+mod surface_work;
 mod wave_speed;

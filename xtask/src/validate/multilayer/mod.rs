@@ -79,6 +79,31 @@ struct Outcome {
     /// Kinetic energy and external work at the end, J.
     kinetic: f64,
     work: f64,
+    /// The work of the pressures on the x, y and z faces at the end, J
+    /// (`<group>_work` of the loads on `…xmin`, `…xmax`, …; `None` from a
+    /// femdem that did not record it).
+    work_by_axis: Option<[f64; 3]>,
+}
+
+/// The work of the face loads at the end of `h`, summed by the axis their
+/// group's side names (`xmin`/`xmax`, `ymin`/`ymax`, `bottom`/`top`, the
+/// extrusion's z faces); `None` when no load's work is recorded.
+fn work_by_axis(h: &Table) -> Result<Option<[f64; 3]>> {
+    let mut w = [0.0; 3];
+    let mut any = false;
+    for name in h.names() {
+        let Some(group) = name.strip_suffix("_work") else { continue };
+        let side = group.rsplit('.').next().unwrap_or(group);
+        let axis = match side {
+            "xmin" | "xmax" => 0,
+            "ymin" | "ymax" => 1,
+            "bottom" | "top" => 2,
+            _ => continue,
+        };
+        w[axis] += h.col(name)?.last().copied().unwrap_or(0.0);
+        any = true;
+    }
+    Ok(any.then_some(w))
 }
 
 impl Outcome {
@@ -92,6 +117,7 @@ impl Outcome {
             end: last("time")?,
             kinetic: last("kinetic")?,
             work: last("external_work")?,
+            work_by_axis: work_by_axis(&h)?,
             run,
         })
     }
@@ -287,6 +313,22 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
             100.0 * tips::share_within(&baseline, &all_sites, r)
         );
     }
+    if let Some(w) = o.work_by_axis {
+        let share = |x: f64| 100.0 * x / o.work.max(f64::MIN_POSITIVE);
+        let _ = writeln!(
+            md,
+            "Work of the pressures at the end: on the x faces {:.3} kJ ({:.0}% of the external work), on the y faces \
+             {:.3} kJ ({:.0}%), on the z faces {:.3} kJ ({:.0}%); gravity's is the rest. Which load feeds the motion: \
+             the y faces' work grows past the elastic block's when pieces slide along new shear fractures, the x \
+             faces' when the block opens along x.\n",
+            1e-3 * w[0],
+            share(w[0]),
+            1e-3 * w[1],
+            share(w[1]),
+            1e-3 * w[2],
+            share(w[2])
+        );
+    }
     let _ = writeln!(md, "\nNew failures per fifth of the run:\n");
     let fifths: Vec<String> = (0..5)
         .map(|k| {
@@ -342,4 +384,28 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     }
     report.sections.push(md);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_face_loads_work_is_summed_by_axis_and_absent_from_an_older_history() {
+        let dir = std::env::temp_dir().join(format!("xtask-multilayer-work-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("history.csv");
+        std::fs::write(
+            &path,
+            "# case: c.toml\ntime,external_work,block.xmin_fx,block.xmin_work,block.xmax_work,block.ymin_work,block.ymax_work,\
+             block.bottom_work,block.top_work,platen_work\n\
+             0,0,0,0,0,0,0,0,0,0\n1,21,5,1,2,3,4,5,6,100\n",
+        )
+        .unwrap();
+        let w = work_by_axis(&Table::read(&path).unwrap()).unwrap();
+        assert_eq!(w, Some([3.0, 7.0, 11.0]), "x, y, z faces; a column of another side is not counted");
+        std::fs::write(&path, "time,external_work,block.xmin_fx\n0,0,0\n").unwrap();
+        assert_eq!(work_by_axis(&Table::read(&path).unwrap()).unwrap(), None);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -1,0 +1,117 @@
+//! Each surface load's work (`StepRecord::surface_work`), booked as the
+//! external work is (the trapezoidal rule centred on `t_n`).
+//!
+//! - Over all surface loads it is the external work when nothing else does
+//!   work (no gravity, no drives; a fixed support does none), to
+//!   round-off, at every step, and each load keeps its own.
+//! - On a column fixed at its base and pressed slowly on its top alone, the
+//!   load's work is that of a linear spring, `∫ F dδ = ½ F δ` (δ the
+//!   mean displacement of the top face): the ramp lasts 20 periods of the
+//!   column's first mode, which leaves an oscillation of about
+//!   `T / (π T_ramp) = 1.6%` of the static displacement (a linear ramp's
+//!   response); the work integrates over it, `½ F δ` at the ramp's end
+//!   does not, so the two agree to that much, not better.
+//! - A solver restored from a snapshot continues the loads' work bit for
+//!   bit.
+
+use crate::common::{box_mesh, model, rock, solver};
+use femdem_material::Law;
+use femdem_solver::select::{NodeSelection, group_faces, select_nodes};
+use femdem_solver::{Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, Want};
+
+/// A 10 × 10 × 40 mm column fixed at its base, pressed on its top by `p`
+/// and on its `xmax` side by `p_side`, both ramped over `periods` periods
+/// of its first axial mode; returns the solver, the top's faces and the
+/// ramp time.
+fn column(p: f64, p_side: f64, periods: f64) -> (Solver, Vec<[u32; 3]>, f64) {
+    let (w, l) = (0.01, 0.04);
+    let mesh = box_mesh([0.0; 3], [w, w, l], 0.005, 0.1, false);
+    let mat = rock(0.0);
+    let (jointed, m) = model(&mesh, Law::NeoHookean, mat, 0.0);
+    // The first axial mode of a column fixed at one end: period 4 l / c.
+    let period = 4.0 * l / (mat.young() / mat.density()).sqrt();
+    let t_ramp = periods * period;
+    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
+    let ramp = Ramp { ramp_time: t_ramp, stop_time: None };
+    let load = |name: &str, group: &str, p: f64| SurfaceLoad {
+        name: name.into(),
+        faces: group_faces(&jointed, group).unwrap(),
+        kind: SurfaceKind::Pressure(p),
+        ramp,
+    };
+    let loads = Loads {
+        fixed: vec![Fixed { nodes: sel("zmin"), components: [true; 3] }],
+        surfaces: vec![load("top", "zmax", p), load("side", "xmax", p_side)],
+        ..Loads::default()
+    };
+    (solver(m, loads, 0.9), group_faces(&jointed, "zmax").unwrap(), t_ramp)
+}
+
+#[test]
+fn the_loads_work_adds_up_to_the_external_work() {
+    let (mut s, _, t_ramp) = column(10e6, 3e6, 2.0);
+    let mut work = [0.0; 2];
+    while s.state.time < t_ramp {
+        let r = s.step(Want { energy: true, stress: false });
+        let sum: f64 = r.surface_work.iter().sum();
+        let external = r.energies.external_work;
+        assert!(
+            (sum - external).abs() <= 1e-12 * external.abs().max(1e-9),
+            "t = {:e}: the loads' work {sum:e} J, the external work {external:e} J",
+            r.time
+        );
+        work = [r.surface_work[0], r.surface_work[1]];
+    }
+    assert!(work[0] > 0.0 && work[1] > 0.0, "both pressures do work on the body they press: {work:?} J");
+}
+
+#[test]
+fn a_slowly_pressed_column_takes_half_f_delta_from_its_load() {
+    let periods = 20.0;
+    let (mut s, top, t_ramp) = column(10e6, 0.0, periods);
+    // The top's mean displacement weighted as a pressure spreads over its
+    // faces (a third of each face's area to each of its nodes), so that
+    // F δ is the load's `Σ f_i · u_i`.
+    let area = |f: &[u32; 3], s: &Solver| {
+        let x = f.map(|i| s.model.x0[i as usize]);
+        0.5 * (x[1] - x[0]).cross(&(x[2] - x[0])).norm()
+    };
+    let mean_top_z = |s: &Solver| {
+        let uz = |i: u32| s.recorded_position(i as usize).z - s.model.x0[i as usize].z;
+        let weighted: f64 = top.iter().map(|f| area(f, s) * f.iter().map(|&i| uz(i)).sum::<f64>() / 3.0).sum();
+        weighted / top.iter().map(|f| area(f, s)).sum::<f64>()
+    };
+    let (mut work, mut force, mut delta) = (0.0, 0.0, 0.0);
+    while s.state.time < t_ramp {
+        let r = s.step(Want::default());
+        (work, force) = (r.surface_work[0], r.surface_forces[0].z);
+        delta = mean_top_z(&s);
+    }
+    let spring = 0.5 * force * delta;
+    let expected_error = 1.0 / (std::f64::consts::PI * periods);
+    let error = (work - spring).abs() / spring;
+    assert!(
+        error < expected_error,
+        "the load's work {work:e} J, ½ F δ = {spring:e} J (F = {force:e} N, δ = {delta:e} m): {:.2}% apart, \
+         the ramp's oscillation up to {:.2}%",
+        100.0 * error,
+        100.0 * expected_error
+    );
+}
+
+#[test]
+fn a_restored_solver_continues_the_loads_work_bit_for_bit() {
+    let (mut a, _, _) = column(10e6, 3e6, 2.0);
+    for _ in 0..150 {
+        a.step(Want::default());
+    }
+    let snap = a.snapshot();
+    let (mut b, _, _) = column(10e6, 3e6, 2.0);
+    b.restore(&snap).unwrap();
+    for _ in 0..150 {
+        a.step(Want::default());
+        b.step(Want::default());
+    }
+    assert!(a.record().surface_work.iter().all(|&w| w > 0.0), "{:?}", a.record().surface_work);
+    assert_eq!(a.record().surface_work, b.record().surface_work);
+}

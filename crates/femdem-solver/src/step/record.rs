@@ -58,7 +58,11 @@ pub struct StepRecord {
     /// Work done by each surface load from the start to `t_n`, J, booked
     /// as the external work is (the trapezoidal rule centred on `t_n`,
     /// module documentation of `step`): over all surface loads it is the
-    /// external work less gravity's and the drives'.
+    /// external work less gravity's and the drives'. After a static start
+    /// ([`crate::Solver::start_displaced`]) each starts at its Clapeyron
+    /// share `½ f_k · u` of the stored energy that the external work
+    /// starts at, so the sum agrees with it as far as the static state is
+    /// linear elastic.
     pub surface_work: Vec<Real>,
     /// The joints that failed in this step: indices into
     /// [`crate::Solver::failures`].

@@ -8,6 +8,7 @@ use super::Solver;
 use super::prescribed::held_from_start;
 use crate::SolverError;
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
+use crate::loads::surface_forces;
 
 impl Solver {
     /// Moves the nodes to `x0 + u` at rest (`v = 0`), before the first
@@ -20,7 +21,9 @@ impl Solver {
     /// with the work done on it set to what it stores plus what it has
     /// dissipated; the tets' elastic energy and that work are booked as
     /// external work already done — the work of the loads on a quasi-static
-    /// path to that state — so `Energies::balance` starts at zero. A joint
+    /// path to that state — so `Energies::balance` starts at zero; each
+    /// surface load's work ([`crate::StepRecord::surface_work`]) starts at
+    /// its share `½ f_k · u` of it. A joint
     /// that this evaluation fails is left intact and undamaged: the first
     /// step fails it again and records the failure, as every failure is
     /// recorded.
@@ -75,6 +78,16 @@ impl Solver {
         self.energies.tet_elastic = sums.tet_energy;
         self.energies.joint_elastic = sums.joint_energy;
         self.energies.fracture = sums.fracture;
+        // Each surface load's share of that work: Clapeyron's `½ f_k · u`,
+        // the work of loads applied together in proportion on a linear
+        // body (its loads at t = 0 on the reference faces). The shares and
+        // gravity's add up to the stored energy as far as the state is
+        // linear elastic.
+        for (k, load) in self.loads.surfaces.iter().enumerate() {
+            let mut share = 0.0;
+            surface_forces(load, &self.model.x0, load.ramp.factor(0.0), |n, f| share += 0.5 * f.dot(&u[n as usize]));
+            self.record.surface_work[k] = share;
+        }
         Ok(stored)
     }
 }

@@ -318,9 +318,9 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         let _ = writeln!(
             md,
             "Work of the pressures at the end: on the x faces {:.3} kJ ({:.0}% of the external work), on the y faces \
-             {:.3} kJ ({:.0}%), on the z faces {:.3} kJ ({:.0}%); gravity's is the rest. Which load feeds the motion: \
-             the y faces' work grows past the elastic block's when pieces slide along new shear fractures, the x \
-             faces' when the block opens along x.\n",
+             {:.3} kJ ({:.0}%), on the z faces {:.3} kJ ({:.0}%); gravity's is the rest (how to read it: pieces \
+             sliding along new shear fractures under the y pressures raise the y faces' share; the block opening \
+             along x raises the x faces').\n",
             1e-3 * w[0],
             share(w[0]),
             1e-3 * w[1],

@@ -98,15 +98,17 @@ impl External {
         }
         for (k, load) in loads.surfaces.iter().enumerate() {
             let mut total = Vec3::zeros();
+            let mut back = 0.0;
             let (f_surface, own) = (&mut self.f_surface, &mut self.load_forces[k]);
             own.clear();
             surface_forces(load, &state.x, load.ramp.factor(t), |n, f| {
                 f_surface[n as usize] += f;
                 own.push((n, f));
                 total += f;
+                back += f.dot(&state.v[n as usize]);
             });
             record.surface_forces[k] = total;
-            self.load_back[k] = own.iter().map(|&(n, f)| f.dot(&state.v[n as usize])).sum();
+            self.load_back[k] = back;
         }
         // Reactions of the drives (sequential, small).
         let t_half = t + 0.5 * dt;

@@ -4,6 +4,8 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
@@ -21,6 +23,10 @@ const ELAPSED_EVERY: Duration = Duration::from_secs(5);
 #[derive(Debug, Clone)]
 pub struct Femdem {
     bin: PathBuf,
+    /// Set when validate itself is asked to stop (SIGINT, SIGTERM, SIGHUP):
+    /// the running femdem is then asked in turn, so that it writes its
+    /// checkpoint and ends instead of running on without validate.
+    stop: Arc<AtomicBool>,
 }
 
 /// What one run left behind.
@@ -118,13 +124,20 @@ impl Femdem {
     /// environment names a prebuilt binary in `FEMDEM_BIN` (a machine
     /// without cargo, a cluster node), returns that one unbuilt.
     pub fn build() -> Result<Femdem> {
+        let stop = Arc::new(AtomicBool::new(false));
+        {
+            let stop = stop.clone();
+            // A second handler cannot be installed; then a signal ends
+            // validate as usual (and femdem only if sent to its group too).
+            let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
+        }
         if let Some(bin) = std::env::var_os("FEMDEM_BIN") {
             let bin = PathBuf::from(bin);
             if !bin.is_file() {
                 bail!("FEMDEM_BIN = {} is not a file", bin.display());
             }
             eprintln!("validate: using the prebuilt {} (FEMDEM_BIN)", bin.display());
-            return Ok(Femdem { bin });
+            return Ok(Femdem { bin, stop });
         }
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         crate::run_in_root(Command::new(cargo).args(["build", "--release", "--quiet", "-p", "femdem-cli"]))?;
@@ -133,13 +146,13 @@ impl Femdem {
         if !bin.exists() {
             bail!("{} was not built", bin.display());
         }
-        Ok(Femdem { bin })
+        Ok(Femdem { bin, stop })
     }
 
     /// A `femdem` at `bin` (for tests).
     #[cfg(test)]
     pub fn at(bin: PathBuf) -> Femdem {
-        Femdem { bin }
+        Femdem { bin, stop: Arc::new(AtomicBool::new(false)) }
     }
 
     /// Writes `case` (with checkpoints every [`CHECKPOINT_WALL`] s, see
@@ -154,7 +167,13 @@ impl Femdem {
     ///   checkpoint with `femdem run --resume`, whose results are those of
     ///   an uninterrupted run; the log is appended to.
     /// - Otherwise the run starts over (`--overwrite`).
+    /// - When validate is asked to stop while femdem runs, femdem is sent
+    ///   SIGTERM, writes its checkpoint and ends, and this returns an error
+    ///   that says to run the same command again to resume.
     pub fn run(&self, dir: &Path, stem: &str, case: &str) -> Result<RunOutput> {
+        if self.stop.load(Ordering::SeqCst) {
+            bail!("validate was asked to stop before femdem run in {}", dir.display());
+        }
         let case = with_checkpoints(case)?;
         std::fs::create_dir_all(dir)?;
         let files = Files::new(dir, stem);
@@ -186,7 +205,14 @@ impl Femdem {
             .stderr(log)
             .spawn()
             .with_context(|| format!("starting {}", self.bin.display()))?;
-        let (status, wall) = wait_counting(child, &files, before, resumes)?;
+        let (status, wall) = wait_counting(child, &files, before, resumes, &self.stop)?;
+        if self.stop.load(Ordering::SeqCst) {
+            bail!(
+                "validate was asked to stop: femdem run {} was stopped ({status}) after writing its checkpoint; \
+                 run the same command again to resume",
+                files.case.display()
+            );
+        }
         if !status.success() {
             let hint = if resume {
                 format!("; if its checkpoint cannot be continued, remove {} to start the run over", dir.display())
@@ -203,17 +229,26 @@ impl Femdem {
 /// Waits for `child`, rewriting `files.elapsed` with `before` plus its wall
 /// time every [`ELAPSED_EVERY`], so that a validation killed with its run
 /// still knows how long the run took; returns the exit status and the total.
+/// Once `stop` is set, the child is sent SIGTERM (femdem's signal to write
+/// its checkpoint and end) and waited for.
 fn wait_counting(
     mut child: Child,
     files: &Files,
     before: f64,
     resumes: u32,
+    stop: &AtomicBool,
 ) -> Result<(std::process::ExitStatus, f64)> {
     let start = Instant::now();
     let mut last = Instant::now();
+    let mut asked = false;
     let write = |seconds: f64| std::fs::write(&files.elapsed, format!("{seconds} {resumes}\n"));
     write(before)?;
     loop {
+        if !asked && stop.load(Ordering::SeqCst) {
+            asked = true;
+            eprintln!("validate: stopping; asking femdem (pid {}) to write its checkpoint and end", child.id());
+            terminate(&mut child);
+        }
         if let Some(status) = child.try_wait()? {
             let total = before + start.elapsed().as_secs_f64();
             write(total)?;
@@ -224,6 +259,18 @@ fn wait_counting(
             last = Instant::now();
         }
         std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// Sends `child` SIGTERM (`kill -TERM`, which femdem answers by writing its
+/// checkpoint); where there is no such signal, kills it.
+fn terminate(child: &mut Child) {
+    #[cfg(unix)]
+    let sent = Command::new("kill").arg("-TERM").arg(child.id().to_string()).status().is_ok_and(|s| s.success());
+    #[cfg(not(unix))]
+    let sent = false;
+    if !sent {
+        let _ = child.kill();
     }
 }
 
@@ -322,6 +369,46 @@ mod tests {
         let out = femdem.run(&run_dir, "case", &CASE.replace("1.0", "3.0")).unwrap();
         assert!(calls(&dir)[1].ends_with("--overwrite"), "{:?}", calls(&dir));
         assert_eq!(out.resumed, 0);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_stopped_validation_stops_its_run_which_then_resumes() {
+        let dir = scratch("stop");
+        // A femdem that runs until SIGTERM, then leaves a checkpoint and
+        // exits as femdem does when stopped; resumed, it finishes at once.
+        let bin = dir.join("femdem");
+        let script = format!(
+            "#!/bin/sh\necho \"$@\" >> {calls}\nout=$4\nmkdir -p \"$out\"\n\
+             if [ \"$5\" = --resume ]; then exit 0; fi\n\
+             trap 'touch \"$out/checkpoint_000000000010.femdem-ckpt\"; echo stopped > {term}; exit 0' TERM\n\
+             i=0\nwhile [ $i -lt 600 ]; do sleep 0.05; i=$((i+1)); done\nexit 0\n",
+            calls = dir.join("calls").display(),
+            term = dir.join("term").display(),
+        );
+        std::fs::write(&bin, script).unwrap();
+        std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
+        let femdem = Femdem::at(bin);
+        let stop = femdem.stop.clone();
+        let asker = std::thread::spawn(move || {
+            std::thread::sleep(Duration::from_millis(500));
+            stop.store(true, Ordering::SeqCst);
+        });
+        let start = Instant::now();
+        let run_dir = dir.join("v1");
+        let err = femdem.run(&run_dir, "case", CASE).unwrap_err().to_string();
+        asker.join().unwrap();
+        assert!(err.contains("asked to stop") && err.contains("run the same command again"), "{err}");
+        assert!(dir.join("term").exists(), "femdem was sent SIGTERM");
+        assert!(start.elapsed() < Duration::from_secs(20), "the run was not left running to its end");
+        assert!(!run_dir.join("finished").exists() && has_checkpoint(&run_dir.join("out")));
+        let err = femdem.run(&dir.join("v2"), "case", CASE).unwrap_err().to_string();
+        assert!(err.contains("asked to stop"), "no further run starts: {err}");
+        assert_eq!(calls(&dir).len(), 1);
+        // The same command again (a new validate) resumes the run.
+        let again = Femdem::at(femdem.bin.clone()).run(&run_dir, "case", CASE).unwrap();
+        assert!(calls(&dir)[1].ends_with("--resume"), "{:?}", calls(&dir));
+        assert_eq!((again.reused, again.resumed), (false, 1));
         let _ = std::fs::remove_dir_all(&dir);
     }
 

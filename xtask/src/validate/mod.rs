@@ -1,6 +1,6 @@
 //! `cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST]
-//! [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--out DIR]
-//! [--sensitivity]`:
+//! [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--weibull M]
+//! [--out DIR] [--sensitivity]`:
 //! runs the reference paper's examples through `femdem run`, as a user
 //! would, checks the results against the paper and closed forms, and writes
 //! `report.md`, `checks.csv`, the runs' data and PNG figures to DIR
@@ -19,7 +19,9 @@
 //! `--mesh unstructured` (or `lattice`) runs the polyaxial tests on that
 //! mesh only (both by default): the lattice runs are the mesh-bias
 //! comparison, and in the paper profile they fail all through the cube and
-//! cost the most.
+//! cost the most. `--weibull M` gives the polyaxial runs strength
+//! heterogeneity: every joint's f_t and c times independent Weibull factors
+//! of mean 1 and modulus M (`[heterogeneity]` of the case format).
 //!
 //! `--sensitivity` adds the Brazilian one-change-at-a-time runs (what moves
 //! f_bt; seven more runs).
@@ -72,9 +74,15 @@ const CASES: [(&str, bool); 3] = [("brazilian", true), ("polyaxial", true), ("mu
 
 /// A positive, finite time in seconds given to option `flag`.
 fn seconds(flag: &str, text: &str) -> Result<f64> {
+    positive(flag, text, "a positive time in seconds")
+}
+
+/// A positive, finite number given to option `flag`; `what` names it in
+/// the error.
+fn positive(flag: &str, text: &str, what: &str) -> Result<f64> {
     match text.trim().parse::<f64>() {
         Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
-        _ => bail!("{flag} needs a positive time in seconds, not `{text}`"),
+        _ => bail!("{flag} needs {what}, not `{text}`"),
     }
 }
 
@@ -84,8 +92,7 @@ pub fn run(args: &[String]) -> Result<()> {
     let mut only: Option<String> = None;
     let mut sensitivity = false;
     let mut rates: Option<Vec<f64>> = None;
-    let mut timing = polyaxial::Timing::default();
-    let mut meshes = polyaxial::Meshes::default();
+    let mut variant = polyaxial::Variant::default();
     let mut out = crate::root().join("target").join("validation");
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -102,11 +109,12 @@ pub fn run(args: &[String]) -> Result<()> {
             "--out" => out = PathBuf::from(value()?),
             "--sensitivity" => sensitivity = true,
             "--rates" => rates = Some(brazilian::parse_rates(&value()?)?),
-            "--ramp" => timing.ramp = Some(seconds(a, &value()?)?),
-            "--end-time" => timing.end = Some(seconds(a, &value()?)?),
-            "--mesh" => meshes = polyaxial::Meshes::parse(&value()?)?,
+            "--ramp" => variant.ramp = Some(seconds(a, &value()?)?),
+            "--end-time" => variant.end = Some(seconds(a, &value()?)?),
+            "--mesh" => variant.meshes = polyaxial::Meshes::parse(&value()?)?,
+            "--weibull" => variant.weibull = Some(positive(a, &value()?, "a positive Weibull modulus")?),
             other => bail!(
-                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--out DIR] [--sensitivity]"
+                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--weibull M] [--out DIR] [--sensitivity]"
             ),
         }
     }
@@ -132,7 +140,7 @@ pub fn run(args: &[String]) -> Result<()> {
                 let rates = rates.as_deref().unwrap_or(&brazilian::RATES);
                 brazilian::validate(&femdem, profile, rates, sensitivity, &out, &mut report)?
             }
-            "polyaxial" => polyaxial::validate(&femdem, profile, timing, meshes, &out, &mut report)?,
+            "polyaxial" => polyaxial::validate(&femdem, profile, variant, &out, &mut report)?,
             "multilayer" => multilayer::validate(&femdem, profile, &out, &mut report)?,
             _ => unreachable!("every built case is dispatched"),
         }
@@ -159,7 +167,7 @@ pub fn run(args: &[String]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::polyaxial::Meshes;
-    use super::seconds;
+    use super::{positive, seconds};
 
     #[test]
     fn the_polyaxial_meshes_are_named_on_the_command_line() {
@@ -177,5 +185,8 @@ mod tests {
             let e = seconds("--ramp", bad).unwrap_err().to_string();
             assert!(e.contains("--ramp") && e.contains(bad), "{e}");
         }
+        assert_eq!(positive("--weibull", "20", "a modulus").unwrap(), 20.0);
+        let e = positive("--weibull", "-8", "a positive Weibull modulus").unwrap_err().to_string();
+        assert!(e.contains("--weibull needs a positive Weibull modulus, not `-8`"), "{e}");
     }
 }

@@ -104,8 +104,22 @@ impl Base {
 
     /// The case for `test` on `mesh`, its pressures ramped over `ramp` (s)
     /// and the run ending at `end_time` (s), as TOML text.
-    pub fn case(&self, title: &str, test: Test, mesh: &Mesh, ramp: f64, end_time: f64) -> Result<String> {
+    pub fn case(
+        &self,
+        title: &str,
+        test: Test,
+        mesh: &Mesh,
+        ramp: f64,
+        end_time: f64,
+        weibull: Option<f64>,
+    ) -> Result<String> {
         let mut t = self.table.clone();
+        if let Some(modulus) = weibull {
+            let mut h = toml::Table::new();
+            h.insert("distribution".into(), "weibull".into());
+            h.insert("modulus".into(), modulus.into());
+            t.insert("heterogeneity".into(), Value::Table(h));
+        }
         for load in t.get_mut("loads").and_then(Value::as_array_mut).context("[[loads]]")? {
             load.as_table_mut().context("[[loads]]")?.insert("ramp_time".into(), ramp.into());
         }
@@ -155,12 +169,22 @@ mod tests {
     fn the_ramp_and_end_time_replace_the_bundled_ones_on_every_load() {
         let base = Base::load().unwrap();
         assert_eq!(base.ramp, 2.0e-3, "the bundled case's ramp");
-        let text = base.case("t", TESTS[2], &Mesh::Lattice(0.1), 1.0e-3, 1.5e-3).unwrap();
+        let text = base.case("t", TESTS[2], &Mesh::Lattice(0.1), 1.0e-3, 1.5e-3, None).unwrap();
         let t: Table = text.parse().unwrap();
         let loads = t["loads"].as_array().unwrap();
         assert_eq!(loads.len(), 6);
         assert!(loads.iter().all(|l| l["ramp_time"].as_float() == Some(1.0e-3)));
         assert_eq!(t["solver"]["end_time"].as_float(), Some(1.5e-3));
         assert_eq!(t["materials"][0]["cohesion"].as_float(), Some(3.8e6));
+        assert!(t.get("heterogeneity").is_none(), "homogeneous unless asked");
+    }
+
+    #[test]
+    fn a_weibull_modulus_adds_the_heterogeneity_table() {
+        let base = Base::load().unwrap();
+        let text = base.case("t", TESTS[0], &Mesh::Lattice(0.1), 2.0e-3, 2.5e-3, Some(20.0)).unwrap();
+        let t: Table = text.parse().unwrap();
+        assert_eq!(t["heterogeneity"]["distribution"].as_str(), Some("weibull"));
+        assert_eq!(t["heterogeneity"]["modulus"].as_float(), Some(20.0));
     }
 }

@@ -54,15 +54,22 @@ fn default_end_time(profile: Profile) -> f64 {
     }
 }
 
-/// The loading history of the runs: `--ramp S` and `--end-time S` of
-/// `cargo xtask validate`, replacing the bundled case's ramp time and the
-/// profile's end time (to measure how the loading rate moves the bands).
+/// How the runs differ from the bundled case and the profile, as
+/// `cargo xtask validate` is told on its command line: to measure how the
+/// loading rate and strength heterogeneity move the bands.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Timing {
-    /// The time over which every pressure is ramped from zero, s.
+pub struct Variant {
+    /// `--ramp S`: the time over which every pressure is ramped from zero,
+    /// s (the bundled case's by default).
     pub ramp: Option<f64>,
-    /// When the runs end, s.
+    /// `--end-time S`: when the runs end, s (the profile's by default).
     pub end: Option<f64>,
+    /// `--mesh`: which meshes run.
+    pub meshes: Meshes,
+    /// `--weibull M`: every joint's f_t and c scaled by independent Weibull
+    /// factors of mean 1 and modulus M (`[heterogeneity]`; the paper's §4
+    /// suggestion for homogeneous stress fields). Homogeneous by default.
+    pub weibull: Option<f64>,
 }
 
 /// Which meshes `cargo xtask validate --mesh` runs the three tests on: the
@@ -153,18 +160,12 @@ impl Outcome {
 }
 
 /// Runs the case in `profile`, adding its checks and sections to `report`.
-pub fn validate(
-    femdem: &Femdem,
-    profile: Profile,
-    timing: Timing,
-    which: Meshes,
-    out: &Path,
-    report: &mut Report,
-) -> Result<()> {
+pub fn validate(femdem: &Femdem, profile: Profile, variant: Variant, out: &Path, report: &mut Report) -> Result<()> {
     let base = Base::load()?;
     let s = base.stresses;
-    let ramp = timing.ramp.unwrap_or(base.ramp);
-    let end_time = timing.end.unwrap_or_else(|| default_end_time(profile));
+    let ramp = variant.ramp.unwrap_or(base.ramp);
+    let end_time = variant.end.unwrap_or_else(|| default_end_time(profile));
+    let which = variant.meshes;
     let (unstructured, lattice) = meshes(profile);
     let dir = out.join("polyaxial");
     let mut runs = Vec::new();
@@ -183,7 +184,7 @@ pub fn validate(
             mesh.label(),
             profile.name()
         );
-        let case = base.case(&title, test, mesh, ramp, end_time)?;
+        let case = base.case(&title, test, mesh, ramp, end_time, variant.weibull)?;
         let slug = match mesh {
             Mesh::Gmsh(_) => format!("test{}", test.number),
             Mesh::Lattice(_) => format!("test{}_lattice", test.number),
@@ -198,7 +199,7 @@ pub fn validate(
         Profile::Paper => 0.05,
     };
     let mut md = format!(
-        "## Polyaxial compression ({} profile)\n\nApplied: σ1 = −{} MPa along x, σ2 = −{} MPa along z, σ3 = −{} MPa along y, ramped over {} ms and held; runs end at {} ms. \
+        "## Polyaxial compression ({} profile)\n\nApplied: σ1 = −{} MPa along x, σ2 = −{} MPa along z, σ3 = −{} MPa along y, ramped over {} ms and held; runs end at {} ms.{} \
          Bands: Hough transform of the shear-failed faces' centroids seen along z, slabs {} mm wide; facets: median angle to x of the \
          shear-failed faces' traces on x–y, weighted by area and by how nearly a face contains z. Mohr–Coulomb (Eq. 24): 45° + φ/2 from the σ1 axis.\n\n\
          | test | mesh | c (MPa) | φ (°) | circle reach R/R_fail | failures T/S/M/C | shear share | main band to x (°, share) | conjugate to x (°, share) | facets (°) | 45° + φ/2 | energy error | steps | wall (s) |\n\
@@ -209,6 +210,9 @@ pub fn validate(
         1e-6 * s.most,
         1e3 * ramp,
         1e3 * end_time,
+        variant.weibull.map_or(String::new(), |m| format!(
+            " Strength heterogeneity: every joint's f_t and c times independent Weibull factors of mean 1, modulus {m}."
+        )),
         1e3 * width
     );
     for o in &runs {

@@ -79,6 +79,9 @@ pub(crate) struct Account {
     /// order), J: booked into [`crate::StepRecord::surface_work`] with the
     /// next step.
     pub surface_ahead: Vec<Real>,
+    /// The same for each drive's reaction (in [`crate::Loads::drives`]
+    /// order), J: booked into [`crate::StepRecord::drive_work`].
+    pub drive_ahead: Vec<Real>,
     /// `B_0`, once step 0 has been evaluated.
     pub initial: Option<Real>,
     /// The largest `K + U + C` evaluated so far, J.

@@ -48,7 +48,9 @@ use crate::step::{Solver, StepRecord};
 /// was at the last full detection or at the addition that made it watched).
 /// 4: each surface load's work (in the record) and its half step held over
 /// (in the account).
-pub const SNAPSHOT_VERSION: u32 = 4;
+/// 5: each drive's work (in the record) and its half step held over (in the
+/// account).
+pub const SNAPSHOT_VERSION: u32 = 5;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]
@@ -340,6 +342,7 @@ fn put_account(e: &mut Encoder, a: &Account) {
     e.u64(last.step);
     [last.time, last.error, last.scale].into_iter().for_each(|x| e.f64(x));
     e.f64s(&a.surface_ahead);
+    e.f64s(&a.drive_ahead);
 }
 
 fn get_account(d: &mut Decoder<'_>) -> Result<Account, SolverError> {
@@ -349,9 +352,11 @@ fn get_account(d: &mut Decoder<'_>) -> Result<Account, SolverError> {
     let has_last = d.bool()?;
     let last = Imbalance { step: d.u64()?, time: d.f64()?, error: d.f64()?, scale: d.f64()? };
     let surface_ahead = d.f64s()?;
+    let drive_ahead = d.f64s()?;
     Ok(Account {
         ahead,
         surface_ahead,
+        drive_ahead,
         initial: initial.0.then_some(initial.1),
         peak_held,
         last: has_last.then_some(last),
@@ -368,6 +373,7 @@ fn put_record(e: &mut Encoder, r: &StepRecord) {
     e.f64(r.time);
     e.vec3s(&r.drive_forces);
     e.vec3s(&r.drive_displacements);
+    e.f64s(&r.drive_work);
     e.vec3s(&r.surface_forces);
     e.f64s(&r.surface_work);
     e.count(r.new_failures.start);
@@ -384,10 +390,12 @@ fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, Solv
     let time = d.f64()?;
     let drive_forces = d.vec3s()?;
     let drive_displacements = d.vec3s()?;
+    let drive_work = d.f64s()?;
     let surface_forces = d.vec3s()?;
     let surface_work = d.f64s()?;
     expect_count("drives", drive_forces.len(), like.drive_forces.len())?;
     expect_count("drive displacements", drive_displacements.len(), like.drive_displacements.len())?;
+    expect_count("drives' work", drive_work.len(), like.drive_work.len())?;
     expect_count("surface loads", surface_forces.len(), like.surface_forces.len())?;
     expect_count("surface loads' work", surface_work.len(), like.surface_work.len())?;
     let new_failures = d.count()?..d.count()?;
@@ -398,6 +406,7 @@ fn get_record(d: &mut Decoder<'_>, like: &StepRecord) -> Result<StepRecord, Solv
         time,
         drive_forces,
         drive_displacements,
+        drive_work,
         surface_forces,
         surface_work,
         new_failures,
@@ -483,6 +492,7 @@ impl Solver {
         let energies = get_energies(&mut d)?;
         let account = get_account(&mut d)?;
         expect_count("surface loads (work held over)", account.surface_ahead.len(), self.account.surface_ahead.len())?;
+        expect_count("drives (work held over)", account.drive_ahead.len(), self.account.drive_ahead.len())?;
         let n_failures = d.count()?;
         let mut failures = Vec::with_capacity(n_failures);
         for _ in 0..n_failures {

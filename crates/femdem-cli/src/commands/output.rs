@@ -73,7 +73,7 @@ pub struct Recorded {
 }
 
 /// The columns of `history.csv`: energies and failure counts, each drive's
-/// force and displacement, each surface load's force and work, the load–strain pair
+/// force, displacement and work, each surface load's force and work, the load–strain pair
 /// when asked for, and each probe's twelve columns.
 fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
     let mut columns: Vec<String> = ["time", "step"]
@@ -83,7 +83,7 @@ fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
         .map(|s| s.to_string())
         .collect();
     for d in &solver.loads.drives {
-        columns.extend(["fx", "fy", "fz", "ux", "uy", "uz"].map(|c| format!("{}_{c}", d.name)));
+        columns.extend(["fx", "fy", "fz", "ux", "uy", "uz", "work"].map(|c| format!("{}_{c}", d.name)));
     }
     for s in &solver.loads.surfaces {
         columns.extend(["fx", "fy", "fz", "work"].map(|c| format!("{}_{c}", s.name)));
@@ -233,8 +233,8 @@ impl Output {
             r.failures.mixed as f64,
             r.failures.collapsed as f64,
         ];
-        for (f, u) in r.drive_forces.iter().zip(&r.drive_displacements) {
-            row.extend([f.x, f.y, f.z, u.x, u.y, u.z]);
+        for ((f, u), w) in r.drive_forces.iter().zip(&r.drive_displacements).zip(&r.drive_work) {
+            row.extend([f.x, f.y, f.z, u.x, u.y, u.z, *w]);
         }
         for (f, w) in r.surface_forces.iter().zip(&r.surface_work) {
             row.extend([f.x, f.y, f.z, *w]);

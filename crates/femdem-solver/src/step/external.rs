@@ -24,6 +24,10 @@ pub(super) struct External {
     load_forces: Vec<Vec<(u32, Vec3)>>,
     /// Each surface load's power against `v_{n−½}`, `Σ f_n · v_{n−½}`, W.
     load_back: Vec<Real>,
+    /// Each drive's reaction work over the two halves of the step, J:
+    /// `(½ Δt Σ r · v_{n−½}, ½ Δt Σ r · v_{n+½})` (set by
+    /// [`External::evaluate`]; they sum to the totals it returns).
+    pub drive_halves: Vec<(Real, Real)>,
     /// Each drive's target velocity at `t_n + Δt/2`, m/s.
     pub targets: Vec<Vec3>,
     /// Whether each drive prescribes `v_{n+½}` in this step
@@ -54,6 +58,7 @@ impl External {
             f_surface: vec![Vec3::zeros(); model.num_nodes()],
             load_forces: vec![Vec::new(); loads.surfaces.len()],
             load_back: vec![0.0; loads.surfaces.len()],
+            drive_halves: vec![(0.0, 0.0); loads.drives.len()],
             targets: vec![Vec3::zeros(); loads.drives.len()],
             active: vec![true; loads.drives.len()],
         })
@@ -120,6 +125,7 @@ impl External {
             self.active[d] = active;
             let mut total = Vec3::zeros();
             let mut u = Vec3::zeros();
+            let (mut back_d, mut ahead_d) = (0.0, 0.0);
             for &node in &drive.nodes {
                 let i = node as usize;
                 u += state.x[i] - model.x0[i];
@@ -135,11 +141,14 @@ impl External {
                     if self.prescribed[i][c] == d as u16 {
                         let r = model.mass[i] * (target[c] - state.v[i][c]) / dt - f[c];
                         total[c] += r;
-                        back += 0.5 * dt * r * state.v[i][c];
-                        ahead += 0.5 * dt * r * target[c];
+                        back_d += 0.5 * dt * r * state.v[i][c];
+                        ahead_d += 0.5 * dt * r * target[c];
                     }
                 }
             }
+            back += back_d;
+            ahead += ahead_d;
+            self.drive_halves[d] = (back_d, ahead_d);
             record.drive_forces[d] = total;
             record.drive_displacements[d] = u / drive.nodes.len().max(1) as Real;
         }

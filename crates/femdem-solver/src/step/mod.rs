@@ -175,6 +175,7 @@ impl Solver {
         let record = StepRecord {
             drive_forces: vec![Vec3::zeros(); loads.drives.len()],
             drive_displacements: vec![Vec3::zeros(); loads.drives.len()],
+            drive_work: vec![0.0; loads.drives.len()],
             surface_forces: vec![Vec3::zeros(); loads.surfaces.len()],
             surface_work: vec![0.0; loads.surfaces.len()],
             ..StepRecord::default()
@@ -182,7 +183,11 @@ impl Solver {
         Ok(Solver {
             v_before: if viscous { vec![Vec3::zeros(); n] } else { Vec::new() },
             floor: energy_floor(&model),
-            account: Account { surface_ahead: vec![0.0; loads.surfaces.len()], ..Account::default() },
+            account: Account {
+                surface_ahead: vec![0.0; loads.surfaces.len()],
+                drive_ahead: vec![0.0; loads.drives.len()],
+                ..Account::default()
+            },
             workspace: Workspace::new(&model),
             update: Update::new(n),
             model,
@@ -315,6 +320,10 @@ impl Solver {
         for (k, (back, ahead)) in surface.enumerate() {
             self.record.surface_work[k] += self.account.surface_ahead[k] + 0.5 * dt * back;
             self.account.surface_ahead[k] = 0.5 * dt * ahead;
+        }
+        for (d, &(back, ahead)) in self.external.drive_halves.iter().enumerate() {
+            self.record.drive_work[d] += self.account.drive_ahead[d] + back;
+            self.account.drive_ahead[d] = ahead;
         }
         if let Some(contact) = &mut self.contact {
             contact.book_work(&self.state.v, dt);

@@ -52,13 +52,20 @@ pub struct StepRecord {
     /// Mean displacement `x_n − x_0` of each drive's nodes, m (Δa of
     /// Eq. 22 for a platen).
     pub drive_displacements: Vec<Vec3>,
+    /// Work done by each drive's reaction from the start to `t_n`, J,
+    /// booked as the external work is (the trapezoidal rule centred on
+    /// `t_n`, module documentation of `step`): `Σ r · v` over the drive's
+    /// prescribed components, half steps against `v_{n−½}` and the target
+    /// `v_{n+½}`. Zero while a drive has not started, and at a static start
+    /// (a drive held from the start cannot be displaced).
+    pub drive_work: Vec<Real>,
     /// Total force of each surface load (in [`crate::Loads::surfaces`]
     /// order), N.
     pub surface_forces: Vec<Vec3>,
     /// Work done by each surface load from the start to `t_n`, J, booked
     /// as the external work is (the trapezoidal rule centred on `t_n`,
-    /// module documentation of `step`): over all surface loads it is the
-    /// external work less gravity's and the drives'. After a static start
+    /// module documentation of `step`): with the drives' work
+    /// ([`StepRecord::drive_work`]) it is the external work less gravity's. After a static start
     /// ([`crate::Solver::start_displaced`]) each starts at its Clapeyron
     /// share `½ f_k · u` of the stored energy that the external work
     /// starts at, so the sum agrees with it as far as the static state is

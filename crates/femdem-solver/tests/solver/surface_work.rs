@@ -1,5 +1,6 @@
-//! Each surface load's work (`StepRecord::surface_work`), booked as the
-//! external work is (the trapezoidal rule centred on `t_n`).
+//! Each surface load's work (`StepRecord::surface_work`) and each drive's
+//! (`StepRecord::drive_work`), booked as the external work is (the
+//! trapezoidal rule centred on `t_n`).
 //!
 //! - Over all surface loads it is the external work when nothing else does
 //!   work (no gravity, no drives; a fixed support does none), to
@@ -18,12 +19,17 @@
 //!   the state is the slowly pressed column's.
 //! - A solver restored from a snapshot continues the loads' work bit for
 //!   bit.
+//! - With a drive pressing the top and a pressure on a side, the drive's
+//!   work and the load's add up to the external work, to round-off, at
+//!   every step; pressed slowly, the drive's work is `½ F δ` of its
+//!   reaction `F` and its prescribed displacement `δ`, to the same ramp
+//!   bound; and a restored solver continues it bit for bit.
 
 use crate::common::{box_mesh, model, rock, solver};
 use femdem_core::Vec3;
 use femdem_material::Law;
 use femdem_solver::select::{NodeSelection, group_faces, select_nodes};
-use femdem_solver::{Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, Want};
+use femdem_solver::{Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want};
 
 /// A 10 × 10 × 40 mm column fixed at its base, pressed on its top by `p`
 /// and on its `xmax` side by `p_side`, both ramped over `periods` periods
@@ -151,4 +157,100 @@ fn a_static_start_gives_each_load_its_share_of_the_stored_energy() {
     let r = b.step(Want { energy: true, stress: false });
     let (after, total) = (r.surface_work.iter().sum::<f64>(), r.energies.external_work);
     assert!((after - sum - (total - stored)).abs() <= 1e-12 * stored, "{after:e} {sum:e} {total:e} {stored:e}");
+}
+
+/// The column of [`column`] with its top driven down at `speed` (m/s, z
+/// only, ramped over `periods` periods of its first axial mode) instead of
+/// pressed, and `p_side` on its `xmax` side; returns the solver and the
+/// ramp time.
+fn driven_column(speed: f64, p_side: f64, periods: f64) -> (Solver, f64) {
+    let (w, l) = (0.01, 0.04);
+    let mesh = box_mesh([0.0; 3], [w, w, l], 0.005, 0.1, false);
+    let mat = rock(0.0);
+    let (jointed, m) = model(&mesh, Law::NeoHookean, mat, 0.0);
+    let t_ramp = periods * 4.0 * l / (mat.young() / mat.density()).sqrt();
+    let ramp = Ramp { ramp_time: t_ramp, stop_time: None };
+    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
+    let loads = Loads {
+        fixed: vec![Fixed { nodes: sel("zmin"), components: [true; 3] }],
+        drives: vec![VelocityDrive {
+            name: "press".into(),
+            nodes: sel("zmax"),
+            velocity: Vec3::new(0.0, 0.0, -speed),
+            components: [false, false, true],
+            ramp,
+            start_time: None,
+        }],
+        surfaces: vec![SurfaceLoad {
+            name: "side".into(),
+            faces: group_faces(&jointed, "xmax").unwrap(),
+            kind: SurfaceKind::Pressure(p_side),
+            ramp,
+        }],
+        ..Loads::default()
+    };
+    (solver(m, loads, 0.9), t_ramp)
+}
+
+#[test]
+fn a_drive_and_a_load_add_up_to_the_external_work() {
+    let (mut s, t_ramp) = driven_column(0.5, 3e6, 2.0);
+    let mut work = (0.0, 0.0);
+    while s.state.time < 2.0 * t_ramp {
+        let r = s.step(Want { energy: true, stress: false });
+        let sum = r.drive_work[0] + r.surface_work[0];
+        let external = r.energies.external_work;
+        assert!(
+            (sum - external).abs() <= 1e-12 * external.abs().max(1e-9),
+            "t = {:e}: the drive's and the load's work {sum:e} J, the external work {external:e} J",
+            r.time
+        );
+        work = (r.drive_work[0], r.surface_work[0]);
+    }
+    assert!(work.0 > 0.0 && work.1 > 0.0, "the drive and the pressure both do work on the column: {work:?} J");
+}
+
+#[test]
+fn a_slowly_driven_column_takes_half_f_delta_from_its_drive() {
+    // Driven at a speed that rises linearly over 20 periods: the top moves
+    // by `v t² / (2 T_ramp)`, a start smoother than the pressed column's
+    // force ramp, so the same bound on the oscillation holds; the column's
+    // kinetic energy is about 10⁻⁴ of what it stores.
+    let periods = 20.0;
+    let (mut s, t_ramp) = driven_column(0.05, 0.0, periods);
+    let (mut work, mut force, mut delta) = (0.0, 0.0, 0.0);
+    while s.state.time < t_ramp {
+        let r = s.step(Want::default());
+        (work, force, delta) = (r.drive_work[0], r.drive_forces[0].z, r.drive_displacements[0].z);
+    }
+    let spring = 0.5 * force * delta;
+    let bound = 1.0 / (std::f64::consts::PI * periods);
+    let error = (work - spring).abs() / spring;
+    eprintln!("drive: work {work:e} J, ½ F δ {spring:e} J, {:.3}% apart", 100.0 * error);
+    assert!(spring > 0.0, "the drive pushes down and moves down: F = {force:e} N, δ = {delta:e} m");
+    assert!(
+        error < bound,
+        "the drive's work {work:e} J, ½ F δ = {spring:e} J (F = {force:e} N, δ = {delta:e} m): {:.2}% apart, \
+         the ramp's oscillation up to {:.2}%",
+        100.0 * error,
+        100.0 * bound
+    );
+}
+
+#[test]
+fn a_restored_solver_continues_the_drives_work_bit_for_bit() {
+    let (mut a, _) = driven_column(0.5, 3e6, 2.0);
+    for _ in 0..150 {
+        a.step(Want::default());
+    }
+    let snap = a.snapshot();
+    let (mut b, _) = driven_column(0.5, 3e6, 2.0);
+    b.restore(&snap).unwrap();
+    for _ in 0..150 {
+        a.step(Want::default());
+        b.step(Want::default());
+    }
+    assert!(a.record().drive_work[0] > 0.0, "{:?}", a.record().drive_work);
+    assert_eq!(a.record().drive_work, b.record().drive_work);
+    assert_eq!(a.record().surface_work, b.record().surface_work);
 }

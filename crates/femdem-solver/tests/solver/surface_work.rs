@@ -104,15 +104,24 @@ fn a_slowly_pressed_column_takes_half_f_delta_from_its_load() {
         (work, force) = (r.surface_work[0], r.surface_forces[0].z);
         delta = mean_top_z(&s);
     }
+    assert_spring_work("the load", work, force, delta, periods);
+}
+
+/// Asserts that `who`'s `work` (J) is a linear spring's `½ F δ` within the
+/// upper envelope `T / (π T_ramp)` of a linear ramp's oscillation, the
+/// ramp lasting `periods` periods `T` of the first mode.
+fn assert_spring_work(who: &str, work: f64, force: f64, delta: f64, periods: f64) {
     let spring = 0.5 * force * delta;
-    let expected_error = 1.0 / (std::f64::consts::PI * periods);
+    let bound = 1.0 / (std::f64::consts::PI * periods);
     let error = (work - spring).abs() / spring;
+    eprintln!("{who}: work {work:e} J, ½ F δ {spring:e} J, {:.3}% apart", 100.0 * error);
+    assert!(spring > 0.0, "{who} pushes and moves the same way: F = {force:e} N, δ = {delta:e} m");
     assert!(
-        error < expected_error,
-        "the load's work {work:e} J, ½ F δ = {spring:e} J (F = {force:e} N, δ = {delta:e} m): {:.2}% apart, \
+        error < bound,
+        "{who}'s work {work:e} J, ½ F δ = {spring:e} J (F = {force:e} N, δ = {delta:e} m): {:.2}% apart, \
          the ramp's oscillation up to {:.2}%",
         100.0 * error,
-        100.0 * expected_error
+        100.0 * bound
     );
 }
 
@@ -223,18 +232,7 @@ fn a_slowly_driven_column_takes_half_f_delta_from_its_drive() {
         let r = s.step(Want::default());
         (work, force, delta) = (r.drive_work[0], r.drive_forces[0].z, r.drive_displacements[0].z);
     }
-    let spring = 0.5 * force * delta;
-    let bound = 1.0 / (std::f64::consts::PI * periods);
-    let error = (work - spring).abs() / spring;
-    eprintln!("drive: work {work:e} J, ½ F δ {spring:e} J, {:.3}% apart", 100.0 * error);
-    assert!(spring > 0.0, "the drive pushes down and moves down: F = {force:e} N, δ = {delta:e} m");
-    assert!(
-        error < bound,
-        "the drive's work {work:e} J, ½ F δ = {spring:e} J (F = {force:e} N, δ = {delta:e} m): {:.2}% apart, \
-         the ramp's oscillation up to {:.2}%",
-        100.0 * error,
-        100.0 * bound
-    );
+    assert_spring_work("the drive", work, force, delta, periods);
 }
 
 #[test]

@@ -8,7 +8,7 @@
 //! viscous materials `v_{n−3/2}` too, which the dissipation reads) and every
 //! joint's history (damage at each integration point, last opening, slip
 //! and tractions, softened flags, work, failed flag); the energy account
-//! with the half step of work it holds over (in all and per surface load) and its watch
+//! with the half step of work it holds over (in all, per surface load and per drive) and its watch
 //! (`crate::account`);
 //! the failure record; the last [`StepRecord`] (it carries the failure
 //! counts); the contact pass's state (contactable tets, cracked vertices

@@ -18,8 +18,9 @@
 //! profile's by default), s: how the loading rate moves the bands.
 //! `--mesh unstructured` (or `lattice`) runs the polyaxial tests on that
 //! mesh only (both by default): the lattice runs are the mesh-bias
-//! comparison, and in the paper profile they fail all through the cube and
-//! cost the most. `--weibull M` gives the polyaxial runs strength
+//! comparison, and with a fast ramp (`--ramp 0.001`) in the paper profile
+//! they fail all through the cube and cost the most. With `--mesh lattice`
+//! no polyaxial check gates (they are the unstructured mesh's). `--weibull M` gives the polyaxial runs strength
 //! heterogeneity: every joint's f_t and c times independent Weibull factors
 //! of mean 1 and modulus M (`[heterogeneity]` of the case format).
 //!

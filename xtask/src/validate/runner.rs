@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
@@ -23,10 +23,38 @@ const ELAPSED_EVERY: Duration = Duration::from_secs(5);
 #[derive(Debug, Clone)]
 pub struct Femdem {
     bin: PathBuf,
-    /// Set when validate itself is asked to stop (SIGINT, SIGTERM, SIGHUP):
-    /// the running femdem is then asked in turn, so that it writes its
-    /// checkpoint and ends instead of running on without validate.
-    stop: Arc<AtomicBool>,
+    stop: Arc<Stop>,
+}
+
+/// What validate does when asked to stop (SIGINT, SIGTERM, SIGHUP): while
+/// a femdem runs, it asks that run in turn (SIGTERM), so that it writes
+/// its checkpoint and ends instead of running on without validate, and
+/// starts no other; with no run going, or at a second signal, it exits at
+/// once (status 130).
+#[derive(Debug, Default)]
+struct Stop {
+    /// A signal has come.
+    asked: AtomicBool,
+    /// How many signals have come.
+    signals: AtomicU32,
+    /// A femdem run is going.
+    running: AtomicBool,
+}
+
+impl Stop {
+    fn asked(&self) -> bool {
+        self.asked.load(Ordering::SeqCst)
+    }
+
+    /// The signal handler's work.
+    fn signal(&self) {
+        let n = self.signals.fetch_add(1, Ordering::SeqCst) + 1;
+        self.asked.store(true, Ordering::SeqCst);
+        if n >= 2 || !self.running.load(Ordering::SeqCst) {
+            eprintln!("validate: interrupted");
+            std::process::exit(130);
+        }
+    }
 }
 
 /// What one run left behind.
@@ -124,12 +152,12 @@ impl Femdem {
     /// environment names a prebuilt binary in `FEMDEM_BIN` (a machine
     /// without cargo, a cluster node), returns that one unbuilt.
     pub fn build() -> Result<Femdem> {
-        let stop = Arc::new(AtomicBool::new(false));
+        let stop = Arc::new(Stop::default());
         {
             let stop = stop.clone();
             // A second handler cannot be installed; then a signal ends
             // validate as usual (and femdem only if sent to its group too).
-            let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
+            let _ = ctrlc::set_handler(move || stop.signal());
         }
         if let Some(bin) = std::env::var_os("FEMDEM_BIN") {
             let bin = PathBuf::from(bin);
@@ -152,7 +180,7 @@ impl Femdem {
     /// A `femdem` at `bin` (for tests).
     #[cfg(test)]
     pub fn at(bin: PathBuf) -> Femdem {
-        Femdem { bin, stop: Arc::new(AtomicBool::new(false)) }
+        Femdem { bin, stop: Arc::new(Stop::default()) }
     }
 
     /// Writes `case` (with checkpoints every [`CHECKPOINT_WALL`] s, see
@@ -171,7 +199,7 @@ impl Femdem {
     ///   SIGTERM, writes its checkpoint and ends, and this returns an error
     ///   that says to run the same command again to resume.
     pub fn run(&self, dir: &Path, stem: &str, case: &str) -> Result<RunOutput> {
-        if self.stop.load(Ordering::SeqCst) {
+        if self.stop.asked() {
             bail!("validate was asked to stop before femdem run in {}", dir.display());
         }
         let case = with_checkpoints(case)?;
@@ -200,18 +228,20 @@ impl Femdem {
             command.arg("--overwrite");
             std::fs::File::create(&files.log)?
         };
-        let child = command
-            .stdout(log.try_clone()?)
-            .stderr(log)
-            .spawn()
-            .with_context(|| format!("starting {}", self.bin.display()))?;
-        let (status, wall) = wait_counting(child, &files, before, resumes, &self.stop)?;
-        if self.stop.load(Ordering::SeqCst) {
-            bail!(
-                "validate was asked to stop: femdem run {} was stopped ({status}) after writing its checkpoint; \
-                 run the same command again to resume",
-                files.case.display()
-            );
+        self.stop.running.store(true, Ordering::SeqCst);
+        let child = command.stdout(log.try_clone()?).stderr(log).spawn();
+        let waited = child
+            .with_context(|| format!("starting {}", self.bin.display()))
+            .and_then(|child| wait_counting(child, &files, before, resumes, &self.stop.asked));
+        self.stop.running.store(false, Ordering::SeqCst);
+        let (status, wall) = waited?;
+        if self.stop.asked() && !status.success() {
+            let then = if has_checkpoint(&files.out) {
+                "its latest checkpoint is kept; run the same command again to resume"
+            } else {
+                "it left no checkpoint; the same command will start it over"
+            };
+            bail!("validate was asked to stop: femdem run {} ended ({status}); {then}", files.case.display());
         }
         if !status.success() {
             let hint = if resume {
@@ -262,16 +292,19 @@ fn wait_counting(
     }
 }
 
-/// Sends `child` SIGTERM (`kill -TERM`, which femdem answers by writing its
-/// checkpoint); where there is no such signal, kills it.
+/// Sends `child` SIGTERM (the shell's `kill -TERM`, which femdem answers by
+/// writing its checkpoint), or kills it if that cannot be sent. Elsewhere
+/// than on Unix nothing is sent: a console's Ctrl-C reaches femdem itself.
 fn terminate(child: &mut Child) {
     #[cfg(unix)]
-    let sent = Command::new("kill").arg("-TERM").arg(child.id().to_string()).status().is_ok_and(|s| s.success());
-    #[cfg(not(unix))]
-    let sent = false;
-    if !sent {
-        let _ = child.kill();
+    {
+        let command = format!("kill -TERM {}", child.id());
+        if !Command::new("sh").arg("-c").arg(command).status().is_ok_and(|s| s.success()) {
+            let _ = child.kill();
+        }
     }
+    #[cfg(not(unix))]
+    let _ = child;
 }
 
 #[cfg(all(test, unix))]
@@ -376,31 +409,39 @@ mod tests {
     fn a_stopped_validation_stops_its_run_which_then_resumes() {
         let dir = scratch("stop");
         // A femdem that runs until SIGTERM, then leaves a checkpoint and
-        // exits as femdem does when stopped; resumed, it finishes at once.
+        // exits as femdem does when stopped (status 1); resumed, it
+        // finishes at once. It says when its handler is in place (`ready`).
         let bin = dir.join("femdem");
         let script = format!(
             "#!/bin/sh\necho \"$@\" >> {calls}\nout=$4\nmkdir -p \"$out\"\n\
              if [ \"$5\" = --resume ]; then exit 0; fi\n\
-             trap 'touch \"$out/checkpoint_000000000010.femdem-ckpt\"; echo stopped > {term}; exit 0' TERM\n\
-             i=0\nwhile [ $i -lt 600 ]; do sleep 0.05; i=$((i+1)); done\nexit 0\n",
+             trap 'touch \"$out/checkpoint_000000000010.femdem-ckpt\"; echo stopped > {term}; exit 1' TERM\n\
+             touch {ready}\ni=0\nwhile [ $i -lt 600 ]; do sleep 0.05; i=$((i+1)); done\nexit 0\n",
             calls = dir.join("calls").display(),
             term = dir.join("term").display(),
+            ready = dir.join("ready").display(),
         );
         std::fs::write(&bin, script).unwrap();
         std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
         let femdem = Femdem::at(bin);
         let stop = femdem.stop.clone();
+        let ready = dir.join("ready");
         let asker = std::thread::spawn(move || {
-            std::thread::sleep(Duration::from_millis(500));
-            stop.store(true, Ordering::SeqCst);
+            let waiting = Instant::now();
+            while !ready.exists() && waiting.elapsed() < Duration::from_secs(20) {
+                std::thread::sleep(Duration::from_millis(20));
+            }
+            assert!(stop.running.load(Ordering::SeqCst), "the run is marked as going");
+            stop.asked.store(true, Ordering::SeqCst);
         });
         let start = Instant::now();
         let run_dir = dir.join("v1");
         let err = femdem.run(&run_dir, "case", CASE).unwrap_err().to_string();
         asker.join().unwrap();
-        assert!(err.contains("asked to stop") && err.contains("run the same command again"), "{err}");
+        assert!(err.contains("asked to stop") && err.contains("run the same command again to resume"), "{err}");
+        assert!(!femdem.stop.running.load(Ordering::SeqCst));
         assert!(dir.join("term").exists(), "femdem was sent SIGTERM");
-        assert!(start.elapsed() < Duration::from_secs(20), "the run was not left running to its end");
+        assert!(start.elapsed() < Duration::from_secs(25), "the run was not left running to its end");
         assert!(!run_dir.join("finished").exists() && has_checkpoint(&run_dir.join("out")));
         let err = femdem.run(&dir.join("v2"), "case", CASE).unwrap_err().to_string();
         assert!(err.contains("asked to stop"), "no further run starts: {err}");

@@ -194,7 +194,8 @@ pub enum LoadSpec {
     Fixed {
         /// Name in the history: when given, the support's reaction force
         /// and mean displacement are recorded as `<name>_fx … <name>_uz`
-        /// (and its work, zero, as `<name>_work`)
+        /// (and its work as `<name>_work`: zero when held from the start;
+        /// with `start_time`, the work of stopping its nodes when it starts)
         /// (it is then a velocity drive of zero velocity, and its nodes may
         /// not share a held component with another support or drive).
         name: Option<String>,

@@ -248,7 +248,8 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                     // A named support records its reaction, and one that
                     // starts later switches on: a drive holding the
                     // components at zero velocity moves its nodes as the
-                    // constraint does (v = 0 on them, no work done).
+                    // constraint does (v = 0 on them; no work done once held,
+                    // the work of stopping them in the step it starts).
                     _ => loads.drives.push(VelocityDrive {
                         name: name.clone().unwrap_or_else(|| format!("fixed{i}")),
                         nodes,
@@ -304,6 +305,15 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             return Err(at(format!(
                 "a load or platen named `{dup}` already exists (names label the history's columns; give `name` a new value)"
             )));
+        }
+        // `<name>_work` of a load named `external` would repeat the energy
+        // column `external_work`.
+        if seen.contains("external") {
+            return Err(at(
+                "a load or platen named `external`: its `external_work` column would repeat the external work's \
+                 (names label the history's columns; give `name` another value)"
+                    .to_string(),
+            ));
         }
     }
     Ok(loads)

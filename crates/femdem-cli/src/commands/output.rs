@@ -161,6 +161,12 @@ impl Output {
         let options = VtuOptions::default().with_compression(compression);
         let fracture_stem = format!("{stem}_fractures");
         let columns = history_columns(solver, &recorded);
+        let mut seen = std::collections::HashSet::new();
+        if let Some(dup) = columns.iter().find(|c| !seen.insert(c.as_str())) {
+            bail!(
+                "the history would have two columns named `{dup}`: rename the load, platen or probe that makes the second"
+            );
+        }
         let names: Vec<&str> = columns.iter().map(String::as_str).collect();
         let (history_path, failures_path) = (dir.join("history.csv"), dir.join("failures.csv"));
         let (series, fractures, history, failures) = match begin {

@@ -234,6 +234,7 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("negative_ramp", ":55:", "`ramp_time` must be finite and ≥ 0 s"),
         ("nan_velocity", ":55:", "`velocity` must be finite"),
         ("duplicate_load_name", ":72:", "a load or platen named `dup` already exists"),
+        ("load_named_external", ":55:", "a load or platen named `external`: its `external_work` column"),
         ("empty_selector", ":55:", "`nodes` has no `group`, `region` or `box`"),
         ("zero_output_interval", ":68:", "output: `interval` must be finite and > 0 s"),
         ("unknown_output_field", ":68:", "output: `fields`: `strain` is not one of"),
@@ -277,6 +278,16 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
         ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"].iter().map(|c| last[col(c)]).sum();
     assert!(broken > 0.0);
     assert!(last[col("balance")].abs() < 0.02 * last[col("external_work")], "balance {}", last[col("balance")]);
+    // Each platen's work follows its displacement columns, and with no
+    // gravity and no surface load the two platens do all the external work
+    // (to round-off: the same terms, summed per platen).
+    for p in ["platen_top", "platen_bottom"] {
+        assert_eq!(col(&format!("{p}_work")), col(&format!("{p}_uz")) + 1);
+        assert!(last[col(&format!("{p}_work"))] > 0.0, "{p} presses the disc");
+    }
+    let platens = last[col("platen_top_work")] + last[col("platen_bottom_work")];
+    let external = last[col("external_work")];
+    assert!((platens - external).abs() <= 1e-9 * external, "platens {platens} J, external {external} J");
     // The final frame is the last row's time.
     let pvd = std::fs::read_to_string(out.join("small_brazilian.pvd")).unwrap();
     let t: f64 = pvd.split("timestep=\"").last().unwrap().split('"').next().unwrap().parse().unwrap();

@@ -87,12 +87,17 @@ struct Outcome {
 
 /// The work of the face loads at the end of `h`, summed by the axis their
 /// group's side names (`xmin`/`xmax`, `ymin`/`ymax`, `bottom`/`top`, the
-/// extrusion's z faces); `None` when no load's work is recorded.
+/// extrusion's z faces); `None` when no load's work is recorded. A drive's
+/// work (a `<name>_work` whose name also has `<name>_uz`) is not a face
+/// load's and is left out.
 fn work_by_axis(h: &Table) -> Result<Option<[f64; 3]>> {
     let mut w = [0.0; 3];
     let mut any = false;
     for name in h.names() {
         let Some(group) = name.strip_suffix("_work") else { continue };
+        if h.names().iter().any(|c| c.strip_suffix("_uz") == Some(group)) {
+            continue;
+        }
         let side = group.rsplit('.').next().unwrap_or(group);
         let axis = match side {
             "xmin" | "xmax" => 0,
@@ -398,12 +403,12 @@ mod tests {
         std::fs::write(
             &path,
             "# case: c.toml\ntime,external_work,block.xmin_fx,block.xmin_work,block.xmax_work,block.ymin_work,block.ymax_work,\
-             block.bottom_work,block.top_work,platen_work\n\
-             0,0,0,0,0,0,0,0,0,0\n1,21,5,1,2,3,4,5,6,100\n",
+             block.bottom_work,block.top_work,platen_work,held.xmin_uz,held.xmin_work\n\
+             0,0,0,0,0,0,0,0,0,0,0,0\n1,21,5,1,2,3,4,5,6,100,0,50\n",
         )
         .unwrap();
         let w = work_by_axis(&Table::read(&path).unwrap()).unwrap();
-        assert_eq!(w, Some([3.0, 7.0, 11.0]), "x, y, z faces; a column of another side is not counted");
+        assert_eq!(w, Some([3.0, 7.0, 11.0]), "x, y, z faces; another side's column or a drive's is not counted");
         std::fs::write(&path, "time,external_work,block.xmin_fx\n0,0,0\n").unwrap();
         assert_eq!(work_by_axis(&Table::read(&path).unwrap()).unwrap(), None);
         std::fs::remove_dir_all(&dir).unwrap();

@@ -26,7 +26,7 @@ pub(super) struct External {
     load_back: Vec<Real>,
     /// Each drive's reaction work over the two halves of the step, J:
     /// `(½ Δt Σ r · v_{n−½}, ½ Δt Σ r · v_{n+½})` (set by
-    /// [`External::evaluate`]; they sum to the totals it returns).
+    /// [`External::evaluate`]).
     pub drive_halves: Vec<(Real, Real)>,
     /// Each drive's target velocity at `t_n + Δt/2`, m/s.
     pub targets: Vec<Vec3>,
@@ -81,10 +81,9 @@ impl External {
     /// Evaluates the surface loads at `t_n = state.time` and the drives'
     /// targets at `t_n + Δt/2`, and records the load totals, the drives'
     /// reactions (given the internal and contact forces of this step; zero
-    /// for a drive not yet started) and their mean displacements. Returns
-    /// the work the reactions do over the step in its two halves, J: `½ Δt Σ r · v_{n−½}` (the half that
-    /// belongs to `t_n`) and `½ Δt Σ r · v_{n+½}` (the half that belongs to
-    /// `t_{n+1}`; `v_{n+½}` of a driven component is its target).
+    /// for a drive not yet started) and their mean displacements, and keeps
+    /// each drive's reaction work over the step's two halves
+    /// ([`External::drive_halves`]; their sums: [`External::reaction_halves`]).
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate(
         &mut self,
@@ -95,7 +94,7 @@ impl External {
         contact: Option<&[Vec3]>,
         dt: Real,
         record: &mut StepRecord,
-    ) -> (Real, Real) {
+    ) {
         let t = state.time;
         // Surface loads at t_n on the current geometry, in a fixed order.
         for &n in &self.surface_nodes {
@@ -117,7 +116,6 @@ impl External {
         }
         // Reactions of the drives (sequential, small).
         let t_half = t + 0.5 * dt;
-        let (mut back, mut ahead) = (0.0, 0.0);
         for (d, drive) in loads.drives.iter().enumerate() {
             let target = drive.velocity * drive.ramp.factor(t_half);
             self.targets[d] = target;
@@ -146,12 +144,17 @@ impl External {
                     }
                 }
             }
-            back += back_d;
-            ahead += ahead_d;
             self.drive_halves[d] = (back_d, ahead_d);
             record.drive_forces[d] = total;
             record.drive_displacements[d] = u / drive.nodes.len().max(1) as Real;
         }
-        (back, ahead)
+    }
+
+    /// The work all the drives' reactions do over the step in its two
+    /// halves, J: `½ Δt Σ r · v_{n−½}` (the half that belongs to `t_n`) and
+    /// `½ Δt Σ r · v_{n+½}` (the half that belongs to `t_{n+1}`; `v_{n+½}`
+    /// of a driven component is its target), summed in drive order.
+    pub fn reaction_halves(&self) -> (Real, Real) {
+        self.drive_halves.iter().fold((0.0, 0.0), |(b, a), &(back, ahead)| (b + back, a + ahead))
     }
 }

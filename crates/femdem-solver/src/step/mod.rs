@@ -290,7 +290,7 @@ impl Solver {
         }
         let contact_forces = self.contact.as_ref().map(Contact::total_force);
         // 4. External forces and reactions.
-        let (reaction_back, reaction_ahead) = self.external.evaluate(
+        self.external.evaluate(
             &self.model,
             &self.loads,
             &self.state,
@@ -314,6 +314,7 @@ impl Solver {
         // 6. The energy account (centred on t_n: module documentation) and
         // the record.
         let e = &mut self.energies;
+        let (reaction_back, reaction_ahead) = self.external.reaction_halves();
         e.external_work += self.account.ahead + 0.5 * dt * powers.back + reaction_back;
         self.account.ahead = 0.5 * dt * powers.ahead + reaction_ahead;
         let surface = self.external.surface_powers(&self.state.v);

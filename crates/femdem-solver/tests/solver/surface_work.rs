@@ -28,8 +28,9 @@
 use crate::common::{box_mesh, model, rock, solver};
 use femdem_core::Vec3;
 use femdem_material::Law;
+use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, group_faces, select_nodes};
-use femdem_solver::{Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want};
+use femdem_solver::{Fixed, Loads, Model, Ramp, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want};
 
 /// A 10 × 10 × 40 mm column fixed at its base, pressed on its top by `p`
 /// and on its `xmax` side by `p_side`, both ramped over `periods` periods
@@ -39,16 +40,26 @@ fn column(p: f64, p_side: f64, periods: f64) -> (Solver, Vec<[u32; 3]>, f64) {
     column_ramped(p, p_side, periods, false)
 }
 
-/// [`column`], its loads ramped or (`step`) at full value from the start.
-fn column_ramped(p: f64, p_side: f64, periods: f64, step: bool) -> (Solver, Vec<[u32; 3]>, f64) {
+/// The 10 × 10 × 40 mm jointed column of rock and the period of its first
+/// axial mode when fixed at one end, `4 l / c` (s).
+fn column_model() -> (JointedMesh, Model, f64) {
     let (w, l) = (0.01, 0.04);
     let mesh = box_mesh([0.0; 3], [w, w, l], 0.005, 0.1, false);
     let mat = rock(0.0);
     let (jointed, m) = model(&mesh, Law::NeoHookean, mat, 0.0);
-    // The first axial mode of a column fixed at one end: period 4 l / c.
-    let period = 4.0 * l / (mat.young() / mat.density()).sqrt();
+    (jointed, m, 4.0 * l / (mat.young() / mat.density()).sqrt())
+}
+
+/// The nodes of `group` of `jointed`.
+fn nodes(jointed: &JointedMesh, group: &str) -> Vec<u32> {
+    select_nodes(jointed, &NodeSelection { group: Some(group.into()), ..Default::default() }).unwrap()
+}
+
+/// [`column`], its loads ramped or (`step`) at full value from the start.
+fn column_ramped(p: f64, p_side: f64, periods: f64, step: bool) -> (Solver, Vec<[u32; 3]>, f64) {
+    let (jointed, m, period) = column_model();
     let t_ramp = periods * period;
-    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
+    let sel = |g: &str| nodes(&jointed, g);
     let ramp = if step { Ramp::STEP } else { Ramp { ramp_time: t_ramp, stop_time: None } };
     let load = |name: &str, group: &str, p: f64| SurfaceLoad {
         name: name.into(),
@@ -173,13 +184,10 @@ fn a_static_start_gives_each_load_its_share_of_the_stored_energy() {
 /// pressed, and `p_side` on its `xmax` side; returns the solver and the
 /// ramp time.
 fn driven_column(speed: f64, p_side: f64, periods: f64) -> (Solver, f64) {
-    let (w, l) = (0.01, 0.04);
-    let mesh = box_mesh([0.0; 3], [w, w, l], 0.005, 0.1, false);
-    let mat = rock(0.0);
-    let (jointed, m) = model(&mesh, Law::NeoHookean, mat, 0.0);
-    let t_ramp = periods * 4.0 * l / (mat.young() / mat.density()).sqrt();
+    let (jointed, m, period) = column_model();
+    let t_ramp = periods * period;
     let ramp = Ramp { ramp_time: t_ramp, stop_time: None };
-    let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
+    let sel = |g: &str| nodes(&jointed, g);
     let loads = Loads {
         fixed: vec![Fixed { nodes: sel("zmin"), components: [true; 3] }],
         drives: vec![VelocityDrive {

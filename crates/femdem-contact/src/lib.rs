@@ -101,10 +101,14 @@
 //! assert!((total_a + total_b).norm() <= 1e-12 * total_b.norm());
 //! ```
 
+mod bound;
 mod nbs;
 mod potential;
 mod separation;
+#[cfg(test)]
+mod test_pairs;
 
+pub use bound::{SLACK, contact_bound};
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};
 pub use separation::separated_by_face_plane;

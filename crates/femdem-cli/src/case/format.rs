@@ -107,6 +107,16 @@ pub struct ContactSpec {
     /// compression is ramped in (Eq. 18's `n_total`; default 10, 0: none).
     #[serde(default = "ten")]
     pub ramp_steps: u32,
+    /// Pairs whose contact forces are provably below `negligible · p · ℓ²`
+    /// (ℓ³ the smaller tet's volume: a contact pressure below
+    /// `negligible · p`) are not evaluated (default 1e-10; 0 evaluates every
+    /// candidate pair).
+    #[serde(default = "negligible")]
+    pub negligible: f64,
+}
+
+fn negligible() -> f64 {
+    femdem_solver::NEGLIGIBLE
 }
 
 fn ten() -> u32 {

@@ -384,7 +384,8 @@ pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result
 ///
 /// # Errors
 /// A located [`CaseError`] for a penalty that is not positive, a friction
-/// coefficient that is negative or not finite, a negative buffer, or an
+/// coefficient that is negative or not finite, a negative buffer, a
+/// `negligible` outside `[0, 1e-3)`, or an
 /// unknown region in `[[contact.pairs]]`.
 pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSettings>, CaseError> {
     let Some(c) = &case.case.contact else { return Ok(None) };
@@ -399,6 +400,9 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
     if !(spec.buffer.is_finite() && spec.buffer >= 0.0) {
         return Err(at(format!("buffer must be ≥ 0 m, got {}", spec.buffer)));
     }
+    if !(spec.negligible.is_finite() && (0.0..1e-3).contains(&spec.negligible)) {
+        return Err(at(format!("negligible must be in [0, 1e-3), got {}", spec.negligible)));
+    }
     let mut settings = ContactSettings {
         penalty: spec.penalty,
         surfaces: spec.surfaces,
@@ -407,6 +411,7 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         buffer: spec.buffer,
         ramp_steps: spec.ramp_steps,
         incremental: true,
+        negligible: spec.negligible,
     };
     for (i, p) in spec.pairs.iter().enumerate() {
         let pair = p.get_ref();

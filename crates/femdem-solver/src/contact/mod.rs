@@ -75,8 +75,8 @@ use rayon::prelude::*;
 use crate::model::{Model, RIGID};
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
-pub use settings::ContactSettings;
 use settings::FrictionTable;
+pub use settings::{ContactSettings, NEGLIGIBLE};
 use stars::Stars;
 
 /// The paper's `n_total` of Eq. 18: steps over which the contact force of
@@ -402,6 +402,7 @@ impl Contact {
         }
         let (friction, stick, ramp) = (&self.friction, &self.stick, &self.ramp);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
+        let negligible = self.settings.negligible;
         self.candidates
             .par_iter()
             .map(|&(a, b)| {
@@ -413,6 +414,7 @@ impl Contact {
                     v: [ta.map(|n| v[n as usize]), tb.map(|n| v[n as usize])],
                     volumes: [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume],
                     penalty,
+                    negligible,
                     mu: friction.get(model.tet_region[a as usize], model.tet_region[b as usize]),
                     ramp: ramp.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / n_total),
                     spring: stick.get(&key),

@@ -1,7 +1,7 @@
 //! One candidate pair of the contact pass: the normal potential force
 //! (Eq. 17), the Eq. 18 ramp, and Coulomb friction at the contact centre.
 
-use femdem_contact::tet_tet_contact;
+use femdem_contact::{contact_bound, tet_tet_contact};
 use femdem_core::{Mat3, Real, Vec3};
 
 /// What one pair in contact contributes.
@@ -91,6 +91,8 @@ pub(crate) struct PairInput<'a> {
     /// contact (a cube root per candidate was 5% of a fragmented step).
     pub volumes: [Real; 2],
     pub penalty: Real,
+    /// [`super::ContactSettings::negligible`].
+    pub negligible: Real,
     pub mu: Real,
     /// Eq. 18's `n_c / n_total` while the ramp lasts, else 1.
     pub ramp: Real,
@@ -106,7 +108,9 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
     Some([1.0 - l.x - l.y - l.z, l.x, l.y, l.z])
 }
 
-/// Evaluates one pair; `None` when the two tets do not overlap.
+/// Evaluates one pair; `None` when the two tets do not overlap, or when
+/// their forces are provably below `negligible · p · ℓ²`
+/// ([`super::ContactSettings::negligible`]).
 ///
 /// Normal force: Eq. 17 (`femdem_contact::tet_tet_contact`), times the
 /// Eq. 18 ramp factor `n_c / n_total` for a joint that failed in
@@ -140,6 +144,16 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let [pa, pb] = &input.x;
     if !boxes_overlap(pa, pb) {
         return None;
+    }
+    if input.negligible > 0.0 {
+        // Every force at most p · bound ≤ negligible · p · ℓ², ℓ³ = V: as
+        // cubes, with no cube root (`contact_bound` is infinite, and the
+        // pair evaluated, where it cannot bound).
+        let bound = contact_bound(pa, pb);
+        let (e, v) = (input.negligible, input.volumes[0].min(input.volumes[1]));
+        if bound * bound * bound <= e * e * e * v * v {
+            return None;
+        }
     }
     let contact = tet_tet_contact(pa, pb, input.penalty);
     let centre = contact.centre?;

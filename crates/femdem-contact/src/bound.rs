@@ -1,0 +1,253 @@
+//! An upper bound on a pair's Eq. 17 contact forces from the vertices of the
+//! two tets' overlap, cheap enough to decide before the clipping of
+//! [`tet_tet_contact`](crate::tet_tet_contact) whether the pair can carry a
+//! force worth computing.
+//!
+//! **The bound.** [`tet_tet_contact`](crate::tet_tet_contact) sums pieces
+//! `F_k = p A_k φ(P_k) n_k` over the parts of each tet's boundary inside
+//! the other (its module documentation), so every nodal force, a convex
+//! combination of piece forces, and the resultant are at most
+//!
+//! ```text
+//! Σ_k |F_k| = p ∫_{∂A∩B} φ_B dS + p ∫_{∂B∩A} φ_A dS
+//!           ≤ p S (max_{A∩B} φ_A + max_{A∩B} φ_B),
+//! ```
+//!
+//! `S` any bound on the area of `∂(A∩B)`, which contains both `∂A∩B` and
+//! `∂B∩A`. The overlap `A∩B` is a convex polytope: the intersection of the
+//! eight half-spaces `λ^A_i ≥ 0`, `λ^B_j ≥ 0`. Each of its vertices lies on
+//! three of the eight planes, so it is a node of one tet inside the other,
+//! or where an edge of one tet crosses a face plane of the other inside it:
+//! at most 8 + 2 · 6 · 4 points, found from the nodes' barycentric
+//! coordinates in the other tet by linear interpolation along the edges
+//! (`λ` is affine). Then
+//!
+//! * `S` is the surface area of the points' axis-aligned box: a convex body
+//!   inside a convex body has the smaller surface area;
+//! * `φ_B = 4 min_j λ^B_j ≤ 4 min_j max_{A∩B} λ^B_j`, and an affine `λ^B_j`
+//!   takes its largest value on the polytope at a vertex; the same for `A`.
+//!
+//! For tets that share a vertex across a fracture and overlap by `d` near
+//! it (the commonest candidate pair of a pre-existing fracture network,
+//! `docs/performance.md`), the bound is of order `p d³ / h`: third order in
+//! the overlap, where a face-to-face contact is of first order.
+//!
+//! **Rounding.** Each test of a point against a plane accepts values down to
+//! `−η` ([`SLACK`]), far beyond the rounding of the computed coordinates, so
+//! a point of the exact overlap is never dropped: more points only make the
+//! bound larger. No point at all (with that slack) means the tets are apart
+//! by more than rounding, and the clipping, whose every piece needs vertices
+//! with coordinates `≥ 0` in the other tet, produces no force: the tests
+//! check that the forces are then exactly zero, and below the bound
+//! otherwise.
+
+use femdem_core::tet::EDGES;
+use femdem_core::{Real, Vec3};
+
+use crate::potential::Barycentric;
+
+/// The slack `η` of the tests against a plane (barycentric coordinates
+/// are dimensionless): rounding of a computed `λ` is of the order of
+/// `10⁻¹⁶ X / h` for tets of size `h` at `X` from the origin, below `η` up
+/// to `X / h ≈ 10⁶`; the bound is also valid (only larger) with any larger
+/// slack.
+pub const SLACK: Real = 1e-9;
+
+/// An upper bound on `Σ_k |F_k| / p` (m²) over the pieces of the Eq. 17
+/// contact between tets `a` and `b` (node positions, positive orientation):
+/// every nodal force and the resultant of
+/// [`tet_tet_contact`](crate::tet_tet_contact)`(a, b, p)` are at most `p`
+/// times it. Zero when the tets are apart (then the forces are zero);
+/// infinite when a tet is flat or a coordinate is not finite (no bound).
+pub fn contact_bound(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
+    let (Some(in_b), Some(in_a)) = (Barycentric::new(b), Barycentric::new(a)) else {
+        return Real::INFINITY;
+    };
+    // λ^B at a's nodes, λ^A at b's nodes.
+    let la = a.map(|p| in_b.at(&p));
+    let lb = b.map(|p| in_a.at(&p));
+    let mut hull = Hull::EMPTY;
+    one_way(a, &la, false, &mut hull);
+    one_way(b, &lb, true, &mut hull);
+    hull.bound()
+}
+
+/// The box of the overlap's vertices and the largest barycentric
+/// coordinates in each tet over them.
+struct Hull {
+    lo: Vec3,
+    hi: Vec3,
+    /// `max λ^A_j` and `max λ^B_j` over the points.
+    max: [[Real; 4]; 2],
+    any: bool,
+}
+
+impl Hull {
+    const EMPTY: Hull = Hull {
+        lo: Vec3::new(Real::INFINITY, Real::INFINITY, Real::INFINITY),
+        hi: Vec3::new(Real::NEG_INFINITY, Real::NEG_INFINITY, Real::NEG_INFINITY),
+        max: [[Real::NEG_INFINITY; 4]; 2],
+        any: false,
+    };
+
+    /// Adds a point with coordinates `own` in its own tet and `other` in the
+    /// other (`swapped`: the own tet is `b`).
+    #[inline]
+    fn add(&mut self, p: Vec3, own: &[Real; 4], other: &[Real; 4], swapped: bool) {
+        self.any = true;
+        self.lo = self.lo.inf(&p);
+        self.hi = self.hi.sup(&p);
+        let (la, lb) = if swapped { (other, own) } else { (own, other) };
+        for j in 0..4 {
+            self.max[0][j] = self.max[0][j].max(la[j]);
+            self.max[1][j] = self.max[1][j].max(lb[j]);
+        }
+    }
+
+    fn bound(&self) -> Real {
+        if !self.any {
+            return 0.0;
+        }
+        // The points are the exact vertices rounded: the box grown by a
+        // bound on that rounding.
+        let e = (self.hi - self.lo) + (self.hi.abs() + self.lo.abs()) * (8.0 * Real::EPSILON);
+        let area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+        let phi = |m: &[Real; 4]| 4.0 * (m.iter().copied().fold(Real::INFINITY, Real::min) + SLACK).max(0.0);
+        let bound = area * (phi(&self.max[0]) + phi(&self.max[1]));
+        // NaN (a coordinate not finite) bounds nothing.
+        if bound.is_nan() { Real::INFINITY } else { bound }
+    }
+}
+
+/// Adds to `hull` the nodes of `t` inside the other tet and the crossings
+/// of `t`'s edges with the other tet's face planes inside it; `l[k]` are
+/// node `k`'s coordinates in the other tet.
+#[inline]
+fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, hull: &mut Hull) {
+    let unit = |k: usize| {
+        let mut e = [0.0; 4];
+        e[k] = 1.0;
+        e
+    };
+    let inside = |l: &[Real; 4]| l.iter().all(|&x| x >= -SLACK);
+    // Quick reject: every node outside one face plane of the other tet.
+    if (0..4).any(|j| l.iter().all(|lk| lk[j] < -SLACK)) {
+        return;
+    }
+    for k in 0..4 {
+        if inside(&l[k]) {
+            hull.add(t[k], &unit(k), &l[k], swapped);
+        }
+    }
+    for [p, q] in EDGES {
+        for j in 0..4 {
+            let (sp, sq) = (l[p][j], l[q][j]);
+            if !(sp < 0.0 && sq > 0.0 || sp > 0.0 && sq < 0.0) {
+                continue;
+            }
+            let s = sp / (sp - sq);
+            let mut other = [0.0; 4];
+            for (m, o) in other.iter_mut().enumerate() {
+                *o = l[p][m] + (l[q][m] - l[p][m]) * s;
+            }
+            if !inside(&other) {
+                continue;
+            }
+            let mut own = [0.0; 4];
+            own[p] = 1.0 - s;
+            own[q] = s;
+            hull.add(t[p] + (t[q] - t[p]) * s, &own, &other, swapped);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Every nodal force and the resultant of the Eq. 17 clipping stay below
+    //! `p` times the bound, and a zero bound means zero forces exactly, on
+    //! random pairs, face-to-face contacts and tets sharing a vertex or an
+    //! edge (the families of `test_pairs`); the bound is of third order in
+    //! the overlap at a shared vertex and of first order face to face.
+
+    use super::*;
+    use crate::test_pairs::{face_pair, point, shared_pair, tet};
+    use crate::tet_tet_contact;
+    use proptest::prelude::*;
+
+    const P: Real = 3e10;
+
+    /// Checks the bound on one pair; returns `(bound, largest nodal force)`.
+    fn check(a: &[Vec3; 4], b: &[Vec3; 4]) -> Result<(Real, Real), TestCaseError> {
+        let bound = contact_bound(a, b);
+        let c = tet_tet_contact(a, b, P);
+        let largest = c.on_a.iter().chain(&c.on_b).map(|f| f.norm()).fold(0.0, Real::max);
+        let resultant = c.on_b.iter().sum::<Vec3>().norm();
+        // The kernel's own rounding: a relative 10⁻⁹ of the bound.
+        prop_assert!(largest.max(resultant) <= P * bound * (1.0 + 1e-9), "{largest} > p · {bound}: {a:?} {b:?}");
+        if bound == 0.0 {
+            prop_assert!(c.centre.is_none() && largest == 0.0, "zero bound, force {largest}: {a:?} {b:?}");
+        }
+        Ok((bound, largest))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(5000))]
+        #[test]
+        fn face_contacts_stay_below_the_bound((a, b) in face_pair()) {
+            check(&a, &b)?;
+        }
+
+        #[test]
+        fn shared_nodes_stay_below_the_bound((a, b) in shared_pair()) {
+            check(&a, &b)?;
+        }
+
+        #[test]
+        fn random_pairs_stay_below_the_bound(a in tet(1.0), b in tet(1.0), shift in point(), scale in 0.0..2.5f64) {
+            check(&a, &b.map(|p| p + shift * scale))?;
+        }
+    }
+
+    /// Two unit tets meeting at the origin from either side of `z = 0`
+    /// (`a` below, `b` above, their apexes at the origin), `b` pushed down
+    /// by `d`; or, with `face`, `b` standing on `a`'s top face.
+    fn pressed(d: Real, face: bool) -> ([Vec3; 4], [Vec3; 4]) {
+        let s = 3.0_f64.sqrt() / 2.0;
+        let ring = |z: Real| [Vec3::new(1.0, 0.0, z), Vec3::new(-0.5, s, z), Vec3::new(-0.5, -s, z)];
+        let [r0, r1, r2] = ring(0.0);
+        let (a, b) = if face {
+            ([Vec3::new(0.0, 0.0, -1.0), r0, r1, r2], [Vec3::new(0.0, 0.0, 1.0), r0, r2, r1])
+        } else {
+            let [l0, l1, l2] = ring(-1.0);
+            let [u0, u1, u2] = ring(1.0).map(|p| Vec3::new(p.x * 0.7 + 0.2, p.y * 0.7, p.z));
+            ([Vec3::zeros(), l0, l2, l1], [Vec3::zeros(), u0, u1, u2])
+        };
+        let (a, b) = (crate::test_pairs::positive(a), crate::test_pairs::positive(b));
+        (a, b.map(|p| p - Vec3::new(0.0, 0.0, d)))
+    }
+
+    /// At a shared vertex the bound falls as the cube of the overlap (it is
+    /// what lets the solver skip such pairs); face to face it falls as the
+    /// overlap itself, within a modest factor of the force it bounds (it
+    /// is not vacuous where the forces matter).
+    #[test]
+    fn the_bound_has_the_order_of_the_overlap() {
+        for face in [false, true] {
+            let at = |d: Real| {
+                let (a, b) = pressed(d, face);
+                check(&a, &b).expect("below the bound")
+            };
+            let (b1, f1) = at(1e-4);
+            let (b2, _) = at(1e-3);
+            let order = (b2 / b1).log10();
+            eprintln!("face {face}: bound {b1:e} -> {b2:e} (order {order:.3}), p·bound / force {:.2}", P * b1 / f1);
+            assert!(f1 > 0.0, "the pair touches");
+            if face {
+                assert!((order - 1.0).abs() < 0.05, "order {order}");
+                assert!(P * b1 / f1 < 20.0, "bound {b1} for a force {f1}");
+            } else {
+                assert!((order - 3.0).abs() < 0.05, "order {order}");
+            }
+        }
+    }
+}

@@ -129,17 +129,23 @@ fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, hull: &mut Hull) {
         e[k] = 1.0;
         e
     };
-    let inside = |l: &[Real; 4]| l.iter().all(|&x| x >= -SLACK);
-    // Quick reject: every node outside one face plane of the other tet.
-    if (0..4).any(|j| l.iter().all(|lk| lk[j] < -SLACK)) {
+    // Bit j of `out[k]`: node k lies beyond the other tet's face plane j by
+    // more than the slack.
+    let out = l.map(|lk| (0..4).fold(0u8, |m, j| m | (u8::from(lk[j] < -SLACK) << j)));
+    // Quick reject: every node beyond one face plane of the other tet.
+    if out[0] & out[1] & out[2] & out[3] != 0 {
         return;
     }
     for k in 0..4 {
-        if inside(&l[k]) {
+        if out[k] == 0 {
             hull.add(t[k], &unit(k), &l[k], swapped);
         }
     }
     for [p, q] in EDGES {
+        // Both ends beyond one plane: no point of the edge is inside.
+        if out[p] & out[q] != 0 {
+            continue;
+        }
         for j in 0..4 {
             let (sp, sq) = (l[p][j], l[q][j]);
             if !(sp < 0.0 && sq > 0.0 || sp > 0.0 && sq < 0.0) {
@@ -150,7 +156,7 @@ fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, hull: &mut Hull) {
             for (m, o) in other.iter_mut().enumerate() {
                 *o = l[p][m] + (l[q][m] - l[p][m]) * s;
             }
-            if !inside(&other) {
+            if other.iter().any(|&x| x < -SLACK) {
                 continue;
             }
             let mut own = [0.0; 4];

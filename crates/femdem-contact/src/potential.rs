@@ -29,102 +29,110 @@
 //! boundary, inside the other), and so does `c`, a convex combination of
 //! points of the convex set `A ∩ B`.
 //!
-//! **Early-outs, and why they change no bit.** A face is skipped when its
-//! three corners lie outside one face plane of the other tet (`λ_i < 0` at
-//! all three), and a sub-tet `i` when its first plane, `λ_i ≥ 0`, or any of
-//! its later planes, `λ_j − λ_i ≥ 0`, is negative at the three corners —
-//! the later planes with a margin, `λ_j − λ_i < −δ` ([`margin`]). The first
-//! clip sees the triangle itself, whose vertices carry the corners' values,
-//! so a plane negative at all three keeps nothing, exactly as the clip
-//! would decide. A later plane sees the polygon left by the earlier clips,
-//! whose new vertices have their `λ` computed afresh (rounded): a value of
-//! `−10⁻¹⁷` at every corner does not keep such a vertex from coming out
-//! `≥ 0` and leaving a sliver with a force, so the test asks the corners for
-//! `δ` beyond zero, a bound on that rounding (of the order of `10⁻¹¹` for
-//! tets of unit size near the origin). Past either test the clipping is
-//! the one before: every value is computed by the same IEEE operations in
-//! the same order, and the forces and the centre are the same bit for
-//! bit. The tests below check it against the clipping before these
-//! early-outs (kept there verbatim) on random, face-to-face and
-//! node-sharing pairs, and check that without the margin the results do
-//! differ.
+//! **In the face's own coordinates.** A point of face `(p0, p1, p2)` is
+//! `p0 + μ1 (p1 − p0) + μ2 (p2 − p0)`, and its barycentric coordinates in
+//! the other tet are `λ = Λ0 + μ1 (Λ1 − Λ0) + μ2 (Λ2 − Λ0)`, `Λk` those of
+//! the corners (λ is affine). So each polygon vertex carries its `(μ1, μ2)`
+//! and its `λ`, a vertex made on an edge by a clip is the same
+//! interpolation of both, and a piece's area, centroid and the centroid's
+//! shares on the face's nodes, `(1 − μ1 − μ2, μ1, μ2)`, come from plane
+//! geometry in `μ`: no 3×3 product per new vertex, no cross product per
+//! piece. In exact arithmetic that is the clipping of the 3D polygon by
+//! planes in `λ` computed afresh (the code before, kept in the tests as
+//! the reference); in floating point they differ by rounding, and only
+//! where a vertex lies within rounding of a clipping plane can one keep a
+//! sliver the other drops. The tests compare the two on random,
+//! face-to-face (nodes shared or moved by 10⁻¹⁷ to 10⁻³, 10⁻¹⁶ to 0.3
+//! deep) and node-sharing pairs at sizes 10⁻³ to 10² up to 10⁵ sizes from
+//! the origin: every nodal force within `10⁻¹⁰ p L²` (`L²` the larger
+//! tet's largest face area: a sliver of rounding width carries at most
+//! that) and the centre within `10⁻⁹ L` where the forces are above that
+//! floor.
+//!
+//! **Early-outs.** A face is skipped when its three corners lie outside one
+//! face plane of the other tet (`λ_i < 0` at all three), and a sub-tet `i`
+//! when one of its planes, `λ_i ≥ 0` or `λ_j − λ_i ≥ 0`, is negative at the
+//! three corners: every vertex the clips make is a convex combination of
+//! the corners, so the plane keeps nothing of the face.
 
 use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
 
-/// A convex polygon of at most 10 vertices (a triangle clipped by 4 planes
-/// has at most 7), each with its barycentric coordinates `λ` in the other
-/// tet.
-///
-/// The coordinates of a vertex are computed once, by [`Barycentric::at`],
-/// when the vertex is made (a corner of the face, or the intersection of an
-/// edge with a clipping plane), and then read by every later clip: the same
-/// numbers, operation for operation, as evaluating `λ` afresh at both ends
-/// of every edge of every clip (2n evaluations of a 3×3 product per clip
-/// of an n-gon), which is what the clipping did before.
+/// A convex polygon in a face's coordinates `μ` of at most 10 vertices (a
+/// triangle clipped by 4 planes has at most 7), each with its barycentric
+/// coordinates `λ` in the other tet.
 #[derive(Clone, Copy)]
 struct Polygon {
-    v: [Vec3; 10],
+    mu: [[Real; 2]; 10],
     lam: [[Real; 4]; 10],
     n: usize,
 }
 
 impl Polygon {
-    const EMPTY: Polygon = Polygon { v: [Vec3::new(0.0, 0.0, 0.0); 10], lam: [[0.0; 4]; 10], n: 0 };
+    const EMPTY: Polygon = Polygon { mu: [[0.0; 2]; 10], lam: [[0.0; 4]; 10], n: 0 };
 
     /// Writes into `out` the part of this polygon where the linear function
     /// `f` of the barycentric coordinates is ≥ 0 (Sutherland–Hodgman); a new
-    /// vertex on an edge `a b` is `a + (b − a) f_a / (f_a − f_b)`, its
-    /// coordinates computed by `bary`. `out` is a buffer reused from clip to
-    /// clip (its old vertices are overwritten, not cleared), so that a clip
-    /// neither fills nor copies the polygon's 568 bytes.
+    /// vertex on an edge `a b` is `a + (b − a) t`, `t = f_a / (f_a − f_b)`,
+    /// in `μ` and in `λ` alike. `out` is a buffer reused from clip to clip
+    /// (its old vertices are overwritten, not cleared).
     #[inline]
-    fn clip_into(&self, out: &mut Polygon, bary: &Barycentric, f: impl Fn(&[Real; 4]) -> Real) {
+    fn clip_into(&self, out: &mut Polygon, f: impl Fn(&[Real; 4]) -> Real) {
         out.n = 0;
-        let n = self.n.min(self.v.len());
+        let n = self.n.min(self.mu.len());
         if n == 0 {
             return;
         }
-        // Slices of the vertices in use (no bounds checks past them), and
-        // an edge's far end read only when the edge is cut.
-        let (v, lam) = (&self.v[..n], &self.lam[..n]);
+        let (mu, lam) = (&self.mu[..n], &self.lam[..n]);
         let mut fb = f(&lam[0]);
         for k in 0..n {
             let next = if k + 1 == n { 0 } else { k + 1 };
             let fa = fb;
             fb = f(&lam[next]);
             if fa >= 0.0 {
-                out.push(v[k], lam[k]);
+                out.push(mu[k], lam[k]);
             }
             if (fa >= 0.0) != (fb >= 0.0) {
-                let (a, b) = (v[k], v[next]);
                 let t = fa / (fa - fb);
-                let p = a + (b - a) * t;
-                out.push(p, bary.at(&p));
+                let (ma, mb, la, lb) = (mu[k], mu[next], lam[k], lam[next]);
+                let m = [ma[0] + (mb[0] - ma[0]) * t, ma[1] + (mb[1] - ma[1]) * t];
+                let l = [0, 1, 2, 3].map(|j| la[j] + (lb[j] - la[j]) * t);
+                out.push(m, l);
             }
         }
     }
 
     #[inline]
-    fn push(&mut self, p: Vec3, lam: [Real; 4]) {
-        if self.n < self.v.len() {
-            self.v[self.n] = p;
+    fn push(&mut self, mu: [Real; 2], lam: [Real; 4]) {
+        if self.n < self.mu.len() {
+            self.mu[self.n] = mu;
             self.lam[self.n] = lam;
             self.n += 1;
         }
     }
 
-    /// Area (projected on `normal`) and area centroid.
-    fn area_centroid(&self, normal: &Vec3) -> (Real, Vec3) {
-        let mut area = 0.0;
-        let mut moment = Vec3::zeros();
+    /// Area in `μ` (the real area divided by twice the face's), the
+    /// centroid's `μ` and its `λ` (fan from the first vertex; both are
+    /// affine in the point, so the area-weighted mean of the triangles'
+    /// centroids).
+    #[inline]
+    fn area_centroid(&self) -> (Real, [Real; 2], [Real; 4]) {
+        let (mut area, mut mu, mut lam) = (0.0, [0.0; 2], [0.0; 4]);
+        let (m0, l0) = (self.mu[0], self.lam[0]);
         for k in 1..self.n.saturating_sub(1) {
-            let (a, b, c) = (self.v[0], self.v[k], self.v[k + 1]);
-            let w = 0.5 * (b - a).cross(&(c - a)).dot(normal);
+            let (m1, m2) = (self.mu[k], self.mu[k + 1]);
+            let w = 0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]));
             area += w;
-            moment += (a + b + c) * (w / 3.0);
+            let w3 = w / 3.0;
+            for c in 0..2 {
+                mu[c] += (m0[c] + m1[c] + m2[c]) * w3;
+            }
+            let (l1, l2) = (self.lam[k], self.lam[k + 1]);
+            for c in 0..4 {
+                lam[c] += (l0[c] + l1[c] + l2[c]) * w3;
+            }
         }
-        if area > 0.0 { (area, moment / area) } else { (0.0, Vec3::zeros()) }
+        if area > 0.0 { (area, mu.map(|x| x / area), lam.map(|x| x / area)) } else { (0.0, [0.0; 2], [0.0; 4]) }
     }
 }
 
@@ -148,40 +156,6 @@ impl Barycentric {
     }
 }
 
-/// The margin `δ` of the early-out by a later plane of a sub-tet (see the
-/// module documentation): more than ten times a bound (derived below) on
-/// how far the computed value of a plane `λ_j − λ_i` at a vertex made by up
-/// to three clips of one of `a`'s faces can lie above its largest computed
-/// value at the face's three corners. `δ = 1024 u (1 + M (R + X))`, with
-/// `u = 2⁻⁵³`, `M` the sum of `|bary.m|`'s entries, `R` the sum of the
-/// absolute coordinates of `a`'s nodes relative to `bary.x0` and `X` that of
-/// their absolute coordinates (sums, not maxima: cheaper, larger, and NaN or
-/// infinite as soon as one input is).
-///
-/// Where it comes from. Let `h` be the plane's exact affine function of the
-/// point, with `bary`'s stored `m` and `x0` taken as exact data:
-/// `|∇h|₁ ≤ 2M`, since `λ_0`'s row is minus the sum of the other three. At
-/// a point `p` near the face, the computed value (`p − x0`, the 3×3
-/// product, `1 − λ1 − λ2 − λ3`, the difference) is within `8u + 48uMR` of
-/// `h(p)`. A vertex made on an edge `a b` is `a + (b − a) t` with the
-/// computed `t` in `[0, 1]` (`|f_a| ≤ |f_a − f_b|`, and rounding is
-/// monotone), within `5uX` (∞-norm) of the exact point at `t` of the edge;
-/// so after three clips every vertex is within `15uX` of the triangle,
-/// where `h` is at most its largest corner value (`h` is affine). A
-/// vertex's computed value therefore exceeds the largest computed corner
-/// value by at most `2 (8u + 48uMR) + 2M · 15uX = 16u + 96uMR + 30uMX`,
-/// less than `δ/10`; all three corners below `−δ` leave every vertex
-/// negative, and the clip by that plane empty. `δ` is NaN, and every test
-/// with it false, when `M (R + X)` is not below `10³⁰⁰` (a node or an entry
-/// of `m` not finite, or coordinates near overflow).
-fn margin(a: &[Vec3; 4], bary: &Barycentric) -> Real {
-    let m: Real = bary.m.iter().map(|x| x.abs()).sum();
-    let (r, x) =
-        a.iter().fold((0.0, 0.0), |(r, x): (Real, Real), p| (r + (p - bary.x0).abs().sum(), x + p.abs().sum()));
-    let scale = m * (r + x);
-    if scale < 1e300 { 1024.0 * (Real::EPSILON / 2.0) * (1.0 + scale) } else { Real::NAN }
-}
-
 /// Adds to `fa` (on the nodes of `a`) and `fb` (on the nodes of `b`) the
 /// forces of `a`'s faces penetrating `b`'s potential, and to `centre` the
 /// pieces' `Σ |F_k| P_k` and `Σ |F_k|`.
@@ -193,81 +167,64 @@ fn one_way(
     fb: &mut [Vec3; 4],
     centre: &mut (Vec3, Real),
 ) {
-    if let Some(bary) = Barycentric::new(b) {
-        clip_faces(a, &bary, margin(a, &bary), penalty, fa, fb, centre);
-    }
-}
-
-/// [`one_way`] with `b`'s coordinates `bary` and the margin `delta` of the
-/// early-out by a later plane given (the tests also try zero).
-/// (Always inlined: as a call it cost the pair kernel some 6% more
-/// instructions.)
-#[inline(always)]
-fn clip_faces(
-    a: &[Vec3; 4],
-    bary: &Barycentric,
-    delta: Real,
-    penalty: Real,
-    fa: &mut [Vec3; 4],
-    fb: &mut [Vec3; 4],
-    centre: &mut (Vec3, Real),
-) {
+    let Some(bary) = Barycentric::new(b) else {
+        return;
+    };
+    let corners = a.map(|p| bary.at(&p));
     // The face's triangle and the two clipping buffers, reused from face to
     // face (only their first `n` vertices are read).
     let mut buffers = [Polygon::EMPTY; 3];
     for face in FACES {
         let [p0, p1, p2] = face.map(|k| a[k]);
-        let cross = (p1 - p0).cross(&(p2 - p0));
+        let (e1, e2) = (p1 - p0, p2 - p0);
+        let cross = e1.cross(&e2);
         let twice_area = cross.norm();
         if twice_area <= 0.0 {
             continue;
         }
         let n = cross / twice_area;
         // Quick reject: the whole face on the outside of one of b's faces.
-        let lam = [p0, p1, p2].map(|p| bary.at(&p));
+        let lam = face.map(|k| corners[k]);
         if (0..4).any(|i| lam.iter().all(|l| l[i] < 0.0)) {
             continue;
         }
         let [tri, poly, spare] = &mut buffers;
         tri.n = 0;
-        for (p, l) in [p0, p1, p2].into_iter().zip(lam) {
-            tri.push(p, l);
+        for (m, l) in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]].into_iter().zip(lam) {
+            tri.push(m, l);
         }
         let tri = &*tri;
         for i in 0..4 {
-            // Sub-tet i: λ_i ≥ 0 and λ_j − λ_i ≥ 0 for j ≠ i. When λ_i < 0
-            // at the three corners the first clip keeps nothing, and an empty
-            // polygon stays empty; when λ_j − λ_i < −δ at the three corners,
-            // the clip by that plane keeps nothing ([`margin`]).
+            // Sub-tet i: λ_i ≥ 0 and λ_j − λ_i ≥ 0 for j ≠ i; a plane
+            // negative at the three corners keeps nothing.
             if lam.iter().all(|l| l[i] < 0.0) {
                 continue;
             }
-            if (0..4).any(|j| j != i && lam.iter().all(|l| l[j] - l[i] < -delta)) {
+            if (0..4).any(|j| j != i && lam.iter().all(|l| l[j] - l[i] < 0.0)) {
                 continue;
             }
             let (mut poly, mut spare) = (&mut *poly, &mut *spare);
-            tri.clip_into(poly, bary, |l| l[i]);
+            tri.clip_into(poly, |l| l[i]);
             for j in (0..4).filter(|&j| j != i) {
-                poly.clip_into(spare, bary, |l| l[j] - l[i]);
+                poly.clip_into(spare, |l| l[j] - l[i]);
                 std::mem::swap(&mut poly, &mut spare);
             }
             if poly.n < 3 {
                 continue;
             }
-            let (area, centroid) = poly.area_centroid(&n);
-            if area <= 0.0 {
+            let (area_mu, [m1, m2], lb) = poly.area_centroid();
+            if area_mu <= 0.0 {
                 continue;
             }
-            let lb = bary.at(&centroid);
             let phi = 4.0 * lb[i].max(0.0);
-            let magnitude = penalty * area * phi;
+            let magnitude = penalty * (area_mu * twice_area) * phi;
             let force = n * -magnitude;
+            let centroid = p0 + e1 * m1 + e2 * m2;
             centre.0 += centroid * magnitude;
             centre.1 += magnitude;
-            // On a's face nodes, by the centroid's coordinates in the face.
-            let w1 = (centroid - p0).cross(&(p2 - p0)).dot(&cross) / (twice_area * twice_area);
-            let w2 = (p1 - p0).cross(&(centroid - p0)).dot(&cross) / (twice_area * twice_area);
-            let w = [1.0 - w1 - w2, w1, w2];
+            // On a's face nodes, by the centroid's coordinates in the face;
+            // on b's nodes, by its coordinates in b.
+            let w = [1.0 - m1 - m2, m1, m2];
             for (k, &node) in face.iter().enumerate() {
                 fa[node] += force * w[k];
             }
@@ -315,18 +272,15 @@ pub fn tet_tet_forces(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> ([Vec3; 4]
 
 #[cfg(test)]
 mod tests {
-    //! The clipping with coordinates carried per vertex and sub-tets skipped
-    //! when a plane provably keeps nothing (the module documentation) gives
-    //! the forces and the centre of the clipping that evaluates `λ` afresh
-    //! at both ends of every edge and skips nothing but whole faces outside
-    //! a face plane (the code before, kept here verbatim as the reference)
-    //! **bit for bit**: on random pairs of tets from apart to deeply
+    //! The clipping in the faces' coordinates (the module documentation)
+    //! against the clipping in 3D that evaluates `λ` afresh at both ends of
+    //! every edge and skips nothing but whole faces outside a face plane
+    //! (the code of the first versions, kept here verbatim as the
+    //! reference), on random pairs of tets from apart to deeply
     //! overlapping, flat and needle-shaped ones included; on face-to-face
     //! contacts from 10⁻¹⁶ to 0.3 deep or apart, with nodes shared exactly or
     //! moved by 10⁻¹⁷ to 10⁻³; on tets sharing a vertex or an edge; at sizes
-    //! 10⁻³ to 10² and up to 10⁵ sizes from the origin. Without the margin
-    //! `δ` some of those pairs do differ
-    //! (`the_margin_is_what_keeps_the_bits`).
+    //! 10⁻³ to 10² and up to 10⁵ sizes from the origin.
 
     use super::*;
     use crate::test_pairs::{face_pair, point, shared_pair, tet};
@@ -367,7 +321,15 @@ mod tests {
         }
 
         fn area_centroid(&self, normal: &Vec3) -> (Real, Vec3) {
-            Polygon { v: self.v, lam: [[0.0; 4]; 10], n: self.n }.area_centroid(normal)
+            let mut area = 0.0;
+            let mut moment = Vec3::zeros();
+            for k in 1..self.n.saturating_sub(1) {
+                let (a, b, c) = (self.v[0], self.v[k], self.v[k + 1]);
+                let w = 0.5 * (b - a).cross(&(c - a)).dot(normal);
+                area += w;
+                moment += (a + b + c) * (w / 3.0);
+            }
+            if area > 0.0 { (area, moment / area) } else { (0.0, Vec3::zeros()) }
         }
     }
 
@@ -442,112 +404,122 @@ mod tests {
         TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }
     }
 
-    fn bits(c: &TetTetContact) -> Vec<u64> {
-        let forces = c.on_a.iter().chain(&c.on_b).flat_map(|f| f.iter().map(|x| x.to_bits()).collect::<Vec<_>>());
-        let centre = c.centre.map_or(vec![u64::MAX], |p| p.iter().map(|x| x.to_bits()).collect());
-        forces.chain(centre).collect()
+    /// The larger of the two tets' largest face areas, m².
+    fn face_area(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
+        [a, b]
+            .iter()
+            .flat_map(|t| FACES.map(|f| femdem_core::tet::triangle_area(&t[f[0]], &t[f[1]], &t[f[2]])))
+            .fold(0.0, Real::max)
+    }
+
+    /// The rounding of a computed barycentric coordinate of a point of
+    /// `a` in `b` or of `b` in `a`, as a number of ulps:
+    /// `ε = u (1 + M (R + X))`, `M` the sum of the inverse matrix's absolute
+    /// entries, `R` the sum of the absolute coordinates relative to its
+    /// origin, `X` the sum of the absolute coordinates (10⁻¹⁶ for unit
+    /// tets at the origin, 10⁻¹¹ for needles 10⁵ sizes away).
+    fn rounding(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
+        let one = |a: &[Vec3; 4], b: &[Vec3; 4]| {
+            let Some(bary) = Barycentric::new(b) else { return 0.0 };
+            let m: Real = bary.m.iter().map(|x| x.abs()).sum();
+            let (r, x) =
+                a.iter().fold((0.0, 0.0), |(r, x): (Real, Real), p| (r + (p - bary.x0).abs().sum(), x + p.abs().sum()));
+            (Real::EPSILON / 2.0) * (1.0 + m * (r + x))
+        };
+        one(a, b).max(one(b, a))
+    }
+
+    /// The tolerance on every nodal force, in units of `p L² ε` (`L²` the
+    /// larger tet's largest face area, `ε` of [`rounding`]): a force is
+    /// `p Σ_k A_k 4 λ_k` over pieces that tile each of the eight faces once
+    /// (`Σ A_k ≤ 8 L²`), the two clippings compute each `λ` within some
+    /// ten `ε` of the exact one, and a vertex near a sub-tet's boundary that
+    /// one keeps and the other drops moves its sliver to the neighbouring
+    /// sub-tet, where `φ` is the same on the boundary: `8 · 4 · 10 ≈ 320`,
+    /// and 1,024 to leave room for the areas' own rounding.
+    const FORCE_TOLERANCE: Real = 1024.0;
+
+    /// The largest difference of a nodal force from the reference's, over
+    /// `p L² ε`, and of the centre, over what the force differences allow
+    /// (below 1 when within it).
+    fn agreement(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> (Real, Real) {
+        let (now, before) = (tet_tet_contact(a, b, penalty), reference(a, b, penalty));
+        let unit = penalty * face_area(a, b) * rounding(a, b);
+        let force = now
+            .on_a
+            .iter()
+            .zip(&before.on_a)
+            .chain(now.on_b.iter().zip(&before.on_b))
+            .map(|(x, y)| (x - y).norm() / unit)
+            .fold(0.0, Real::max);
+        // The centre Σ M_k P_k / Σ M_k moves by at most the pieces' changes
+        // (up to 32 pieces, each within the force tolerance) over Σ M_k
+        // (at least the largest nodal force) times the pair's extent.
+        let largest = before.on_a.iter().chain(&before.on_b).map(|f| f.norm()).fold(0.0, Real::max);
+        let extent = a.iter().chain(b).map(|p| (p - a[0]).norm()).fold(0.0, Real::max);
+        let allowed = 32.0 * FORCE_TOLERANCE * unit / largest * 2.0 * extent;
+        let centre = match (now.centre, before.centre) {
+            (Some(x), Some(y)) => (x - y).norm() / allowed,
+            (None, None) => 0.0,
+            _ if allowed >= extent => 0.0,
+            _ => Real::INFINITY,
+        };
+        (force, centre)
+    }
+
+    fn agrees(a: &[Vec3; 4], b: &[Vec3; 4]) -> Result<(), TestCaseError> {
+        let (force, centre) = agreement(a, b, 3e10);
+        prop_assert!(force <= FORCE_TOLERANCE, "force off by {force:e} p L² ε: {a:?} {b:?}");
+        prop_assert!(centre <= 1.0, "centre off by {centre:e} of the allowance: {a:?} {b:?}");
+        Ok(())
     }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(5000))]
         #[test]
-        fn face_contacts_give_the_reference_bit_for_bit((a, b) in face_pair()) {
-            prop_assert_eq!(bits(&tet_tet_contact(&a, &b, 3e10)), bits(&reference(&a, &b, 3e10)));
+        fn face_contacts_agree_with_the_reference((a, b) in face_pair()) {
+            agrees(&a, &b)?;
         }
 
         #[test]
-        fn shared_nodes_give_the_reference_bit_for_bit((a, b) in shared_pair()) {
-            prop_assert_eq!(bits(&tet_tet_contact(&a, &b, 3e10)), bits(&reference(&a, &b, 3e10)));
-        }
-    }
-
-    /// The contact with the margin of the early-out by a later plane set to
-    /// `delta` instead of [`margin`].
-    fn with_margin(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real, delta: Real) -> TetTetContact {
-        let mut fa = [Vec3::zeros(); 4];
-        let mut fb = [Vec3::zeros(); 4];
-        let mut centre = (Vec3::zeros(), 0.0);
-        if let Some(bary) = Barycentric::new(b) {
-            clip_faces(a, &bary, delta, penalty, &mut fa, &mut fb, &mut centre);
-        }
-        if let Some(bary) = Barycentric::new(a) {
-            clip_faces(b, &bary, delta, penalty, &mut fb, &mut fa, &mut centre);
-        }
-        let (moment, weight) = centre;
-        TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }
-    }
-
-    /// Counts the sub-tets of `a`'s faces against `b` that the first plane
-    /// does not reject: `[skipped by a later plane, in the margin (a later
-    /// plane < 0 at the three corners, none < −δ: clipped), clipped]`.
-    fn tally(a: &[Vec3; 4], b: &[Vec3; 4], counts: &mut [usize; 3]) {
-        let Some(bary) = Barycentric::new(b) else {
-            return;
-        };
-        let delta = margin(a, &bary);
-        for face in FACES {
-            let lam = face.map(|k| bary.at(&a[k]));
-            if (0..4).any(|i| lam.iter().all(|l| l[i] < 0.0)) {
-                continue;
-            }
-            for i in 0..4 {
-                let below = |t: Real| (0..4).any(|j| j != i && lam.iter().all(|l| l[j] - l[i] < t));
-                if lam.iter().all(|l| l[i] < 0.0) {
-                    continue;
-                }
-                let class = if below(-delta) {
-                    0
-                } else if below(0.0) {
-                    1
-                } else {
-                    2
-                };
-                counts[class] += 1;
-            }
-        }
-    }
-
-    /// On the face-to-face and node-sharing pairs the early-out by a later
-    /// plane does skip sub-tets, some of them have a later plane negative at
-    /// the three corners by less than `δ` (the cases the margin is for), and
-    /// skipping those too (`δ = 0`) changes the results of some pairs, while
-    /// the margin keeps every one bit for bit.
-    #[test]
-    fn the_margin_is_what_keeps_the_bits() {
-        let mut runner = proptest::test_runner::TestRunner::deterministic();
-        for (name, pairs) in [("face", face_pair().boxed()), ("shared", shared_pair().boxed())] {
-            let mut counts = [0; 3];
-            let (mut touching, mut differ) = (0, 0);
-            for _ in 0..20_000 {
-                let (a, b) = pairs.new_tree(&mut runner).expect("a pair").current();
-                tally(&a, &b, &mut counts);
-                tally(&b, &a, &mut counts);
-                let before = reference(&a, &b, 3e10);
-                assert_eq!(bits(&tet_tet_contact(&a, &b, 3e10)), bits(&before), "{name}: {a:?} {b:?}");
-                touching += usize::from(before.centre.is_some());
-                differ += usize::from(bits(&with_margin(&a, &b, 3e10, 0.0)) != bits(&before));
-            }
-            eprintln!("{name}: {touching} of 20,000 touch; sub-tets {counts:?}; zero margin differs in {differ}");
-            assert!(touching >= 5_000, "{name}: {touching} touch");
-            assert!(counts[0] >= counts[2] / 10, "{name}: {counts:?}");
-            assert!(counts[1] >= 100, "{name}: {counts:?}");
-            assert!(differ >= 10, "{name}: zero margin differs in {differ}");
+        fn shared_nodes_agree_with_the_reference((a, b) in shared_pair()) {
+            agrees(&a, &b)?;
         }
     }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(2000))]
         #[test]
-        fn carried_coordinates_give_the_reference_bit_for_bit(
+        fn random_pairs_agree_with_the_reference(
             a in tet(1.0),
             b in tet(1.0),
             shift in point(),
             scale in 0.0..1.5f64,
         ) {
-            let b = b.map(|p| p + shift * scale);
-            let now = tet_tet_contact(&a, &b, 3e10);
-            let before = reference(&a, &b, 3e10);
-            prop_assert_eq!(bits(&now), bits(&before));
+            agrees(&a, &b.map(|p| p + shift * scale))?;
+        }
+    }
+
+    /// The agreement is of rounding, not of the tolerances: over 20,000
+    /// seeded pairs of each family the largest differences are printed, and
+    /// most pairs touch (the comparison is not between zeros).
+    #[test]
+    fn the_differences_are_of_rounding() {
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        for (name, pairs) in [("face", face_pair().boxed()), ("shared", shared_pair().boxed())] {
+            let (mut touching, mut force, mut centre) = (0, 0.0, 0.0);
+            for _ in 0..20_000 {
+                let (a, b) = pairs.new_tree(&mut runner).expect("a pair").current();
+                let (f, c) = agreement(&a, &b, 3e10);
+                force = Real::max(force, f);
+                centre = Real::max(centre, c);
+                touching += usize::from(reference(&a, &b, 3e10).centre.is_some());
+            }
+            eprintln!(
+                "{name}: {touching} of 20,000 touch; largest force difference {force:.1} p L² ε, centre {centre:.2e} of its allowance"
+            );
+            assert!(touching >= 5_000, "{name}: {touching} touch");
+            assert!(force <= FORCE_TOLERANCE && centre <= 1.0, "{name}: {force:e} {centre:e}");
         }
     }
 
@@ -562,9 +534,9 @@ mod tests {
             let d = 0.02 * k as f64;
             let b = a.map(|p| Vec3::new(0.3, 0.2, 0.1) - p * 0.9 + Vec3::new(d, -d, 0.5 * d));
             let b = [b[0], b[2], b[1], b[3]];
-            let (now, before) = (tet_tet_contact(&a, &b, 3e10), reference(&a, &b, 3e10));
-            assert_eq!(bits(&now), bits(&before), "shift {d}");
-            touching += usize::from(now.centre.is_some());
+            let (force, centre) = agreement(&a, &b, 3e10);
+            assert!(force <= FORCE_TOLERANCE && centre <= 1.0, "shift {d}: {force:e} {centre:e}");
+            touching += usize::from(tet_tet_contact(&a, &b, 3e10).centre.is_some());
         }
         assert!(touching >= 10, "{touching} of 50 pairs touch");
     }

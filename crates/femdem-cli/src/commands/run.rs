@@ -152,11 +152,12 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     }
     let mut saved_at = Instant::now();
     let mut last_checkpoint: Option<PathBuf> = None;
-    // The time loop runs on a worker thread of rayon's pool: each parallel
-    // pass of a step then starts by work stealing among the pool's threads,
-    // instead of being injected into the pool from outside and waited for,
-    // two thread wake-ups per pass (measured: see `docs/performance.md`,
-    // "The time loop inside the pool"). The results do not depend on it.
+    // The time loop runs on a worker thread of rayon's pool, as each
+    // `Solver::step` does on its own: the step and the output's parallel
+    // passes then start by work stealing among the pool's threads instead
+    // of being injected into the pool from outside and waited for
+    // (`docs/performance.md`, "The step inside the pool"). The results do
+    // not depend on it.
     rayon::scope(|_| -> Result<()> {
         for n in first..run.steps {
             let t = solver.state.time;

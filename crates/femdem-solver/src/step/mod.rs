@@ -265,7 +265,20 @@ impl Solver {
     /// are evaluated at `t_n` (always at step 0, whose balance is the
     /// account's constant); with `want.stress`, the tet stresses of `t_n`
     /// are kept in [`Solver::workspace`].
+    ///
+    /// The step runs on a worker thread of rayon's current pool (inline
+    /// when called from one): its parallel passes then start by work
+    /// stealing among the pool's threads, instead of each being injected
+    /// into the pool from outside it and waited for, two thread wake-ups
+    /// per pass (`docs/performance.md`, "The step inside the pool"). The
+    /// results do not depend on it.
     pub fn step(&mut self, want: Want) -> &StepRecord {
+        rayon::scope(|_| self.advance(want));
+        &self.record
+    }
+
+    /// [`Solver::step`]'s work.
+    fn advance(&mut self, want: Want) {
         let dt = self.params.dt;
         let t = self.state.time;
         let want = Want { energy: want.energy || self.state.step == 0, ..want };
@@ -351,7 +364,6 @@ impl Solver {
         r.contact_pairs = self.contact.as_ref().map_or(0, |c| c.active_pairs);
         self.state.time += dt;
         self.state.step += 1;
-        &self.record
     }
 
     /// Replaces the evolving state that [`Solver::restore`] decoded (the

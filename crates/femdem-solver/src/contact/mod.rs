@@ -411,7 +411,8 @@ impl Contact {
                 evaluate(PairInput {
                     tets: [a, b],
                     x: [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])],
-                    v: [ta.map(|n| v[n as usize]), tb.map(|n| v[n as usize])],
+                    nodes: [ta, tb],
+                    v,
                     volumes: [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume],
                     penalty,
                     negligible,

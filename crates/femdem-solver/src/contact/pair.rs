@@ -85,7 +85,10 @@ pub(crate) fn boxes_overlap(pa: &[Vec3; 4], pb: &[Vec3; 4]) -> bool {
 pub(crate) struct PairInput<'a> {
     pub tets: [u32; 2],
     pub x: [[Vec3; 4]; 2],
-    pub v: [[Vec3; 4]; 2],
+    /// The two tets' nodes and the velocities of all nodes: read only for
+    /// a pair in contact with friction (most candidates are not).
+    pub nodes: [[u32; 4]; 2],
+    pub v: &'a [Vec3],
     /// The reference volumes of the two tets, m³: `V^{1/3}` of the smaller
     /// is the friction spring's length scale, taken only for a pair in
     /// contact (a cube root per candidate was 5% of a fragmented step).
@@ -179,7 +182,8 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     if input.mu > 0.0 && n_mag > 0.0 {
         let n = normal / n_mag;
         let weights = [pa, pb].map(|p| barycentric(p, &centre).unwrap_or([0.25; 4]));
-        let at = |side: usize| -> Vec3 { (0..4).map(|k| input.v[side][k] * weights[side][k]).sum() };
+        let at =
+            |side: usize| -> Vec3 { (0..4).map(|k| input.v[input.nodes[side][k] as usize] * weights[side][k]).sum() };
         let rel = at(1) - at(0);
         let vt = rel - n * rel.dot(&n);
         // Springs are stored as (larger index) relative to (smaller index).

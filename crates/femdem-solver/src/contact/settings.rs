@@ -48,7 +48,7 @@ pub struct ContactSettings {
     /// share a vertex across a fracture overlap near it at third order in
     /// the overlap, and are most of the candidates of a fracture network
     /// (`docs/performance.md`). 0 evaluates every candidate (Eq. 17 as
-    /// printed, bit for bit); default [`NEGLIGIBLE`].
+    /// printed); default [`NEGLIGIBLE`].
     pub negligible: Real,
 }
 

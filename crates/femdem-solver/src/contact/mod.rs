@@ -343,6 +343,13 @@ impl Contact {
         e.friction_ahead = friction_ahead;
     }
 
+    /// The candidate pairs of the last pass (tet indices, ascending): every
+    /// pair of contactable tets that may touch and can overlap before the
+    /// next detection.
+    pub fn candidates(&self) -> &[(u32, u32)] {
+        &self.candidates
+    }
+
     /// The tets that can touch, ascending.
     pub fn contactable(&self) -> &[u32] {
         &self.list

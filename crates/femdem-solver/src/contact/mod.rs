@@ -414,7 +414,6 @@ impl Contact {
             .par_iter()
             .map(|&(a, b)| {
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
-                let key = spring_key(a, b);
                 evaluate(PairInput {
                     tets: [a, b],
                     x: [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])],
@@ -423,9 +422,11 @@ impl Contact {
                     volumes: [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume],
                     penalty,
                     negligible,
-                    mu: friction.get(model.tet_region[a as usize], model.tet_region[b as usize]),
-                    ramp: ramp.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / n_total),
-                    spring: stick.get(&key),
+                    friction,
+                    regions: &model.tet_region,
+                    ramps: ramp,
+                    n_total,
+                    springs: stick,
                     dt,
                 })
             })

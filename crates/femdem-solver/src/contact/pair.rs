@@ -4,6 +4,8 @@
 use femdem_contact::{contact_bound, tet_tet_contact};
 use femdem_core::{Mat3, Real, Vec3};
 
+use super::settings::FrictionTable;
+
 /// What one pair in contact contributes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairForce {
@@ -96,11 +98,15 @@ pub(crate) struct PairInput<'a> {
     pub penalty: Real,
     /// [`super::ContactSettings::negligible`].
     pub negligible: Real,
-    pub mu: Real,
-    /// Eq. 18's `n_c / n_total` while the ramp lasts, else 1.
-    pub ramp: Real,
-    /// The pair's friction spring from the last step, if it was in contact.
-    pub spring: Option<&'a Vec3>,
+    /// What is read only for a pair in contact (most candidates are not):
+    /// μ per pair of regions and the tets' regions, the Eq. 18 ramps
+    /// (`n_c` per pair, out of `n_total`) and the friction springs of the
+    /// last step.
+    pub friction: &'a FrictionTable,
+    pub regions: &'a [u16],
+    pub ramps: &'a PairMap<u32>,
+    pub n_total: Real,
+    pub springs: &'a PairMap<Vec3>,
     pub dt: Real,
 }
 
@@ -161,9 +167,12 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let contact = tet_tet_contact(pa, pb, input.penalty);
     let centre = contact.centre?;
     let (mut fa, mut fb) = (contact.on_a, contact.on_b);
-    if input.ramp != 1.0 {
+    let key = spring_key(a, b);
+    // Eq. 18's `n_c / n_total` while the ramp lasts, else 1.
+    let ramp = input.ramps.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / input.n_total);
+    if ramp != 1.0 {
         for f in fa.iter_mut().chain(fb.iter_mut()) {
-            *f *= input.ramp;
+            *f *= ramp;
         }
     }
     let normal: Vec3 = fb.iter().sum();
@@ -179,7 +188,8 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         spring: Vec3::zeros(),
         spring_energy: 0.0,
     };
-    if input.mu > 0.0 && n_mag > 0.0 {
+    let mu = input.friction.get(input.regions[a as usize], input.regions[b as usize]);
+    if mu > 0.0 && n_mag > 0.0 {
         let n = normal / n_mag;
         let weights = [pa, pb].map(|p| barycentric(p, &centre).unwrap_or([0.25; 4]));
         let at =
@@ -188,12 +198,12 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         let vt = rel - n * rel.dot(&n);
         // Springs are stored as (larger index) relative to (smaller index).
         let sign = if a < b { 1.0 } else { -1.0 };
-        let mut spring = input.spring.copied().unwrap_or_else(Vec3::zeros) * sign;
+        let mut spring = input.springs.get(&key).copied().unwrap_or_else(Vec3::zeros) * sign;
         spring -= n * spring.dot(&n);
         spring += vt * input.dt;
         let size = input.volumes[0].min(input.volumes[1]).cbrt();
         let kt = input.penalty * size;
-        let limit = input.mu * n_mag;
+        let limit = mu * n_mag;
         let mut ft = -spring * kt;
         if ft.norm() > limit {
             ft *= limit / ft.norm();

@@ -88,6 +88,7 @@ fn bound(c: &mut Criterion) {
     let mut g = c.benchmark_group("contact_bound");
     for (name, (a, b)) in [("vertex", vertex), ("face", face)] {
         let (a, b) = (positive(a), positive(b));
+        let (a, b) = (std::hint::black_box(a), std::hint::black_box(b));
         g.bench_function(format!("{name}/bound"), |bench| bench.iter(|| contact_bound(&a, &b)));
         g.bench_function(format!("{name}/kernel"), |bench| bench.iter(|| tet_tet_forces(&a, &b, 1e9)));
     }

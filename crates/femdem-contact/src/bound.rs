@@ -5,16 +5,18 @@
 //!
 //! **The bound.** [`tet_tet_contact`](crate::tet_tet_contact) sums pieces
 //! `F_k = p A_k φ(P_k) n_k` over the parts of each tet's boundary inside
-//! the other (its module documentation), so every nodal force, a convex
-//! combination of piece forces, and the resultant are at most
+//! the other (its module documentation), and hands each to a node with a
+//! weight in `[0, 1]` (the piece centroid's coordinates in the face or in
+//! the other tet), so every nodal force and the resultant are at most
 //!
 //! ```text
 //! Σ_k |F_k| = p ∫_{∂A∩B} φ_B dS + p ∫_{∂B∩A} φ_A dS
 //!           ≤ p S (max_{A∩B} φ_A + max_{A∩B} φ_B),
 //! ```
 //!
-//! `S` any bound on the area of `∂(A∩B)`, which contains both `∂A∩B` and
-//! `∂B∩A`. The overlap `A∩B` is a convex polytope: the intersection of the
+//! `S` any bound on the area of `∂(A∩B)`, which contains `∂A∩B` and
+//! `∂B∩A` each (the two are bounded separately, so faces of `A` and `B`
+//! that coincide are not a problem). The overlap `A∩B` is a convex polytope: the intersection of the
 //! eight half-spaces `λ^A_i ≥ 0`, `λ^B_j ≥ 0`. Each of its vertices lies on
 //! three of the eight planes, so it is a node of one tet inside the other,
 //! or where an edge of one tet crosses a face plane of the other inside it:
@@ -33,9 +35,15 @@
 //! the overlap, where a face-to-face contact is of first order.
 //!
 //! **Rounding.** Each test of a point against a plane accepts values down to
-//! `−η` ([`SLACK`]), far beyond the rounding of the computed coordinates, so
-//! a point of the exact overlap is never dropped: more points only make the
-//! bound larger. No point at all (with that slack) means the tets are apart
+//! `−η`, `η = max(`[`SLACK`]`, 1024 u (1 + M (R + X)))` per direction (`u =
+//! 2⁻⁵³`, `M` the sum of the absolute entries of the other tet's inverse
+//! matrix, `R` and `X` the sums of the absolute coordinates of the tet's
+//! nodes relative to the other's first node and absolute): more than ten
+//! times a bound on the rounding of a computed `λ` (the derivation that
+//! `margin` carried in the kernel's earlier versions), so a point of the
+//! exact overlap is never dropped: more points only make the bound larger.
+//! A pair whose `η` exceeds [`MAX_SLACK`] (a nearly flat tet, or
+//! coordinates far beyond the tets' size) gets no bound (infinite). No point at all (with that slack) means the tets are apart
 //! by more than rounding, and the clipping, whose every piece needs vertices
 //! with coordinates `≥ 0` in the other tet, produces no force: the tests
 //! check that the forces are then exactly zero, and below the bound
@@ -46,12 +54,24 @@ use femdem_core::{Real, Vec3};
 
 use crate::potential::Barycentric;
 
-/// The slack `η` of the tests against a plane (barycentric coordinates
-/// are dimensionless): rounding of a computed `λ` is of the order of
-/// `10⁻¹⁶ X / h` for tets of size `h` at `X` from the origin, below `η` up
-/// to `X / h ≈ 10⁶`; the bound is also valid (only larger) with any larger
-/// slack.
+/// The least slack `η` of the tests against a plane (barycentric
+/// coordinates are dimensionless); the bound is also valid (only larger)
+/// with any larger slack.
 pub const SLACK: Real = 1e-9;
+
+/// The largest slack with which a bound is given: beyond it the rounding
+/// of the coordinates is too large to trust, and the bound is infinite.
+pub const MAX_SLACK: Real = 1e-6;
+
+/// The slack of the tests of `t`'s points against the planes of `bary`
+/// (the module documentation, "Rounding"); NaN when a coordinate is not
+/// finite.
+fn slack(t: &[Vec3; 4], bary: &Barycentric) -> Real {
+    let m: Real = bary.m.iter().map(|x| x.abs()).sum();
+    let (r, x) =
+        t.iter().fold((0.0, 0.0), |(r, x): (Real, Real), p| (r + (p - bary.x0).abs().sum(), x + p.abs().sum()));
+    SLACK.max(1024.0 * (Real::EPSILON / 2.0) * (1.0 + m * (r + x)))
+}
 
 /// An upper bound on `Σ_k |F_k| / p` (m²) over the pieces of the Eq. 17
 /// contact between tets `a` and `b` (node positions, positive orientation):
@@ -63,13 +83,18 @@ pub fn contact_bound(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
     let (Some(in_b), Some(in_a)) = (Barycentric::new(b), Barycentric::new(a)) else {
         return Real::INFINITY;
     };
+    let eta = slack(a, &in_b).max(slack(b, &in_a));
+    // NaN (a coordinate not finite) gives no bound either.
+    if eta.is_nan() || eta > MAX_SLACK {
+        return Real::INFINITY;
+    }
     // λ^B at a's nodes, λ^A at b's nodes.
     let la = a.map(|p| in_b.at(&p));
     let lb = b.map(|p| in_a.at(&p));
     let mut hull = Hull::EMPTY;
-    one_way(a, &la, false, &mut hull);
-    one_way(b, &lb, true, &mut hull);
-    hull.bound()
+    one_way(a, &la, false, eta, &mut hull);
+    one_way(b, &lb, true, eta, &mut hull);
+    hull.bound(eta)
 }
 
 /// The box of the overlap's vertices and the largest barycentric
@@ -104,15 +129,19 @@ impl Hull {
         }
     }
 
-    fn bound(&self) -> Real {
+    fn bound(&self, eta: Real) -> Real {
         if !self.any {
             return 0.0;
         }
-        // The points are the exact vertices rounded: the box grown by a
-        // bound on that rounding.
+        // The points are the exact vertices rounded: the box grown by the
+        // rounding of `t[p] + (t[q] − t[p]) s` (that of `s` itself, large for
+        // an edge nearly parallel to a plane, is covered by the slack only
+        // in the coordinates' tests: a point misplaced along such an edge
+        // stays within the box's order of magnitude, far below any
+        // threshold the bound is compared with).
         let e = (self.hi - self.lo) + (self.hi.abs() + self.lo.abs()) * (8.0 * Real::EPSILON);
         let area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-        let phi = |m: &[Real; 4]| 4.0 * (m.iter().copied().fold(Real::INFINITY, Real::min) + SLACK).max(0.0);
+        let phi = |m: &[Real; 4]| 4.0 * (m.iter().copied().fold(Real::INFINITY, Real::min) + eta).max(0.0);
         let bound = area * (phi(&self.max[0]) + phi(&self.max[1]));
         // NaN (a coordinate not finite) bounds nothing.
         if bound.is_nan() { Real::INFINITY } else { bound }
@@ -123,7 +152,7 @@ impl Hull {
 /// of `t`'s edges with the other tet's face planes inside it; `l[k]` are
 /// node `k`'s coordinates in the other tet.
 #[inline]
-fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, hull: &mut Hull) {
+fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, eta: Real, hull: &mut Hull) {
     let unit = |k: usize| {
         let mut e = [0.0; 4];
         e[k] = 1.0;
@@ -131,7 +160,7 @@ fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, hull: &mut Hull) {
     };
     // Bit j of `out[k]`: node k lies beyond the other tet's face plane j by
     // more than the slack.
-    let out = l.map(|lk| (0..4).fold(0u8, |m, j| m | (u8::from(lk[j] < -SLACK) << j)));
+    let out = l.map(|lk| (0..4).fold(0u8, |m, j| m | (u8::from(lk[j] < -eta) << j)));
     // Quick reject: every node beyond one face plane of the other tet.
     if out[0] & out[1] & out[2] & out[3] != 0 {
         return;
@@ -156,7 +185,7 @@ fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, hull: &mut Hull) {
             for (m, o) in other.iter_mut().enumerate() {
                 *o = l[p][m] + (l[q][m] - l[p][m]) * s;
             }
-            if other.iter().any(|&x| x < -SLACK) {
+            if other.iter().any(|&x| x < -eta) {
                 continue;
             }
             let mut own = [0.0; 4];

@@ -1,6 +1,6 @@
 //! Contact for the combined finite–discrete element method (reference
 //! paper §2.3): the broad phase that finds which elements may touch, and
-//! the normal force between two tets that do — two stateless pieces
+//! the normal force between two tets that do — stateless pieces
 //! another solver can use on their own or together.
 //!
 //! # Code map
@@ -14,6 +14,9 @@
 //!   penalty-function potential contact between two tets (Eq. 17), on their
 //!   eight nodes; [`tet_tet_contact`] also returns the force-weighted
 //!   contact centre where it acts (for friction).
+//! - [`contact_bound`] (`bound.rs`): an upper bound on a pair's Eq. 17
+//!   forces from the vertices of the two tets' overlap, to skip pairs
+//!   whose forces are negligible before clipping them.
 //! - [`separated_by_face_plane`] (`separation.rs`): a narrow-phase filter
 //!   for detection — a face plane of one tet keeps the other more than a
 //!   gap away, so the pair cannot touch before the next detection.
@@ -108,7 +111,7 @@ mod separation;
 #[cfg(test)]
 mod test_pairs;
 
-pub use bound::{SLACK, contact_bound};
+pub use bound::{MAX_SLACK, SLACK, contact_bound};
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};
 pub use separation::separated_by_face_plane;

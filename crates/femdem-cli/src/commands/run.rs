@@ -156,8 +156,8 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     // `Solver::step` does on its own: the step and the output's parallel
     // passes then start by work stealing among the pool's threads instead
     // of being injected into the pool from outside and waited for
-    // (`docs/performance.md`, "The step inside the pool"). The results do
-    // not depend on it.
+    // (`docs/performance.md`, "Contact at the speed of the bulk, first
+    // part", item 3). The results do not depend on it.
     rayon::scope(|_| -> Result<()> {
         for n in first..run.steps {
             let t = solver.state.time;

@@ -155,12 +155,12 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         return None;
     }
     if input.negligible > 0.0 {
-        // Every force at most p · bound ≤ negligible · p · ℓ², ℓ³ = V: as
-        // cubes, with no cube root (`contact_bound` is infinite, and the
-        // pair evaluated, where it cannot bound).
-        let bound = contact_bound(pa, pb);
-        let (e, v) = (input.negligible, input.volumes[0].min(input.volumes[1]));
-        if bound * bound * bound <= e * e * e * v * v {
+        // Every normal force at most p · bound ≤ negligible · p · ℓ², ℓ³ =
+        // V: as cubes, with no cube root (`contact_bound` is infinite, and
+        // the pair evaluated, where it cannot bound).
+        let r = contact_bound(pa, pb) / input.negligible;
+        let v = input.volumes[0].min(input.volumes[1]);
+        if r * r * r <= v * v {
             return None;
         }
     }

@@ -42,9 +42,10 @@ pub struct ContactSettings {
     pub incremental: bool,
     /// Pairs whose Eq. 17 forces are provably negligible are skipped: a
     /// pair is not evaluated when `femdem_contact::contact_bound` shows
-    /// that none of its forces can exceed `negligible · p · ℓ²`, `ℓ³` the
-    /// smaller tet's reference volume — a contact pressure below
-    /// `negligible · p` (6 Pa for the default and p = 60 GPa). Tets that
+    /// that none of its normal forces can exceed `negligible · p · ℓ²`, `ℓ³`
+    /// the smaller tet's reference volume — a contact pressure below
+    /// `negligible · p` (6 Pa for the default and p = 60 GPa), and with
+    /// friction `(1 + μ)` times that. Tets that
     /// share a vertex across a fracture overlap near it at third order in
     /// the overlap, and are most of the candidates of a fracture network
     /// (`docs/performance.md`). 0 evaluates every candidate (Eq. 17 as

@@ -270,7 +270,8 @@ impl Solver {
     /// when called from one): its parallel passes then start by work
     /// stealing among the pool's threads, instead of each being injected
     /// into the pool from outside it and waited for, two thread wake-ups
-    /// per pass (`docs/performance.md`, "The step inside the pool"). The
+    /// per pass (`docs/performance.md`, "Contact at the speed of the bulk,
+    /// first part", item 3). The
     /// results do not depend on it.
     pub fn step(&mut self, want: Want) -> &StepRecord {
         rayon::scope(|_| self.advance(want));

@@ -19,8 +19,9 @@
 //! * The same column with its mid-plane broken, run on with every candidate
 //!   pair evaluated (`negligible = 0`) and with negligible pairs skipped
 //!   (the default): the tets that meet only at a vertex or an edge across
-//!   the cut are skipped, and the two runs differ by no more than the
-//!   skipped forces can move them (see the test).
+//!   the cut are skipped, and the two runs differ by far less than an
+//!   order-of-magnitude allowance for what the skipped forces could move
+//!   (see the test).
 
 use crate::common::{at_step, box_mesh, joints, rock, stable};
 use femdem_core::Vec3;
@@ -176,14 +177,15 @@ fn load_passes_from_joints_to_contact_when_the_mid_plane_breaks() {
 /// Skipping the pairs whose forces are provably negligible (the default
 /// `negligible`) against evaluating every pair, on the column broken at
 /// its mid-plane and pressed: some pairs are skipped, and the base
-/// reaction and every node's position differ by what the skipped forces
-/// allow. Each skipped pair's forces are below `ε p ℓ²` (`ε = 1e-10`,
-/// `ℓ³` the tet's volume: 4.9e-6 N here); with at most `n` skipped pairs
-/// the total is below `n ε p ℓ²`, and the damped column's response to a
-/// force is at most twice its static response (a suddenly applied load
-/// overshoots at most to twice), so the base reaction moves by at most
-/// `2 n ε p ℓ²` and a node by at most that force over the column's axial
-/// stiffness `E A / L`.
+/// reaction and every node's position differ by much less than an
+/// order-of-magnitude allowance (not a derived bound): each skipped pair's
+/// normal forces are below `ε p ℓ²` (`ε = 1e-10`, `ℓ³` the tet's volume:
+/// 4.9e-6 N here), `n` skipped pairs drop less than `n ε p ℓ²` in all,
+/// and the allowance is twice that for the base reaction and that over the
+/// column's axial stiffness `E A / L` for a node (a node alone is about
+/// twice as soft, and the dropped forces are self-balanced pairs switching
+/// on and off, not one step load; measured, the runs differ by some 10⁻³ of
+/// the allowance).
 #[test]
 fn skipping_negligible_pairs_moves_the_broken_column_by_less_than_their_bound() {
     let run = |negligible: f64| {

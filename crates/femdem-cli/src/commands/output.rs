@@ -63,6 +63,15 @@ pub const ENERGY_COLUMNS: [&str; 9] = [
     "balance",
 ];
 
+/// Contact's own columns, with `[contact]`: `contact_normal`, the work the
+/// normal contact forces have absorbed up to `t_n` (J; `contact` less what
+/// the friction springs hold: negative when contact has given back more
+/// energy than it took, which the potential of Eq. 17 cannot do over a
+/// closed cycle), `contact_springs`, the elastic energy the friction
+/// springs hold (J), and `contact_pairs`, the pairs in contact at the
+/// step.
+pub const CONTACT_COLUMNS: [&str; 3] = ["contact_normal", "contact_springs", "contact_pairs"];
+
 /// What the history records besides the energies and the loads' forces.
 #[derive(Clone, Debug, Default)]
 pub struct Recorded {
@@ -72,9 +81,10 @@ pub struct Recorded {
     pub probes: Vec<Probe>,
 }
 
-/// The columns of `history.csv`: energies and failure counts, each drive's
-/// force, displacement and work, each surface load's force and work, the load–strain pair
-/// when asked for, and each probe's twelve columns.
+/// The columns of `history.csv`: energies and failure counts, with contact
+/// its own columns ([`CONTACT_COLUMNS`]), each drive's force, displacement
+/// and work, each surface load's force and work, the load–strain pair when
+/// asked for, and each probe's twelve columns.
 fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
     let mut columns: Vec<String> = ["time", "step"]
         .iter()
@@ -82,6 +92,9 @@ fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
         .chain(&["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"])
         .map(|s| s.to_string())
         .collect();
+    if solver.contact().is_some() {
+        columns.extend(CONTACT_COLUMNS.map(String::from));
+    }
     for d in &solver.loads.drives {
         columns.extend(["fx", "fy", "fz", "ux", "uy", "uz", "work"].map(|c| format!("{}_{c}", d.name)));
     }
@@ -239,6 +252,9 @@ impl Output {
             r.failures.mixed as f64,
             r.failures.collapsed as f64,
         ];
+        if let Some(c) = solver.contact() {
+            row.extend([e.contact - c.spring_energy, c.spring_energy, r.contact_pairs as f64]);
+        }
         for ((f, u), w) in r.drive_forces.iter().zip(&r.drive_displacements).zip(&r.drive_work) {
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z, *w]);
         }

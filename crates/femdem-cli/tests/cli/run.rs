@@ -288,6 +288,17 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
     let platens = last[col("platen_top_work")] + last[col("platen_bottom_work")];
     let external = last[col("external_work")];
     assert!((platens - external).abs() <= 1e-9 * external, "platens {platens} J, external {external} J");
+    // Contact's own columns: at every row the normal forces' work and the
+    // springs' energy add up to the `contact` term (to round-off of its
+    // scale), the springs hold no negative energy, and the platens touch
+    // the disc at every row after the first.
+    let scale = rows.iter().map(|r| r[col("contact")].abs()).fold(0.0, f64::max);
+    for r in rows {
+        let (normal, springs) = (r[col("contact_normal")], r[col("contact_springs")]);
+        assert!((normal + springs - r[col("contact")]).abs() <= 1e-12 * scale, "row at {}", r[col("time")]);
+        assert!(springs >= 0.0 && r[col("contact_pairs")] == r[col("contact_pairs")].round());
+    }
+    assert!(rows[1..].iter().all(|r| r[col("contact_pairs")] > 0.0), "the platens touch the disc");
     // The final frame is the last row's time.
     let pvd = std::fs::read_to_string(out.join("small_brazilian.pvd")).unwrap();
     let t: f64 = pvd.split("timestep=\"").last().unwrap().split('"').next().unwrap().parse().unwrap();

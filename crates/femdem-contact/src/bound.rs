@@ -52,7 +52,7 @@
 use femdem_core::tet::EDGES;
 use femdem_core::{Real, Vec3};
 
-use crate::potential::Barycentric;
+use crate::potential::{Barycentric, TetTetContact, contact_in};
 
 /// The least slack `η` of the tests against a plane (barycentric
 /// coordinates are dimensionless); the bound is also valid (only larger)
@@ -67,10 +67,7 @@ pub const MAX_SLACK: Real = 1e-6;
 /// (the module documentation, "Rounding"); NaN when a coordinate is not
 /// finite.
 fn slack(t: &[Vec3; 4], bary: &Barycentric) -> Real {
-    let m: Real = bary.m.iter().map(|x| x.abs()).sum();
-    let (r, x) =
-        t.iter().fold((0.0, 0.0), |(r, x): (Real, Real), p| (r + (p - bary.x0).abs().sum(), x + p.abs().sum()));
-    SLACK.max(1024.0 * (Real::EPSILON / 2.0) * (1.0 + m * (r + x)))
+    SLACK.max(1024.0 * bary.rounding(t))
 }
 
 /// An upper bound on `Σ_k |F_k| / p` (m²) over the pieces of the Eq. 17
@@ -80,10 +77,33 @@ fn slack(t: &[Vec3; 4], bary: &Barycentric) -> Real {
 /// times it. Zero when the tets are apart (then the forces are zero);
 /// infinite when a tet is flat or a coordinate is not finite (no bound).
 pub fn contact_bound(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
-    let (Some(in_b), Some(in_a)) = (Barycentric::new(b), Barycentric::new(a)) else {
+    bound_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref())
+}
+
+/// [`tet_tet_contact`](crate::tet_tet_contact) of `a` and `b` for penalty
+/// `penalty`, unless `negligible` says their [`contact_bound`] is
+/// negligible (then `None`, and no clipping): the two tets' barycentric
+/// coordinates are computed once for both.
+pub fn tet_tet_contact_unless(
+    a: &[Vec3; 4],
+    b: &[Vec3; 4],
+    penalty: Real,
+    negligible: impl FnOnce(Real) -> bool,
+) -> Option<TetTetContact> {
+    let (in_a, in_b) = (Barycentric::new(a), Barycentric::new(b));
+    if negligible(bound_in(a, b, in_a.as_ref(), in_b.as_ref())) {
+        return None;
+    }
+    Some(contact_in(a, b, in_a.as_ref(), in_b.as_ref(), penalty))
+}
+
+/// [`contact_bound`] with the two tets' barycentric coordinates given
+/// (`None` for a flat tet: no bound).
+fn bound_in(a: &[Vec3; 4], b: &[Vec3; 4], in_a: Option<&Barycentric>, in_b: Option<&Barycentric>) -> Real {
+    let (Some(in_a), Some(in_b)) = (in_a, in_b) else {
         return Real::INFINITY;
     };
-    let eta = slack(a, &in_b).max(slack(b, &in_a));
+    let eta = slack(a, in_b).max(slack(b, in_a));
     // NaN (a coordinate not finite) gives no bound either.
     if eta.is_nan() || eta > MAX_SLACK {
         return Real::INFINITY;

@@ -16,7 +16,9 @@
 //!   contact centre where it acts (for friction).
 //! - [`contact_bound`] (`bound.rs`): an upper bound on a pair's Eq. 17
 //!   forces from the vertices of the two tets' overlap, to skip pairs
-//!   whose forces are negligible before clipping them.
+//!   whose forces are negligible before clipping them;
+//!   [`tet_tet_contact_unless`] checks it and clips with the same
+//!   barycentric coordinates.
 //! - [`separated_by_face_plane`] (`separation.rs`): a narrow-phase filter
 //!   for detection — a face plane of one tet keeps the other more than a
 //!   gap away, so the pair cannot touch before the next detection.
@@ -111,7 +113,7 @@ mod separation;
 #[cfg(test)]
 mod test_pairs;
 
-pub use bound::{MAX_SLACK, SLACK, contact_bound};
+pub use bound::{MAX_SLACK, SLACK, contact_bound, tet_tet_contact_unless};
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};
 pub use separation::separated_by_face_plane;

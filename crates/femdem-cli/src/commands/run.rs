@@ -152,97 +152,87 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     }
     let mut saved_at = Instant::now();
     let mut last_checkpoint: Option<PathBuf> = None;
-    // The time loop runs on a worker thread of rayon's pool, as each
-    // `Solver::step` does on its own: the step and the output's parallel
-    // passes then start by work stealing among the pool's threads instead
-    // of being injected into the pool from outside and waited for
-    // (`docs/performance.md`, "Contact at the speed of the bulk, first
-    // part", item 3). The results do not depend on it.
-    rayon::scope(|_| -> Result<()> {
-        for n in first..run.steps {
-            let t = solver.state.time;
-            let last = n + 1 == run.steps || ended_past_peak;
-            let stopping = stop.load(Ordering::SeqCst) || stop_after_steps.is_some_and(|s| n >= s);
-            if stopping {
-                // The state to continue from: this step has not been taken, and
-                // the frame and row the interruption adds below are not in it.
-                let at = schedule_at(n, next_frame, next_row, ended_past_peak, &past_peak);
-                last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
-            }
-            let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
-            let row_due = frame_due || t >= next_row - 0.5 * dt;
-            let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
-            // The energy check reads the energies of the step it checks; probes
-            // record stress in every history row; a checked step evaluates the
-            // stresses too, so that the frame and row a guard stop adds below
-            // carry the stresses of their own step (they are output only).
-            let energy_checked = checked && run.energy_tolerance.is_some();
-            let probing = row_due && !run.probes.is_empty();
-            solver.step(Want { stress: frame_due || probing || checked, energy: row_due || energy_checked });
-            let record = solver.record();
-            if !record.new_failures.is_empty() {
-                output.failure_rows(solver, record)?;
-            }
-            if row_due {
-                output.history_row(solver, record)?;
-                next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
-            }
-            if frame_due {
-                output.frames(solver, t)?;
-                next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
-            }
-            let trouble = checked
-                .then(|| {
-                    solver
-                        .check(run.stable.critical)
-                        .err()
-                        .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
-                })
-                .flatten();
-            if let Some(trouble) = trouble {
-                // Keep what shows the trouble: the history so far with this
-                // step's row (its energies, if evaluated) and this step's frame,
-                // both of t_n, as every row and frame (unless already written).
-                if !row_due && solver.record().energies_current {
-                    output.history_row(solver, solver.record())?;
-                }
-                if !frame_due {
-                    output.frames(solver, t)?;
-                }
-                progress.finish();
-                bail!(
-                    "the run guard stopped the run: {trouble}\nthe state at that point was written to {}",
-                    output.pvd().display()
-                );
-            }
-            progress.update(n + 1, solver.state.time, || Status {
-                failed_joints: solver.failures().len(),
-                load: run.load_strain.map(|ls| {
-                    let r = solver.record();
-                    ls.evaluate(&r.drive_forces, &r.drive_displacements).0
-                }),
-            });
-            if ended_past_peak {
-                break;
-            }
-            // Past the peak, one more step writes the final row and frame with
-            // their energies and stresses, as the last step does.
-            ended_past_peak = past_peak.as_mut().is_some_and(|w| w.ended(solver));
-            if stopping {
-                interrupted = true;
-                break;
-            }
-            let by_steps = checkpoints.interval_steps > 0 && (n + 1) % checkpoints.interval_steps == 0;
-            let by_wall =
-                checkpoints.interval_wall > 0.0 && saved_at.elapsed().as_secs_f64() >= checkpoints.interval_wall;
-            if !last && (by_steps || by_wall) {
-                let at = schedule_at(n + 1, next_frame, next_row, ended_past_peak, &past_peak);
-                last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
-                saved_at = Instant::now();
-            }
+    for n in first..run.steps {
+        let t = solver.state.time;
+        let last = n + 1 == run.steps || ended_past_peak;
+        let stopping = stop.load(Ordering::SeqCst) || stop_after_steps.is_some_and(|s| n >= s);
+        if stopping {
+            // The state to continue from: this step has not been taken, and
+            // the frame and row the interruption adds below are not in it.
+            let at = schedule_at(n, next_frame, next_row, ended_past_peak, &past_peak);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
         }
-        Ok(())
-    })?;
+        let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
+        let row_due = frame_due || t >= next_row - 0.5 * dt;
+        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
+        // The energy check reads the energies of the step it checks; probes
+        // record stress in every history row; a checked step evaluates the
+        // stresses too, so that the frame and row a guard stop adds below
+        // carry the stresses of their own step (they are output only).
+        let energy_checked = checked && run.energy_tolerance.is_some();
+        let probing = row_due && !run.probes.is_empty();
+        solver.step(Want { stress: frame_due || probing || checked, energy: row_due || energy_checked });
+        let record = solver.record();
+        if !record.new_failures.is_empty() {
+            output.failure_rows(solver, record)?;
+        }
+        if row_due {
+            output.history_row(solver, record)?;
+            next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
+        }
+        if frame_due {
+            output.frames(solver, t)?;
+            next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
+        }
+        let trouble = checked
+            .then(|| {
+                solver
+                    .check(run.stable.critical)
+                    .err()
+                    .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
+            })
+            .flatten();
+        if let Some(trouble) = trouble {
+            // Keep what shows the trouble: the history so far with this
+            // step's row (its energies, if evaluated) and this step's frame,
+            // both of t_n, as every row and frame (unless already written).
+            if !row_due && solver.record().energies_current {
+                output.history_row(solver, solver.record())?;
+            }
+            if !frame_due {
+                output.frames(solver, t)?;
+            }
+            progress.finish();
+            bail!(
+                "the run guard stopped the run: {trouble}\nthe state at that point was written to {}",
+                output.pvd().display()
+            );
+        }
+        progress.update(n + 1, solver.state.time, || Status {
+            failed_joints: solver.failures().len(),
+            load: run.load_strain.map(|ls| {
+                let r = solver.record();
+                ls.evaluate(&r.drive_forces, &r.drive_displacements).0
+            }),
+        });
+        if ended_past_peak {
+            break;
+        }
+        // Past the peak, one more step writes the final row and frame with
+        // their energies and stresses, as the last step does.
+        ended_past_peak = past_peak.as_mut().is_some_and(|w| w.ended(solver));
+        if stopping {
+            interrupted = true;
+            break;
+        }
+        let by_steps = checkpoints.interval_steps > 0 && (n + 1) % checkpoints.interval_steps == 0;
+        let by_wall = checkpoints.interval_wall > 0.0 && saved_at.elapsed().as_secs_f64() >= checkpoints.interval_wall;
+        if !last && (by_steps || by_wall) {
+            let at = schedule_at(n + 1, next_frame, next_row, ended_past_peak, &past_peak);
+            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
+            saved_at = Instant::now();
+        }
+    }
     output.flush()?;
     progress.finish();
     let wall = progress.elapsed().as_secs_f64();

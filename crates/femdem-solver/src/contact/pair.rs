@@ -1,7 +1,7 @@
 //! One candidate pair of the contact pass: the normal potential force
 //! (Eq. 17), the Eq. 18 ramp, and Coulomb friction at the contact centre.
 
-use femdem_contact::{contact_bound, tet_tet_contact};
+use femdem_contact::{tet_tet_contact, tet_tet_contact_unless};
 use femdem_core::{Mat3, Real, Vec3};
 
 use super::settings::FrictionTable;
@@ -154,17 +154,18 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     if !boxes_overlap(pa, pb) {
         return None;
     }
-    if input.negligible > 0.0 {
+    let contact = if input.negligible > 0.0 {
         // Every normal force at most p · bound ≤ negligible · p · ℓ², ℓ³ =
-        // V: as cubes, with no cube root (`contact_bound` is infinite, and
-        // the pair evaluated, where it cannot bound).
-        let r = contact_bound(pa, pb) / input.negligible;
+        // V: as cubes, with no cube root (the bound is infinite, and the
+        // pair evaluated, where it cannot bound).
         let v = input.volumes[0].min(input.volumes[1]);
-        if r * r * r <= v * v {
-            return None;
-        }
-    }
-    let contact = tet_tet_contact(pa, pb, input.penalty);
+        tet_tet_contact_unless(pa, pb, input.penalty, |bound| {
+            let r = bound / input.negligible;
+            r * r * r <= v * v
+        })?
+    } else {
+        tet_tet_contact(pa, pb, input.penalty)
+    };
     let centre = contact.centre?;
     let (mut fa, mut fb) = (contact.on_a, contact.on_b);
     let key = spring_key(a, b);

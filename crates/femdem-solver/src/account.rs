@@ -9,7 +9,7 @@
 //!
 //! ```text
 //! error_n = B_n − B_0,        B = kinetic + elastic + dissipated − external work  (Energies::balance)
-//! scale_n = max(|W_n|, |B_0|, max_{k ≤ n} (K_k + U_k + C_k), E_floor)
+//! scale_n = max(|W_n|, |B_0|, max_{k ≤ n} (K_k + U_k + |C_k|), E_floor)
 //! ```
 //!
 //! with `B_0` the balance of step 0 (the energy the run started with:
@@ -84,7 +84,7 @@ pub(crate) struct Account {
     pub drive_ahead: Vec<Real>,
     /// `B_0`, once step 0 has been evaluated.
     pub initial: Option<Real>,
-    /// The largest `K + U + C` evaluated so far, J.
+    /// The largest `K + U + |C|` evaluated so far, J.
     pub peak_held: Real,
     /// The last evaluation.
     pub last: Option<Imbalance>,
@@ -95,7 +95,7 @@ impl Account {
     pub fn observe(&mut self, step: u64, time: Real, e: &Energies, floor: Real) {
         let balance = e.balance();
         let initial = *self.initial.get_or_insert(balance);
-        let held = e.kinetic + e.tet_elastic + e.joint_elastic + e.contact;
+        let held = e.kinetic + e.tet_elastic + e.joint_elastic + e.contact.abs();
         self.peak_held = self.peak_held.max(held);
         let scale = e.external_work.abs().max(initial.abs()).max(self.peak_held).max(floor);
         self.last = Some(Imbalance { step, time, error: balance - initial, scale });

@@ -115,6 +115,30 @@ pub enum Trouble {
         /// The tolerance, a fraction of the scale.
         tolerance: Real,
     },
+    /// The normal contact forces have given back more energy than they
+    /// absorbed.
+    #[error(
+        "step {step}, t = {time:e} s: the normal contact forces have given back {:.4e} J more than they absorbed, \
+         {:.3e} of the run's energy scale {scale:.4e} J, above the tolerance {tolerance:e}: contact has put energy \
+         into the run that no load supplied (pairs that started overlapped gave back {released:.4e} J; \
+         [contact] activation = \"offset\" starts them at zero)",
+        -work,
+        -work / scale
+    )]
+    ContactEnergy {
+        /// Step number of the evaluation.
+        step: u64,
+        /// Its time, s.
+        time: Real,
+        /// The work the normal contact forces have absorbed, J (negative).
+        work: Real,
+        /// What the pairs that started overlapped have given back, J.
+        released: Real,
+        /// The run's energy scale, J.
+        scale: Real,
+        /// The tolerance, a fraction of the scale.
+        tolerance: Real,
+    },
 }
 
 /// Shortest altitude of a tet: `3V / A_max`.
@@ -199,5 +223,32 @@ impl Solver {
             }
             _ => Ok(()),
         }
+    }
+
+    /// Checks contact's own account: the work the normal contact forces
+    /// have absorbed ([`crate::Contact::normal_work`]) must not fall below
+    /// `−tolerance · scale_n`, the scale of [`Solver::check_energy`] at the
+    /// last evaluation. The energy balance cannot see energy that contact
+    /// puts in (the contact term is the work of its forces, so the account
+    /// closes whatever they do); this sees it once it exceeds the
+    /// tolerance. A potential force absorbs what it gives back over a closed
+    /// cycle, so an honest run keeps the work at or above zero less the
+    /// closed-cycle residual of Eq. 17 (`docs/fidelity.md`). Nothing is
+    /// checked without contact or before the first step.
+    ///
+    /// # Errors
+    /// [`Trouble::ContactEnergy`] with the step and time of that
+    /// evaluation, the work, what the pairs that started overlapped gave
+    /// back, and the scale.
+    pub fn check_contact_energy(&self, tolerance: Real) -> Result<(), Trouble> {
+        let (Some(contact), Some(Imbalance { step, time, scale, .. })) = (self.contact(), self.imbalance()) else {
+            return Ok(());
+        };
+        let work = contact.normal_work();
+        if work < -tolerance * scale || work.is_nan() {
+            let released = contact.energy.released;
+            return Err(Trouble::ContactEnergy { step, time, work, released, scale, tolerance });
+        }
+        Ok(())
     }
 }

@@ -50,7 +50,9 @@ use crate::step::{Solver, StepRecord};
 /// (in the account).
 /// 5: each drive's work (in the record) and its half step held over (in the
 /// account).
-pub const SNAPSHOT_VERSION: u32 = 5;
+/// 6: contact's pairs that started overlapped, with their offsets, and the
+/// work their normal forces did (`ContactSettings::activation`).
+pub const SNAPSHOT_VERSION: u32 = 6;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]

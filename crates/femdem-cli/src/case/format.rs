@@ -113,6 +113,18 @@ pub struct ContactSpec {
     /// candidate pair).
     #[serde(default = "negligible")]
     pub negligible: f64,
+    /// How a pair that already overlaps when it is first evaluated (newly
+    /// allowed to touch by a joint failure) starts: `"paper"` (Eq. 18 for
+    /// the failed joint's own pair if it failed in compression, the rest
+    /// at full force), `"ramp"` (Eq. 18 for every such pair) or `"offset"`
+    /// (its first overlap counts as zero). See
+    /// `femdem_solver::Activation`.
+    pub activation: Option<String>,
+    /// What the run guard does when the normal contact forces have given
+    /// back more than `[solver] energy_tolerance` of the run's energy scale
+    /// beyond what they absorbed: `"stop"` (default), `"warn"` (once, on
+    /// the terminal) or `"off"`.
+    pub energy_check: Option<String>,
 }
 
 fn negligible() -> f64 {

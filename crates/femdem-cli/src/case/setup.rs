@@ -8,7 +8,7 @@ use femdem_material::{ElasticParams, Law};
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
 use femdem_solver::{
-    ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
+    Activation, ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
 };
 use femdem_vtk::Compression;
 
@@ -403,7 +403,14 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
     if !(spec.negligible.is_finite() && (0.0..1e-3).contains(&spec.negligible)) {
         return Err(at(format!("negligible must be in [0, 1e-3), got {}", spec.negligible)));
     }
+    let activation = match spec.activation.as_deref() {
+        None | Some("paper") => Activation::Paper,
+        Some("ramp") => Activation::Ramp,
+        Some("offset") => Activation::Offset,
+        Some(other) => return Err(at(format!("activation `{other}` is not `paper`, `ramp` or `offset`"))),
+    };
     let mut settings = ContactSettings {
+        activation,
         penalty: spec.penalty,
         surfaces: spec.surfaces,
         friction: spec.friction,
@@ -426,6 +433,34 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         settings.pair_friction.push((ids, pair.friction));
     }
     Ok(Some(settings))
+}
+
+/// What the run guard does when contact has given back more energy than
+/// it absorbed (`[contact] energy_check`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactCheck {
+    /// Stop the run (the default).
+    Stop,
+    /// Warn once and go on.
+    Warn,
+    /// Do not check.
+    Off,
+}
+
+/// The case's `[contact] energy_check` (`None` without `[contact]`).
+///
+/// # Errors
+/// A located [`CaseError`] for a value other than `stop`, `warn` or `off`.
+pub fn contact_check(case: &LoadedCase) -> Result<Option<ContactCheck>, CaseError> {
+    let Some(c) = &case.case.contact else { return Ok(None) };
+    match c.get_ref().energy_check.as_deref() {
+        None | Some("stop") => Ok(Some(ContactCheck::Stop)),
+        Some("warn") => Ok(Some(ContactCheck::Warn)),
+        Some("off") => Ok(Some(ContactCheck::Off)),
+        Some(other) => {
+            Err(case.error_at(c.span(), format!("contact.energy_check `{other}` is not `stop`, `warn` or `off`")))
+        }
+    }
 }
 
 /// The load–strain columns of `[output.load_strain]`, resolved against the

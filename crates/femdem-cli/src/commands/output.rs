@@ -66,11 +66,16 @@ pub const ENERGY_COLUMNS: [&str; 9] = [
 /// Contact's own columns, with `[contact]`: `contact_normal`, the work the
 /// normal contact forces have absorbed up to `t_n` (J; `contact` less what
 /// the friction springs hold: negative when contact has given back more
-/// energy than it took, which the potential of Eq. 17 cannot do over a
-/// closed cycle), `contact_springs`, the elastic energy the friction
-/// springs hold (J), and `contact_pairs`, the pairs in contact at the
-/// step.
-pub const CONTACT_COLUMNS: [&str; 3] = ["contact_normal", "contact_springs", "contact_pairs"];
+/// energy than it took — a conservative force would return to zero after
+/// a closed cycle; Eq. 17's leaves a residual, `docs/fidelity.md`),
+/// `contact_springs`, the elastic energy the friction springs hold (J),
+/// `contact_pairs`, the pairs in contact at the step, `contact_released`,
+/// the work done on the bodies by the normal forces of the pairs that
+/// started overlapped while they stayed in contact (J; the energy their
+/// initial overlap gave back, `[contact] activation`), and
+/// `contact_started`, how many such pairs are in contact.
+pub const CONTACT_COLUMNS: [&str; 5] =
+    ["contact_normal", "contact_springs", "contact_pairs", "contact_released", "contact_started"];
 
 /// What the history records besides the energies and the loads' forces.
 #[derive(Clone, Debug, Default)]
@@ -253,7 +258,13 @@ impl Output {
             r.failures.collapsed as f64,
         ];
         if let Some(c) = solver.contact() {
-            row.extend([e.contact - c.spring_energy, c.spring_energy, r.contact_pairs as f64]);
+            row.extend([
+                c.normal_work(),
+                c.spring_energy,
+                r.contact_pairs as f64,
+                c.energy.released,
+                c.started_pairs() as f64,
+            ]);
         }
         for ((f, u), w) in r.drive_forces.iter().zip(&r.drive_displacements).zip(&r.drive_work) {
             row.extend([f.x, f.y, f.z, u.x, u.y, u.z, *w]);

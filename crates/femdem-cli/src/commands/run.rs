@@ -152,6 +152,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     }
     let mut saved_at = Instant::now();
     let mut last_checkpoint: Option<PathBuf> = None;
+    let mut contact_warned = false;
     for n in first..run.steps {
         let t = solver.state.time;
         let last = n + 1 == run.steps || ended_past_peak;
@@ -190,6 +191,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
                     .check(run.stable.critical)
                     .err()
                     .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
+                    .or_else(|| contact_trouble(solver, run.energy_tolerance, run.contact_check, &mut contact_warned))
             })
             .flatten();
         if let Some(trouble) = trouble {
@@ -268,6 +270,29 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
 }
 
 /// The run loop's schedule at the start of step `n`.
+/// The guard's check of contact's own account
+/// (`Solver::check_contact_energy`) under `[contact] energy_check`: the
+/// trouble that stops the run, or `None` after warning once (`warned`).
+fn contact_trouble(
+    solver: &Solver,
+    tolerance: Option<f64>,
+    check: Option<case::setup::ContactCheck>,
+    warned: &mut bool,
+) -> Option<femdem_solver::Trouble> {
+    let (Some(tolerance), Some(check)) = (tolerance, check) else { return None };
+    let trouble = solver.check_contact_energy(tolerance).err()?;
+    match check {
+        case::setup::ContactCheck::Stop => Some(trouble),
+        _ => {
+            if !*warned {
+                *warned = true;
+                eprintln!("femdem: warning ([contact] energy_check = \"warn\"; reported once): {trouble}");
+            }
+            None
+        }
+    }
+}
+
 fn schedule_at(n: u64, next_frame: f64, next_row: f64, ended: bool, watch: &Option<PeakWatch>) -> Schedule {
     Schedule {
         next_step: n,

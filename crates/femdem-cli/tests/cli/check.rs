@@ -207,6 +207,12 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("missing_msh.toml", ":7:1:", "does_not_exist.msh"),
         ("undeclared_physical_volume.toml", ":7:1:", "physical volume `inclusion`"),
         ("contact_pair_unknown_region.toml", ":24:1:", "contact.pairs[0]: `steel` is not a region"),
+        (
+            "contact_unknown_activation.toml",
+            ":20:1:",
+            "contact.activation `gradual` is not `paper`, `ramp` or `offset`",
+        ),
+        ("contact_unknown_energy_check.toml", ":20:1:", "contact.energy_check `ignore` is not `stop`, `warn` or `off`"),
         ("load_strain_unknown_platen.toml", ":23:1:", "output.load_strain.upper: `platen_top` is not a platen"),
         (
             "zone_min_above_max.toml",

@@ -54,6 +54,50 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
 /// integration can give — trips the check at its first occasion, step 99
 /// of `check_interval = 100`; the default (0.01) lets the same run finish
 /// (`elastic_bar_runs_and_writes_a_series_and_a_history`).
+/// `[contact] energy_check` (issue 30, item 4): the small Brazilian run
+/// with the Eq. 18 ramp on every pair that starts overlapped gives back
+/// 3% of its energy scale through contact (measured: 1.47 mJ of 48.9 mJ),
+/// which the balance cannot see. By default the guard stops it, naming
+/// the amount and what the started pairs gave back; with `"warn"` the run
+/// goes on to its end and says so once; `activation = "offset"` gives
+/// nothing back, and the guard stays quiet. The history carries the
+/// started pairs' columns.
+#[test]
+fn contact_that_gives_back_energy_is_stopped_or_warned() {
+    let run = |name: &str, sets: &[&str]| {
+        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+        let _ = std::fs::remove_dir_all(&out);
+        let mut args =
+            vec!["run", "crates/femdem-cli/tests/cases/small_brazilian.toml", "--out", out.to_str().unwrap()];
+        for set in sets {
+            args.extend(["--set", set]);
+        }
+        (femdem(&args), out)
+    };
+    let (o, _) = run("contact-guard-stop", &["contact.activation=\"ramp\""]);
+    assert!(!o.status.success(), "the run must be stopped");
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(err.contains("the run guard stopped the run") && err.contains("the normal contact forces have given back"));
+    assert!(err.contains("pairs that started overlapped gave back"), "{err}");
+    let (o, out) = run("contact-guard-warn", &["contact.activation=\"ramp\"", "contact.energy_check=\"warn\""]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_eq!(err.matches("femdem: warning ([contact] energy_check = \"warn\"").count(), 1, "{err}");
+    let history = History::read(&out);
+    let last = history.rows.last().unwrap();
+    assert!(last[history.col("contact_released")] > 0.0 && last[history.col("contact_normal")] < 0.0);
+    let (o, out) = run("contact-guard-offset", &["contact.activation=\"offset\""]);
+    assert!(o.status.success() && !String::from_utf8_lossy(&o.stderr).contains("warning"));
+    let history = History::read(&out);
+    let (released, started) = (history.col("contact_released"), history.col("contact_started"));
+    assert!(history.rows.iter().all(|r| r[started] == r[started].round() && r[started] >= 0.0));
+    assert!(history.rows.iter().any(|r| r[started] > 0.0), "failed joints start pairs overlapped");
+    // What the offset pairs give back is at most the closed-cycle residual
+    // of what they took: measured at most 1e-5 J here, 0.02% of the work.
+    let work = history.rows.last().unwrap()[history.col("external_work")];
+    assert!(history.rows.iter().all(|r| r[released] <= 1e-3 * work), "the offset start gives back nothing");
+}
+
 #[test]
 fn a_run_past_its_energy_tolerance_is_stopped_with_its_state_written() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("energy-guard-run");

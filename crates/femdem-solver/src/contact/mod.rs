@@ -76,7 +76,7 @@ use crate::model::{Model, RIGID};
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 use settings::FrictionTable;
-pub use settings::{ContactSettings, NEGLIGIBLE};
+pub use settings::{Activation, ContactSettings, NEGLIGIBLE};
 use stars::Stars;
 
 /// The paper's `n_total` of Eq. 18: steps over which the contact force of
@@ -100,6 +100,13 @@ pub struct ContactEnergy {
     normal_ahead: Real,
     /// The same for the friction forces.
     friction_ahead: Real,
+    /// Work done on the bodies by the normal forces of the pairs that
+    /// started overlapped (`ContactSettings::activation`), while they
+    /// stayed in contact, up to `t_n`: the energy their initial overlap
+    /// gave back (less what they absorbed since), J.
+    pub released: Real,
+    /// The same over the half step after `t_n`, booked with the next pass.
+    released_ahead: Real,
 }
 
 /// The contact pass's state.
@@ -170,6 +177,15 @@ pub struct Contact {
     /// Pairs of joints that failed in compression, with their step count
     /// `n_c` of Eq. 18.
     ramp: PairMap<u32>,
+    /// Pairs that started overlapped and have not separated since, with
+    /// their offset `N_off`, N (see [`Activation`]).
+    started: PairMap<Real>,
+    started_next: PairMap<Real>,
+    /// Per candidate, whether it was not a candidate at the last pass
+    /// (empty when the candidates did not change).
+    fresh: Vec<bool>,
+    /// Normal force per node of the pairs that started overlapped, N.
+    started_force: Vec<Vec3>,
 }
 
 impl Contact {
@@ -222,6 +238,10 @@ impl Contact {
             stick: PairMap::default(),
             stick_next: PairMap::default(),
             ramp: PairMap::default(),
+            started: PairMap::default(),
+            started_next: PairMap::default(),
+            fresh: Vec::new(),
+            started_force: vec![Vec3::zeros(); model.num_nodes()],
         };
         // A pre-existing fracture face activates its vertices as a failed
         // joint does: its tets are those of the vertices the pair shares.
@@ -241,12 +261,13 @@ impl Contact {
     /// (`compressed`: its mean opening was negative) has the contact force
     /// between its two tets ramped in over [`ContactSettings::ramp_steps`]
     /// steps (Eq. 18), so that the joint force, which vanishes at failure,
-    /// is not replaced by a sudden contact force.
+    /// is not replaced by a sudden contact force (with
+    /// [`Activation::Offset`] the offset does that instead).
     pub fn joint_failed(&mut self, model: &Model, joint: usize, compressed: bool) {
         let tets = model.joint_tets[joint];
         let key = spring_key(tets[0], tets[1]);
         self.bonded.remove(&key);
-        if compressed && self.settings.ramp_steps > 0 {
+        if compressed && self.settings.ramp_steps > 0 && self.settings.activation != Activation::Offset {
             self.ramp.insert(key, 0);
         }
         // N4 N5 N6 share the original vertices of N3 N2 N1.
@@ -326,6 +347,7 @@ impl Contact {
     pub fn book_work(&mut self, v_new: &[Vec3], dt: Real) {
         let half = 0.5 * dt;
         let (mut normal, mut friction, mut normal_ahead, mut friction_ahead) = (0.0, 0.0, 0.0, 0.0);
+        let (mut released, mut released_ahead) = (0.0, 0.0);
         for (k, &n) in self.touched.iter().enumerate() {
             let (before, after) = (self.v_before[k], v_new[n as usize]);
             let (f_n, f_t) = (self.force[n as usize], self.friction_force[n as usize]);
@@ -333,8 +355,13 @@ impl Contact {
             friction += half * f_t.dot(&before);
             normal_ahead += half * f_n.dot(&after);
             friction_ahead += half * f_t.dot(&after);
+            let f_s = self.started_force[n as usize];
+            released += half * f_s.dot(&before);
+            released_ahead += half * f_s.dot(&after);
         }
         let e = &mut self.energy;
+        e.released += e.released_ahead + released;
+        e.released_ahead = released_ahead;
         e.friction_absorbed -= e.friction_ahead + friction;
         e.contact += self.spring_energy - e.spring_booked - (e.normal_ahead + normal);
         e.friction = e.friction_absorbed - self.spring_energy;
@@ -399,20 +426,31 @@ impl Contact {
             self.force[n as usize] = Vec3::zeros();
             self.friction_force[n as usize] = Vec3::zeros();
             self.total[n as usize] = Vec3::zeros();
+            self.started_force[n as usize] = Vec3::zeros();
             self.is_touched[n as usize] = false;
         }
         self.touched.clear();
-        match self.needs_detection(x) {
+        let update = self.needs_detection(x);
+        let before = match update {
+            Update::None => None,
+            _ => Some(self.candidates.clone()),
+        };
+        match update {
             Update::None => {}
             Update::Full => self.detect(model, x),
             Update::Add { moved } => self.add_candidates(model, x, moved),
         }
-        let (friction, stick, ramp) = (&self.friction, &self.stick, &self.ramp);
+        self.fresh.clear();
+        if let Some(before) = before {
+            self.fresh = not_in(&self.candidates, &before);
+        }
+        let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
-        let negligible = self.settings.negligible;
+        let (negligible, activation, fresh) = (self.settings.negligible, self.settings.activation, &self.fresh);
         self.candidates
             .par_iter()
-            .map(|&(a, b)| {
+            .enumerate()
+            .map(|(i, &(a, b))| {
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
                 evaluate(PairInput {
                     tets: [a, b],
@@ -428,6 +466,9 @@ impl Contact {
                     n_total,
                     springs: stick,
                     dt,
+                    fresh: fresh.get(i).copied().unwrap_or(false),
+                    activation,
+                    started,
                 })
             })
             .collect_into_vec(&mut self.results);
@@ -440,6 +481,12 @@ impl Contact {
                 self.stick_next.insert(spring_key(a, b), r.spring);
                 self.spring_energy += r.spring_energy;
             }
+            if let Some(off) = r.started {
+                self.started_next.insert(spring_key(a, b), off);
+            }
+            if r.fresh && self.settings.activation == Activation::Ramp && self.settings.ramp_steps > 0 {
+                self.ramp.entry(spring_key(a, b)).or_insert(0);
+            }
             for (side, (t, sign)) in [(a, -1.0), (b, 1.0)].into_iter().enumerate() {
                 for (k, &n) in model.tets[t as usize].iter().enumerate() {
                     let n = n as usize;
@@ -449,6 +496,9 @@ impl Contact {
                     }
                     self.force[n] += r.normal[side][k];
                     self.friction_force[n] += r.friction * (r.weights[side][k] * sign);
+                    if r.started.is_some() {
+                        self.started_force[n] += r.normal[side][k];
+                    }
                 }
             }
         }
@@ -465,8 +515,50 @@ impl Contact {
             *n_c += 1;
             *n_c <= n_total
         });
-        // Springs of pairs no longer in contact are dropped.
+        // Springs of pairs no longer in contact are dropped, and so are the
+        // pairs that started overlapped once they separate.
         std::mem::swap(&mut self.stick, &mut self.stick_next);
         self.stick_next.clear();
+        std::mem::swap(&mut self.started, &mut self.started_next);
+        self.started_next.clear();
+    }
+
+    /// The pairs in contact now that started overlapped (see
+    /// [`Activation`]).
+    pub fn started_pairs(&self) -> usize {
+        self.started.len()
+    }
+
+    /// The work the normal contact forces have absorbed up to `t_n` of the
+    /// last pass, J: [`ContactEnergy::contact`] less the friction springs'
+    /// energy. Negative when contact has given back more than it took.
+    pub fn normal_work(&self) -> Real {
+        self.energy.contact - self.spring_energy
+    }
+}
+
+/// Per entry of `now` (ascending), whether it is missing from `before`
+/// (ascending).
+fn not_in(now: &[(u32, u32)], before: &[(u32, u32)]) -> Vec<bool> {
+    let mut j = 0;
+    now.iter()
+        .map(|p| {
+            j += before[j..].partition_point(|q| q < p);
+            before.get(j) != Some(p)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::not_in;
+
+    #[test]
+    fn fresh_pairs_are_those_missing_from_the_last_candidates() {
+        let before = [(0, 1), (0, 3), (2, 5), (4, 4)];
+        let now = [(0, 0), (0, 3), (1, 2), (2, 5), (7, 9)];
+        assert_eq!(not_in(&now, &before), [true, false, true, false, true]);
+        assert_eq!(not_in(&now, &[]), [true; 5]);
+        assert!(not_in(&[], &before).is_empty());
     }
 }

@@ -4,7 +4,7 @@
 use femdem_contact::{tet_tet_contact, tet_tet_contact_unless};
 use femdem_core::{Mat3, Real, Vec3};
 
-use super::settings::FrictionTable;
+use super::settings::{Activation, FrictionTable};
 
 /// What one pair in contact contributes.
 #[derive(Clone, Copy, Debug)]
@@ -24,6 +24,12 @@ pub(crate) struct PairForce {
     pub spring: Vec3,
     /// Elastic energy of the friction spring, `½ k_t |s|²`, J.
     pub spring_energy: Real,
+    /// For a pair that started overlapped (it overlapped when first
+    /// evaluated and has not separated since): its offset `N_off` after
+    /// this step ([`Activation::Offset`]; 0 with the other options).
+    pub started: Option<Real>,
+    /// Whether this is the pair's first evaluation and it overlaps.
+    pub fresh: bool,
 }
 
 /// A set of tet pairs keyed by [`spring_key`] (see [`PairHasher`]).
@@ -108,6 +114,13 @@ pub(crate) struct PairInput<'a> {
     pub n_total: Real,
     pub springs: &'a PairMap<Vec3>,
     pub dt: Real,
+    /// Whether the pair was not a candidate at the last pass (so this is
+    /// its first evaluation), how such a pair starts if it overlaps
+    /// ([`super::ContactSettings::activation`]), and the pairs that started
+    /// overlapped with their offsets (read only for a pair in contact).
+    pub fresh: bool,
+    pub activation: Activation,
+    pub started: &'a PairMap<Real>,
 }
 
 /// The barycentric coordinates of `q` in the tet `p` (`None` if flat).
@@ -123,7 +136,12 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
 ///
 /// Normal force: Eq. 17 (`femdem_contact::tet_tet_contact`), times the
 /// Eq. 18 ramp factor `n_c / n_total` for a joint that failed in
-/// compression; `N` its resultant on the second tet, `n̂ = N / |N|`.
+/// compression (or, with [`Activation::Ramp`], any pair that overlaps at
+/// its first evaluation), and with [`Activation::Offset`] times
+/// `max(0, 1 − N_off / N₁₇)` for a pair that started overlapped; `N` its
+/// resultant on the second tet, `n̂ = N / |N|`. A pair that started
+/// overlapped is returned while it overlaps, even with no force (its offset
+/// must be kept).
 ///
 /// Friction acts at the contact centre `c` (the force-weighted centre of
 /// the clipped overlap pieces, a point of both tets), where the slip is
@@ -169,16 +187,34 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let centre = contact.centre?;
     let (mut fa, mut fb) = (contact.on_a, contact.on_b);
     let key = spring_key(a, b);
-    // Eq. 18's `n_c / n_total` while the ramp lasts, else 1.
-    let ramp = input.ramps.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / input.n_total);
-    if ramp != 1.0 {
+    let full = fb.iter().sum::<Vec3>().norm();
+    // A pair that overlaps at its first evaluation started overlapped; it
+    // is followed (with its offset) until it separates.
+    let fresh = input.fresh && (full > 0.0 || fa.iter().any(|f| *f != Vec3::zeros()));
+    let started = if fresh {
+        Some(if input.activation == Activation::Offset { full } else { 0.0 })
+    } else {
+        input.started.get(&key).map(|&off| off.min(full))
+    };
+    // Eq. 18's `n_c / n_total` while the ramp lasts (from 0 for a pair that
+    // starts now with `Activation::Ramp`), else 1; with an offset, the share
+    // of the resultant beyond it.
+    let mut scale = if fresh && input.activation == Activation::Ramp && input.n_total > 0.0 {
+        0.0
+    } else {
+        input.ramps.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / input.n_total)
+    };
+    if let Some(off) = started.filter(|&off| off > 0.0) {
+        scale *= if full > off { 1.0 - off / full } else { 0.0 };
+    }
+    if scale != 1.0 {
         for f in fa.iter_mut().chain(fb.iter_mut()) {
-            *f *= ramp;
+            *f *= scale;
         }
     }
     let normal: Vec3 = fb.iter().sum();
     let n_mag = normal.norm();
-    if n_mag == 0.0 && fa.iter().all(|f| f.norm() == 0.0) {
+    if n_mag == 0.0 && fa.iter().all(|f| f.norm() == 0.0) && started.is_none() {
         return None;
     }
     let mut out = PairForce {
@@ -188,6 +224,8 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         weights: [[0.25; 4]; 2],
         spring: Vec3::zeros(),
         spring_energy: 0.0,
+        started,
+        fresh,
     };
     let mu = input.friction.get(input.regions[a as usize], input.regions[b as usize]);
     if mu > 0.0 && n_mag > 0.0 {

@@ -51,6 +51,53 @@ pub struct ContactSettings {
     /// (`docs/performance.md`). 0 evaluates every candidate (Eq. 17 as
     /// printed); default [`NEGLIGIBLE`].
     pub negligible: Real,
+    /// How a pair that is already overlapping when it is first evaluated
+    /// starts (a pair newly allowed to touch by a joint failure, whose
+    /// overlap is the compliance of the joints that held it): see
+    /// [`Activation`].
+    pub activation: Activation,
+}
+
+/// How a pair that overlaps when it is first evaluated starts.
+///
+/// A pair of contactable tets that may touch is a candidate before it can
+/// overlap (detection's buffer guarantee, `Contact::needs_detection`), so
+/// it starts at zero overlap and its force rises from zero. The exceptions
+/// are pairs *newly allowed* to touch: when a joint fails, every tet
+/// around its three vertices becomes contactable (G1–G6 of Eq. 15) and
+/// the failed joint's own pair may touch, and their overlap then is what
+/// the joints allowed under compression. At full force from their first
+/// step such pairs push apart with energy no one stored: the joint's own
+/// compression energy was already booked as the joint's (and dissipated
+/// with it), and the contact gives it back a second time. The options:
+///
+/// * [`Activation::Paper`]: as printed, the Eq. 18 ramp for the failed
+///   joint's own pair when it failed in compression, every other pair at
+///   full force at once;
+/// * [`Activation::Ramp`]: the Eq. 18 ramp (`n_c / n_total`) for every
+///   pair that overlaps when first evaluated. It only delays the force:
+///   the overlap's energy is still given back as the pair separates;
+/// * [`Activation::Offset`]: the pair's first normal resultant `N₀` counts
+///   as its zero, `f = f₁₇ · max(0, 1 − N_off / N)`, `N` the Eq. 17
+///   resultant now and `N_off ← min(N_off, N)` at every step (first
+///   `N₀`). The force rises from zero with any further compression, by
+///   `N − N_off` in magnitude, and the offset shrinks only as the pair
+///   opens, where the force is zero: for a force proportional to the
+///   overlap (two faces pressed flat, where Eq. 17's resultant grows with
+///   the depth) it is the 1-D penalty `k max(0, d − d_off)` with
+///   `d_off ← min(d_off, d)`, which stores and gives back only what the
+///   pair is pressed beyond its start, so activation injects nothing. It
+///   replaces the Eq. 18 ramp. Once the pair separates (no overlap) it is
+///   forgotten; touching again, it starts from zero overlap as any other.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Activation {
+    /// Eq. 18 for the joints that failed in compression only (as printed).
+    #[default]
+    Paper,
+    /// Eq. 18 for every pair that overlaps when first evaluated.
+    Ramp,
+    /// The first overlap counts as zero (see the enum's documentation).
+    Offset,
 }
 
 /// The default of [`ContactSettings::negligible`].
@@ -70,6 +117,7 @@ impl ContactSettings {
             ramp_steps: crate::RAMP_STEPS,
             incremental: true,
             negligible: NEGLIGIBLE,
+            activation: Activation::default(),
         }
     }
 

@@ -15,8 +15,9 @@ impl Contact {
     /// pieces, bonded pairs, the candidates with the watched nodes and their
     /// reference positions, staleness and the pending tets, the last pass's
     /// touched nodes with their forces and velocities, the energy account
-    /// and counters, the friction springs and the Eq. 18 ramp counters (maps
-    /// sorted by key). Scratch buffers (NBS, spheres, pair results) are not
+    /// and counters, the friction springs, the Eq. 18 ramp counters and the pairs that
+    /// started overlapped with their offsets (maps sorted by key). Scratch
+    /// buffers (NBS, spheres, pair results, the started pairs' forces) are not
     /// written.
     pub(crate) fn encode(&self, e: &mut Encoder) {
         e.bools(&self.contactable);
@@ -38,9 +39,18 @@ impl Contact {
         }
         e.vec3s(&self.v_before);
         let en = &self.energy;
-        [en.contact, en.friction, en.friction_absorbed, en.spring_booked, en.normal_ahead, en.friction_ahead]
-            .into_iter()
-            .for_each(|x| e.f64(x));
+        [
+            en.contact,
+            en.friction,
+            en.friction_absorbed,
+            en.spring_booked,
+            en.normal_ahead,
+            en.friction_ahead,
+            en.released,
+            en.released_ahead,
+        ]
+        .into_iter()
+        .for_each(|x| e.f64(x));
         e.count(self.active_pairs);
         e.u64(self.detections);
         e.u64(self.additions);
@@ -60,6 +70,14 @@ impl Contact {
             e.u32(a);
             e.u32(b);
             e.u32(n);
+        }
+        let mut started: Vec<_> = self.started.iter().map(|(&k, &off)| (k, off)).collect();
+        started.sort_unstable_by_key(|&(k, _)| k);
+        e.count(started.len());
+        for ((a, b), off) in started {
+            e.u32(a);
+            e.u32(b);
+            e.f64(off);
         }
     }
 
@@ -114,6 +132,8 @@ impl Contact {
             spring_booked: d.f64()?,
             normal_ahead: d.f64()?,
             friction_ahead: d.f64()?,
+            released: d.f64()?,
+            released_ahead: d.f64()?,
         };
         c.active_pairs = d.count()?;
         c.detections = d.u64()?;
@@ -130,6 +150,15 @@ impl Contact {
             let key = (tet(d.u32()?)?, tet(d.u32()?)?);
             c.ramp.insert(key, d.u32()?);
         }
+        c.started.clear();
+        c.started_next.clear();
+        for _ in 0..d.count()? {
+            let key = (tet(d.u32()?)?, tet(d.u32()?)?);
+            c.started.insert(key, d.f64()?);
+        }
+        c.fresh.clear();
+        // Written by every pass before its booking reads it.
+        c.started_force.fill(Vec3::zeros());
         Ok(c)
     }
 }

@@ -72,10 +72,12 @@ pub const ENERGY_COLUMNS: [&str; 9] = [
 /// `contact_pairs`, the pairs in contact at the step, `contact_released`,
 /// the work done on the bodies by the normal forces of the pairs that
 /// started overlapped while they stayed in contact (J; the energy their
-/// initial overlap gave back, `[contact] activation`), and
-/// `contact_started`, how many such pairs are in contact.
-pub const CONTACT_COLUMNS: [&str; 5] =
-    ["contact_normal", "contact_springs", "contact_pairs", "contact_released", "contact_started"];
+/// initial overlap gave back, `[contact] activation`),
+/// `contact_started`, how many such pairs are in contact, and
+/// `contact_depth_max`, the deepest overlap of a pair in contact over the
+/// element's shortest altitude (`Contact::deepest_overlap`).
+pub const CONTACT_COLUMNS: [&str; 6] =
+    ["contact_normal", "contact_springs", "contact_pairs", "contact_released", "contact_started", "contact_depth_max"];
 
 /// What the history records besides the energies and the loads' forces.
 #[derive(Clone, Debug, Default)]
@@ -97,6 +99,9 @@ fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
         .chain(&["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"])
         .map(|s| s.to_string())
         .collect();
+    if !solver.model.joints.is_empty() {
+        columns.push("fracture_gf_area".into());
+    }
     if solver.contact().is_some() {
         columns.extend(CONTACT_COLUMNS.map(String::from));
     }
@@ -132,6 +137,24 @@ pub struct Output {
     /// Pre-existing fracture faces (node triples of one side).
     pre_existing: Vec<[u32; 3]>,
     recorded: Recorded,
+    /// `Σ G_f A` over the failures counted so far (`fracture_gf_area`), J,
+    /// and how many of the solver's failures that is.
+    gf_area: f64,
+    gf_counted: usize,
+}
+
+/// `G_f A` of one failed joint: its fracture energy for the way it failed
+/// (`G_ft` tensile, `G_fs` shear, their mean mixed, 0 for a collapsed
+/// joint, which released nothing) times its mid-plane area at failure, J.
+fn gf_area(solver: &Solver, f: &femdem_solver::Failure) -> f64 {
+    let p = &solver.model.joint_law[f.joint as usize].params;
+    let g = match f.mode {
+        femdem_fracture::FailureMode::Tensile => p.gf_tension,
+        femdem_fracture::FailureMode::Shear => p.gf_shear,
+        femdem_fracture::FailureMode::Mixed => 0.5 * (p.gf_tension + p.gf_shear),
+        femdem_fracture::FailureMode::Collapsed => 0.0,
+    };
+    g * f.area
 }
 
 impl Output {
@@ -206,7 +229,7 @@ impl Output {
             ),
         };
         let (series, fractures) = (series.with_options(options), fractures.with_options(options));
-        Ok(Output { series, fractures, history, failures, fields, pre_existing, recorded })
+        Ok(Output { series, fractures, history, failures, fields, pre_existing, recorded, gf_area: 0.0, gf_counted: 0 })
     }
 
     /// How far the output has got, for a checkpoint; the history and the
@@ -257,6 +280,15 @@ impl Output {
             r.failures.mixed as f64,
             r.failures.collapsed as f64,
         ];
+        if !solver.model.joints.is_empty() {
+            // One failure at a time, in order: the same sum however the
+            // rows (or a resume, which starts from 0) cut the list.
+            for f in &solver.failures()[self.gf_counted..] {
+                self.gf_area += gf_area(solver, f);
+            }
+            self.gf_counted = solver.failures().len();
+            row.push(self.gf_area);
+        }
         if let Some(c) = solver.contact() {
             row.extend([
                 c.normal_work(),
@@ -264,6 +296,8 @@ impl Output {
                 r.contact_pairs as f64,
                 c.energy.released,
                 c.started_pairs() as f64,
+                // At t_n, where the pass found them in contact.
+                c.deepest_overlap(&solver.model, |n| solver.recorded_position(n as usize)),
             ]);
         }
         for ((f, u), w) in r.drive_forces.iter().zip(&r.drive_displacements).zip(&r.drive_work) {

@@ -173,6 +173,9 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         let energy_checked = checked && run.energy_tolerance.is_some();
         let probing = row_due && !run.probes.is_empty();
         solver.step(Want { stress: frame_due || probing || checked, energy: row_due || energy_checked });
+        if n == 0 {
+            warn_initial_overlap(solver);
+        }
         let record = solver.record();
         if !record.new_failures.is_empty() {
             output.failure_rows(solver, record)?;
@@ -270,6 +273,27 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
 }
 
 /// The run loop's schedule at the start of step `n`.
+/// Warns when tets already overlap at the first step (a platen or part
+/// placed into another): how they start is `[contact] activation`'s, and
+/// the user should know that the scene starts with an overlap.
+fn warn_initial_overlap(solver: &Solver) {
+    let Some(c) = solver.contact() else { return };
+    if c.started_pairs() > 0 {
+        let depth = c.deepest_overlap(&solver.model, |n| solver.recorded_position(n as usize));
+        eprintln!(
+            "femdem: warning: {} tet pairs overlap at t = 0 (the deepest by {:.3} of an element's shortest altitude); \
+             they start as [contact] activation = \"{}\" says",
+            c.started_pairs(),
+            depth,
+            match c.settings.activation {
+                femdem_solver::Activation::Paper => "paper",
+                femdem_solver::Activation::Ramp => "ramp",
+                femdem_solver::Activation::Offset => "offset",
+            }
+        );
+    }
+}
+
 /// The guard's check of contact's own account
 /// (`Solver::check_contact_energy`) under `[contact] energy_check`: the
 /// trouble that stops the run, or `None` after warning once (`warned`).

@@ -98,6 +98,27 @@ fn contact_that_gives_back_energy_is_stopped_or_warned() {
     assert!(history.rows.iter().all(|r| r[released] <= 1e-3 * work), "the offset start gives back nothing");
 }
 
+/// A scene that starts with an overlap says so at its first step, with
+/// the overlap's depth and the activation that starts it: two 1 cm blocks
+/// of 5 mm tets, one placed 0.1 mm into the other.
+#[test]
+fn an_overlap_at_the_start_is_reported() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("overlapping-blocks");
+    let _ = std::fs::remove_dir_all(&out);
+    let case = "crates/femdem-cli/tests/cases/overlapping_blocks.toml";
+    let o = femdem(&["run", case, "--out", out.to_str().unwrap(), "--set", "contact.activation=\"offset\""]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8(o.stderr).unwrap();
+    let line = err.lines().find(|l| l.contains("overlap at t = 0")).expect(&err);
+    assert!(line.contains("activation = \"offset\""), "{line}");
+    // The depth along the normal over the shortest altitude, 0.1 mm over
+    // about 2.5 mm: a few percent.
+    let depth: f64 = line.split("the deepest by ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+    assert!(depth > 0.02 && depth < 0.1, "{line}");
+    let o = femdem(&["run", "cases/elastic-bar.toml", "--out", out.join("bar").to_str().unwrap()]);
+    assert!(!String::from_utf8(o.stderr).unwrap().contains("overlap at t = 0"));
+}
+
 #[test]
 fn a_run_past_its_energy_tolerance_is_stopped_with_its_state_written() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("energy-guard-run");
@@ -343,6 +364,16 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
         assert!(springs >= 0.0 && r[col("contact_pairs")] == r[col("contact_pairs")].round());
     }
     assert!(rows[1..].iter().all(|r| r[col("contact_pairs")] > 0.0), "the platens touch the disc");
+    // The deepest overlap is a small share of an element (the penalty is
+    // E); Σ G_f A grows with the
+    // failures, and fracture dissipates more than it (the softening branch
+    // of the paper's Eq. 10 calibration alone dissipates 1.16 G_f per unit
+    // area, and joints soften before they fail).
+    let depth = col("contact_depth_max");
+    assert!(rows[1..].iter().all(|r| r[depth] > 0.0 && r[depth] < 0.1), "depth");
+    let gf = col("fracture_gf_area");
+    assert!(rows.windows(2).all(|w| w[1][gf] >= w[0][gf]) && last[gf] > 0.0);
+    assert!(last[col("fracture")] > 1.16 * last[gf], "{} J against Σ G_f A = {} J", last[col("fracture")], last[gf]);
     // The final frame is the last row's time.
     let pvd = std::fs::read_to_string(out.join("small_brazilian.pvd")).unwrap();
     let t: f64 = pvd.split("timestep=\"").last().unwrap().split('"').next().unwrap().parse().unwrap();

@@ -30,6 +30,9 @@ pub(crate) struct PairForce {
     pub started: Option<Real>,
     /// Whether this is the pair's first evaluation and it overlaps.
     pub fresh: bool,
+    /// The direction of Eq. 17's normal resultant on the second tet before
+    /// the ramp or offset scales it (unit; zero if it has none).
+    pub direction: Vec3,
 }
 
 /// A set of tet pairs keyed by [`spring_key`] (see [`PairHasher`]).
@@ -187,7 +190,8 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let centre = contact.centre?;
     let (mut fa, mut fb) = (contact.on_a, contact.on_b);
     let key = spring_key(a, b);
-    let full = fb.iter().sum::<Vec3>().norm();
+    let resultant: Vec3 = fb.iter().sum();
+    let full = resultant.norm();
     // A pair that overlaps at its first evaluation started overlapped; it
     // is followed (with its offset) until it separates.
     let fresh = input.fresh && (full > 0.0 || fa.iter().any(|f| *f != Vec3::zeros()));
@@ -226,6 +230,7 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         spring_energy: 0.0,
         started,
         fresh,
+        direction: if full > 0.0 { resultant / full } else { Vec3::zeros() },
     };
     let mu = input.friction.get(input.regions[a as usize], input.regions[b as usize]);
     if mu > 0.0 && n_mag > 0.0 {

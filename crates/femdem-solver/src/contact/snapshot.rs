@@ -157,6 +157,7 @@ impl Contact {
             c.started.insert(key, d.f64()?);
         }
         c.fresh.clear();
+        c.in_contact.clear();
         // Written by every pass before its booking reads it.
         c.started_force.fill(Vec3::zeros());
         Ok(c)

@@ -83,7 +83,7 @@ pub use account::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};
 pub use contact::{Activation, Contact, ContactEnergy, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
 pub use error::SolverError;
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
-pub use guard::Trouble;
+pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RIGID, RegionBehaviour};
 pub use state::{Energies, Failure, State};

@@ -113,18 +113,23 @@ pub struct ContactSpec {
     /// candidate pair).
     #[serde(default = "negligible")]
     pub negligible: f64,
-    /// How a pair that already overlaps when it is first evaluated (newly
-    /// allowed to touch by a joint failure) starts: `"paper"` (Eq. 18 for
-    /// the failed joint's own pair if it failed in compression, the rest
-    /// at full force), `"ramp"` (Eq. 18 for every such pair) or `"offset"`
-    /// (its first overlap counts as zero). See
+    /// How a pair that already overlaps when it is newly allowed to touch
+    /// (around a failed joint, or at the first step) starts: `"couple"`
+    /// (the default: Eq. 18 for the failed joint's own couple if it failed
+    /// in compression, the other pairs' first overlap counted as zero),
+    /// `"offset"` (every such pair's first overlap counted as zero),
+    /// `"paper"` (Eq. 18 for the couple, the rest at full force) or
+    /// `"ramp"` (Eq. 18 for every such pair). See
     /// `femdem_solver::Activation`.
     pub activation: Option<String>,
     /// What the run guard does when the normal contact forces have given
-    /// back more than `[solver] energy_tolerance` of the run's energy scale
-    /// beyond what they absorbed: `"stop"` (default), `"warn"` (once, on
-    /// the terminal) or `"off"`.
+    /// back more than `energy_tolerance` of the run's energy scale beyond
+    /// what they absorbed: `"warn"` (default: once, on the terminal),
+    /// `"stop"` or `"off"`.
     pub energy_check: Option<String>,
+    /// That tolerance, a fraction of the run's energy scale in (0, 1]
+    /// (default `femdem_solver::CONTACT_ENERGY_TOLERANCE`, 0.05).
+    pub energy_tolerance: Option<f64>,
 }
 
 fn negligible() -> f64 {

@@ -404,10 +404,11 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         return Err(at(format!("negligible must be in [0, 1e-3), got {}", spec.negligible)));
     }
     let activation = match spec.activation.as_deref() {
-        None | Some("paper") => Activation::Paper,
+        Some("paper") => Activation::Paper,
         Some("ramp") => Activation::Ramp,
         Some("offset") => Activation::Offset,
-        Some(other) => return Err(at(format!("activation `{other}` is not `paper`, `ramp` or `offset`"))),
+        None | Some("couple") => Activation::Couple,
+        Some(other) => return Err(at(format!("activation `{other}` is not `couple`, `offset`, `paper` or `ramp`"))),
     };
     let mut settings = ContactSettings {
         activation,
@@ -439,28 +440,40 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
 /// it absorbed (`[contact] energy_check`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ContactCheck {
-    /// Stop the run (the default).
+    /// Stop the run.
     Stop,
-    /// Warn once and go on.
+    /// Warn once and go on (the default: `docs/fidelity.md` §11 says what
+    /// the default activation still gives back).
     Warn,
-    /// Do not check.
-    Off,
 }
 
-/// The case's `[contact] energy_check` (`None` without `[contact]`).
+/// The case's `[contact] energy_check` and `energy_tolerance` (`None`
+/// without `[contact]` or with `energy_check = "off"`).
 ///
 /// # Errors
-/// A located [`CaseError`] for a value other than `stop`, `warn` or `off`.
-pub fn contact_check(case: &LoadedCase) -> Result<Option<ContactCheck>, CaseError> {
+/// A located [`CaseError`] for a check other than `stop`, `warn` or `off`,
+/// or a tolerance outside (0, 1].
+pub fn contact_check(case: &LoadedCase) -> Result<Option<(ContactCheck, f64)>, CaseError> {
     let Some(c) = &case.case.contact else { return Ok(None) };
-    match c.get_ref().energy_check.as_deref() {
-        None | Some("stop") => Ok(Some(ContactCheck::Stop)),
-        Some("warn") => Ok(Some(ContactCheck::Warn)),
-        Some("off") => Ok(Some(ContactCheck::Off)),
-        Some(other) => {
-            Err(case.error_at(c.span(), format!("contact.energy_check `{other}` is not `stop`, `warn` or `off`")))
-        }
+    let spec = c.get_ref();
+    let tolerance = spec.energy_tolerance.unwrap_or(femdem_solver::CONTACT_ENERGY_TOLERANCE);
+    if !(tolerance > 0.0 && tolerance <= 1.0) {
+        let message = format!(
+            "contact.energy_tolerance must lie in (0, 1] (a fraction of the run's energy scale), got {tolerance}"
+        );
+        return Err(case.error_at(c.span(), message));
     }
+    let check = match spec.energy_check.as_deref() {
+        Some("stop") => ContactCheck::Stop,
+        None | Some("warn") => ContactCheck::Warn,
+        Some("off") => return Ok(None),
+        Some(other) => {
+            return Err(
+                case.error_at(c.span(), format!("contact.energy_check `{other}` is not `stop`, `warn` or `off`"))
+            );
+        }
+    };
+    Ok(Some((check, tolerance)))
 }
 
 /// The load–strain columns of `[output.load_strain]`, resolved against the

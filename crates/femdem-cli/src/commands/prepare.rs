@@ -79,9 +79,10 @@ pub struct Runnable {
     /// The energy check's tolerance, a fraction of the run's energy scale
     /// (`None`: off).
     pub energy_tolerance: Option<f64>,
-    /// What the guard does when contact has given back more than it took
-    /// (`None` without contact, or with no energy check).
-    pub contact_check: Option<case::setup::ContactCheck>,
+    /// What the guard does when contact has given back more than it took,
+    /// and the tolerance, a fraction of the run's energy scale (`None`
+    /// without contact, or with no check).
+    pub contact_check: Option<(case::setup::ContactCheck, f64)>,
     /// `[output]`, resolved and checked.
     pub output: case::setup::OutputSettings,
     /// The load–strain columns, if asked for.
@@ -149,8 +150,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     let load_strain = case::setup::load_strain(&loaded, &loads)?;
     let held = held_nodes(&model, &loads).map_err(|e| at(e.to_string()))?;
     let contact = case::setup::contact(&loaded, &jointed)?;
-    let contact_check = case::setup::contact_check(&loaded)?
-        .filter(|&c| c != case::setup::ContactCheck::Off && energy_tolerance.is_some());
+    let contact_check = case::setup::contact_check(&loaded)?;
     let mut stable = stable_time_step(&model, &held, POWER_ITERATIONS);
     if let Some(settings) = &contact {
         stable = stable.with_contact(contact_omega(&model, settings.penalty));

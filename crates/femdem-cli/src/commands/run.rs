@@ -194,7 +194,7 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
                     .check(run.stable.critical)
                     .err()
                     .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
-                    .or_else(|| contact_trouble(solver, run.energy_tolerance, run.contact_check, &mut contact_warned))
+                    .or_else(|| contact_trouble(solver, run.contact_check, &mut contact_warned))
             })
             .flatten();
         if let Some(trouble) = trouble {
@@ -289,6 +289,7 @@ fn warn_initial_overlap(solver: &Solver) {
                 femdem_solver::Activation::Paper => "paper",
                 femdem_solver::Activation::Ramp => "ramp",
                 femdem_solver::Activation::Offset => "offset",
+                femdem_solver::Activation::Couple => "couple",
             }
         );
     }
@@ -299,15 +300,14 @@ fn warn_initial_overlap(solver: &Solver) {
 /// trouble that stops the run, or `None` after warning once (`warned`).
 fn contact_trouble(
     solver: &Solver,
-    tolerance: Option<f64>,
-    check: Option<case::setup::ContactCheck>,
+    check: Option<(case::setup::ContactCheck, f64)>,
     warned: &mut bool,
 ) -> Option<femdem_solver::Trouble> {
-    let (Some(tolerance), Some(check)) = (tolerance, check) else { return None };
+    let (check, tolerance) = check?;
     let trouble = solver.check_contact_energy(tolerance).err()?;
     match check {
         case::setup::ContactCheck::Stop => Some(trouble),
-        _ => {
+        case::setup::ContactCheck::Warn => {
             if !*warned {
                 *warned = true;
                 eprintln!("femdem: warning ([contact] energy_check = \"warn\"; reported once): {trouble}");

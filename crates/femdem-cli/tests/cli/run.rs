@@ -44,22 +44,14 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
     assert!(last[col("balance")].abs() < 1e-5 * work, "balance {} vs work {work}", last[col("balance")]);
 }
 
-/// The run guard's energy check, end to end: a run that cannot meet its
-/// `[solver] energy_tolerance` is stopped at the first check past it with
-/// the step, the time, the error and the run's energy scale named; the
-/// frame of that moment and the history row of the checked step are
-/// written; the exit status is non-zero. The bundled elastic bar's account
-/// moves by about 4e-7 of its scale (round-off and the neo-Hookean law's
-/// small nonlinearity), so a tolerance of 1e-9 — legal, but below what the
-/// integration can give — trips the check at its first occasion, step 99
-/// of `check_interval = 100`; the default (0.01) lets the same run finish
-/// (`elastic_bar_runs_and_writes_a_series_and_a_history`).
 /// `[contact] energy_check` (issue 30, item 4): the small Brazilian run
 /// with the Eq. 18 ramp on every pair that starts overlapped gives back
-/// 3% of its energy scale through contact (measured: 1.47 mJ of 48.9 mJ),
-/// which the balance cannot see. By default the guard stops it, naming
-/// the amount and what the started pairs gave back; with `"warn"` the run
-/// goes on to its end and says so once; `activation = "offset"` gives
+/// 3% of its energy scale through contact (measured: 1.44 mJ of 48.9 mJ),
+/// which the balance cannot see. At a tolerance of 1% (the default, 5%,
+/// leaves room for Eq. 17's closed-cycle residual) and `energy_check =
+/// "stop"` the guard stops it, naming the amount and what the started
+/// pairs gave back; by default (`"warn"`) the run goes on to its end and
+/// says so once; `activation = "offset"` gives
 /// nothing back, and the guard stays quiet. The history carries the
 /// started pairs' columns.
 #[test]
@@ -74,19 +66,21 @@ fn contact_that_gives_back_energy_is_stopped_or_warned() {
         }
         (femdem(&args), out)
     };
-    let (o, _) = run("contact-guard-stop", &["contact.activation=\"ramp\""]);
+    let tolerance = "contact.energy_tolerance=0.01";
+    let (o, _) =
+        run("contact-guard-stop", &["contact.activation=\"ramp\"", "contact.energy_check=\"stop\"", tolerance]);
     assert!(!o.status.success(), "the run must be stopped");
     let err = String::from_utf8(o.stderr).unwrap();
     assert!(err.contains("the run guard stopped the run") && err.contains("the normal contact forces have given back"));
     assert!(err.contains("pairs that started overlapped gave back"), "{err}");
-    let (o, out) = run("contact-guard-warn", &["contact.activation=\"ramp\"", "contact.energy_check=\"warn\""]);
+    let (o, out) = run("contact-guard-warn", &["contact.activation=\"ramp\"", tolerance]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let err = String::from_utf8(o.stderr).unwrap();
     assert_eq!(err.matches("femdem: warning ([contact] energy_check = \"warn\"").count(), 1, "{err}");
     let history = History::read(&out);
     let last = history.rows.last().unwrap();
     assert!(last[history.col("contact_released")] > 0.0 && last[history.col("contact_normal")] < 0.0);
-    let (o, out) = run("contact-guard-offset", &["contact.activation=\"offset\""]);
+    let (o, out) = run("contact-guard-offset", &["contact.activation=\"offset\"", tolerance]);
     assert!(o.status.success() && !String::from_utf8_lossy(&o.stderr).contains("warning"));
     let history = History::read(&out);
     let (released, started) = (history.col("contact_released"), history.col("contact_started"));
@@ -119,6 +113,16 @@ fn an_overlap_at_the_start_is_reported() {
     assert!(!String::from_utf8(o.stderr).unwrap().contains("overlap at t = 0"));
 }
 
+/// The run guard's energy check, end to end: a run that cannot meet its
+/// `[solver] energy_tolerance` is stopped at the first check past it with
+/// the step, the time, the error and the run's energy scale named; the
+/// frame of that moment and the history row of the checked step are
+/// written; the exit status is non-zero. The bundled elastic bar's account
+/// moves by about 4e-7 of its scale (round-off and the neo-Hookean law's
+/// small nonlinearity), so a tolerance of 1e-9 — legal, but below what the
+/// integration can give — trips the check at its first occasion, step 99
+/// of `check_interval = 100`; the default (0.01) lets the same run finish
+/// (`elastic_bar_runs_and_writes_a_series_and_a_history`).
 #[test]
 fn a_run_past_its_energy_tolerance_is_stopped_with_its_state_written() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("energy-guard-run");

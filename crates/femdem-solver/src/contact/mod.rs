@@ -67,6 +67,7 @@ mod pair;
 mod settings;
 mod snapshot;
 mod stars;
+mod start;
 
 use femdem_contact::Nbs;
 use femdem_core::{Real, Vec3};
@@ -78,6 +79,7 @@ use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 use settings::FrictionTable;
 pub use settings::{Activation, ContactSettings, NEGLIGIBLE};
 use stars::Stars;
+use start::NewlyAllowed;
 
 /// The paper's `n_total` of Eq. 18: steps over which the contact force of
 /// a joint that failed in compression rises from zero to its full value
@@ -181,9 +183,9 @@ pub struct Contact {
     /// their offset `N_off`, N (see [`Activation`]).
     started: PairMap<Real>,
     started_next: PairMap<Real>,
-    /// Per candidate, whether it was not a candidate at the last pass
-    /// (empty when the candidates did not change).
-    fresh: Vec<bool>,
+    /// What cracks have newly allowed to touch since the last pass
+    /// (`start.rs`).
+    newly: NewlyAllowed,
     /// Normal force per node of the pairs that started overlapped, N.
     started_force: Vec<Vec3>,
     /// The pairs in contact at the last pass (ascending) with their unit
@@ -243,7 +245,7 @@ impl Contact {
             ramp: PairMap::default(),
             started: PairMap::default(),
             started_next: PairMap::default(),
-            fresh: Vec::new(),
+            newly: NewlyAllowed::new(n_tets),
             started_force: vec![Vec3::zeros(); model.num_nodes()],
             in_contact: Vec::new(),
         };
@@ -253,7 +255,7 @@ impl Contact {
             let ob = model.tets[b as usize].map(|n| model.origin[n as usize]);
             let shared: Vec<u32> =
                 model.tets[a as usize].iter().map(|&n| model.origin[n as usize]).filter(|v| ob.contains(v)).collect();
-            contact.crack(model, &shared, &[a, b]);
+            contact.crack(model, &shared, &[a, b], None);
         }
         contact
     }
@@ -270,21 +272,25 @@ impl Contact {
     pub fn joint_failed(&mut self, model: &Model, joint: usize, compressed: bool) {
         let tets = model.joint_tets[joint];
         let key = spring_key(tets[0], tets[1]);
-        self.bonded.remove(&key);
         if compressed && self.settings.ramp_steps > 0 && self.settings.activation != Activation::Offset {
             self.ramp.insert(key, 0);
         }
         // N4 N5 N6 share the original vertices of N3 N2 N1.
         let vertices = [0, 1, 2].map(|k| model.origin[model.joints[joint][k] as usize]);
-        self.crack(model, &vertices, &tets);
+        self.crack(model, &vertices, &tets, Some(key));
     }
 
-    /// Marks `vertices` cracked, makes `tets` and every tet around those
-    /// vertices contactable, and finds the vertices' pieces again (`tets`
-    /// are no longer bonded); those tets become pending: whether they may
-    /// touch others changed only for pairs with one of them in (see
-    /// `incremental.rs`).
-    fn crack(&mut self, model: &Model, vertices: &[u32], tets: &[u32]) {
+    /// Unbonds the pair `unbond` (a failed joint's), marks `vertices`
+    /// cracked, makes `tets` and every tet around those vertices
+    /// contactable, and finds the vertices' pieces again; those tets become
+    /// pending: whether they may touch others changed only for pairs with
+    /// one of them in (see `incremental.rs`). The pairs this newly allows
+    /// are recorded for the next pass (`start.rs`).
+    fn crack(&mut self, model: &Model, vertices: &[u32], tets: &[u32], unbond: Option<(u32, u32)>) {
+        let before = self.allowed_in_stars(model, vertices);
+        if let Some(key) = unbond {
+            self.bonded.remove(&key);
+        }
         let mut added: Vec<u32> = Vec::new();
         let mut add = |t: u32, contactable: &mut Vec<bool>| {
             if !contactable[t as usize] {
@@ -302,6 +308,10 @@ impl Contact {
             }
             self.stars.split(model, v, &self.bonded);
         }
+        for &t in &added {
+            self.record_contactable(t);
+        }
+        self.record_newly_allowed(model, vertices, &before);
         if !added.is_empty() {
             added.sort_unstable();
             let old = std::mem::take(&mut self.list);
@@ -434,27 +444,19 @@ impl Contact {
             self.is_touched[n as usize] = false;
         }
         self.touched.clear();
-        let update = self.needs_detection(x);
-        let before = match update {
-            Update::None => None,
-            _ => Some(self.candidates.clone()),
-        };
-        match update {
+        match self.needs_detection(x) {
             Update::None => {}
             Update::Full => self.detect(model, x),
             Update::Add { moved } => self.add_candidates(model, x, moved),
         }
-        self.fresh.clear();
-        if let Some(before) = before {
-            self.fresh = not_in(&self.candidates, &before);
-        }
+        self.newly.settle();
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
-        let (negligible, activation, fresh) = (self.settings.negligible, self.settings.activation, &self.fresh);
+        let (negligible, activation) = (self.settings.negligible, self.settings.activation);
+        let newly = self.newly.any().then_some(&self.newly);
         self.candidates
             .par_iter()
-            .enumerate()
-            .map(|(i, &(a, b))| {
+            .map(|&(a, b)| {
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
                 evaluate(PairInput {
                     tets: [a, b],
@@ -470,7 +472,7 @@ impl Contact {
                     n_total,
                     springs: stick,
                     dt,
-                    fresh: fresh.get(i).copied().unwrap_or(false),
+                    fresh: newly.is_some_and(|n| n.contains(a, b)),
                     activation,
                     started,
                 })
@@ -527,6 +529,7 @@ impl Contact {
         self.stick_next.clear();
         std::mem::swap(&mut self.started, &mut self.started_next);
         self.started_next.clear();
+        self.newly.clear();
     }
 
     /// The largest overlap of the pairs in contact at the last pass, as a
@@ -570,31 +573,5 @@ impl Contact {
     /// energy. Negative when contact has given back more than it took.
     pub fn normal_work(&self) -> Real {
         self.energy.contact - self.spring_energy
-    }
-}
-
-/// Per entry of `now` (ascending), whether it is missing from `before`
-/// (ascending).
-fn not_in(now: &[(u32, u32)], before: &[(u32, u32)]) -> Vec<bool> {
-    let mut j = 0;
-    now.iter()
-        .map(|p| {
-            j += before[j..].partition_point(|q| q < p);
-            before.get(j) != Some(p)
-        })
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::not_in;
-
-    #[test]
-    fn fresh_pairs_are_those_missing_from_the_last_candidates() {
-        let before = [(0, 1), (0, 3), (2, 5), (4, 4)];
-        let now = [(0, 0), (0, 3), (1, 2), (2, 5), (7, 9)];
-        assert_eq!(not_in(&now, &before), [true, false, true, false, true]);
-        assert_eq!(not_in(&now, &[]), [true; 5]);
-        assert!(not_in(&[], &before).is_empty());
     }
 }

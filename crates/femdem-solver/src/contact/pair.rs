@@ -28,7 +28,8 @@ pub(crate) struct PairForce {
     /// evaluated and has not separated since): its offset `N_off` after
     /// this step ([`Activation::Offset`]; 0 with the other options).
     pub started: Option<Real>,
-    /// Whether this is the pair's first evaluation and it overlaps.
+    /// Whether the pair is newly allowed to touch and overlaps: it starts
+    /// overlapped now.
     pub fresh: bool,
     /// The direction of Eq. 17's normal resultant on the second tet before
     /// the ramp or offset scales it (unit; zero if it has none).
@@ -117,8 +118,8 @@ pub(crate) struct PairInput<'a> {
     pub n_total: Real,
     pub springs: &'a PairMap<Vec3>,
     pub dt: Real,
-    /// Whether the pair was not a candidate at the last pass (so this is
-    /// its first evaluation), how such a pair starts if it overlaps
+    /// Whether the pair is newly allowed to touch at this pass (`start.rs`),
+    /// how such a pair starts if it overlaps
     /// ([`super::ContactSettings::activation`]), and the pairs that started
     /// overlapped with their offsets (read only for a pair in contact).
     pub fresh: bool,
@@ -139,8 +140,8 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
 ///
 /// Normal force: Eq. 17 (`femdem_contact::tet_tet_contact`), times the
 /// Eq. 18 ramp factor `n_c / n_total` for a joint that failed in
-/// compression (or, with [`Activation::Ramp`], any pair that overlaps at
-/// its first evaluation), and with [`Activation::Offset`] times
+/// compression (or, with [`Activation::Ramp`], any pair that overlaps
+/// when newly allowed to touch), and with [`Activation::Offset`] times
 /// `max(0, 1 − N_off / N₁₇)` for a pair that started overlapped; `N` its
 /// resultant on the second tet, `n̂ = N / |N|`. A pair that started
 /// overlapped is returned while it overlaps, even with no force (its offset
@@ -192,14 +193,16 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let key = spring_key(a, b);
     let resultant: Vec3 = fb.iter().sum();
     let full = resultant.norm();
-    // A pair that overlaps at its first evaluation started overlapped; it
-    // is followed (with its offset) until it separates.
+    // A pair newly allowed to touch that overlaps starts overlapped; it is
+    // followed (with its offset) until it separates.
     let fresh = input.fresh && (full > 0.0 || fa.iter().any(|f| *f != Vec3::zeros()));
-    let started = if fresh {
-        Some(if input.activation == Activation::Offset { full } else { 0.0 })
-    } else {
-        input.started.get(&key).map(|&off| off.min(full))
+    let offset = match input.activation {
+        Activation::Offset => true,
+        Activation::Couple => !input.ramps.contains_key(&key),
+        Activation::Paper | Activation::Ramp => false,
     };
+    let started =
+        if fresh { Some(if offset { full } else { 0.0 }) } else { input.started.get(&key).map(|&off| off.min(full)) };
     // Eq. 18's `n_c / n_total` while the ramp lasts (from 0 for a pair that
     // starts now with `Activation::Ramp`), else 1; with an offset, the share
     // of the resultant beyond it.

@@ -51,20 +51,22 @@ pub struct ContactSettings {
     /// (`docs/performance.md`). 0 evaluates every candidate (Eq. 17 as
     /// printed); default [`NEGLIGIBLE`].
     pub negligible: Real,
-    /// How a pair that is already overlapping when it is first evaluated
-    /// starts (a pair newly allowed to touch by a joint failure, whose
-    /// overlap is the compliance of the joints that held it): see
+    /// How a pair that is already overlapping when it is newly allowed to
+    /// touch starts (around a failed joint, whose overlap is the compliance
+    /// of the joints that held it, or at the first step): see
     /// [`Activation`].
     pub activation: Activation,
 }
 
-/// How a pair that overlaps when it is first evaluated starts.
+/// How a pair that already overlaps when it is newly allowed to touch
+/// starts.
 ///
-/// A pair of contactable tets that may touch is a candidate before it can
-/// overlap (detection's buffer guarantee, `Contact::needs_detection`), so
-/// it starts at zero overlap and its force rises from zero. The exceptions
-/// are pairs *newly allowed* to touch: when a joint fails, every tet
-/// around its three vertices becomes contactable (G1–G6 of Eq. 15) and
+/// A pair of contactable tets that may touch comes into contact by
+/// approaching, so its overlap and force rise from zero (to within a step's
+/// motion). The exceptions are pairs *newly allowed* to touch (`start.rs`
+/// finds them: every pair at the first step, and the pairs a crack
+/// allows). When a joint fails, every tet around its three vertices
+/// becomes contactable (G1–G6 of Eq. 15) and
 /// the failed joint's own pair may touch, and their overlap then is what
 /// the joints allowed under compression. At full force from their first
 /// step such pairs push apart with energy no one stored: the joint's own
@@ -75,8 +77,10 @@ pub struct ContactSettings {
 ///   joint's own pair when it failed in compression, every other pair at
 ///   full force at once;
 /// * [`Activation::Ramp`]: the Eq. 18 ramp (`n_c / n_total`) for every
-///   pair that overlaps when first evaluated. It only delays the force:
+///   pair that overlaps when newly allowed. It only delays the force:
 ///   the overlap's energy is still given back as the pair separates;
+/// * [`Activation::Couple`] (the default): the failed joint's own couple
+///   as `Paper`, every other pair as `Offset`;
 /// * [`Activation::Offset`]: the pair's first normal resultant `N₀` counts
 ///   as its zero, `f = f₁₇ · max(0, 1 − N_off / N)`, `N` the Eq. 17
 ///   resultant now and `N_off ← min(N_off, N)` at every step (first
@@ -92,12 +96,19 @@ pub struct ContactSettings {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Activation {
     /// Eq. 18 for the joints that failed in compression only (as printed).
-    #[default]
     Paper,
-    /// Eq. 18 for every pair that overlaps when first evaluated.
+    /// Eq. 18 for every pair that overlaps when newly allowed.
     Ramp,
-    /// The first overlap counts as zero (see the enum's documentation).
+    /// The first overlap counts as zero for every pair that starts
+    /// overlapped (see the enum's documentation).
     Offset,
+    /// Eq. 18 for the failed joint's own couple (Eq. 14) when it failed in
+    /// compression — it takes over the load the joint carried — and the
+    /// offset start for every other pair that starts overlapped, whose
+    /// overlap is the compliance of joints that still hold it; the default
+    /// (`docs/fidelity.md`, section 11, says why).
+    #[default]
+    Couple,
 }
 
 /// The default of [`ContactSettings::negligible`].
@@ -105,8 +116,10 @@ pub const NEGLIGIBLE: Real = 1e-10;
 
 impl ContactSettings {
     /// Frictionless contact with penalty `p` (Pa) between all surfaces,
-    /// detected at every step, with the paper's 10-step ramp and
-    /// incremental detection after joint failures.
+    /// detected at every step, with the couple's Eq. 18 ramp over the
+    /// paper's 10 steps and the offset start of the other pairs that start
+    /// overlapped ([`Activation::Couple`]), incremental detection after joint failures and
+    /// negligible pairs skipped.
     pub fn new(penalty: Real) -> ContactSettings {
         ContactSettings {
             penalty,

@@ -16,7 +16,8 @@ impl Contact {
     /// reference positions, staleness and the pending tets, the last pass's
     /// touched nodes with their forces and velocities, the energy account
     /// and counters, the friction springs, the Eq. 18 ramp counters and the pairs that
-    /// started overlapped with their offsets (maps sorted by key). Scratch
+    /// started overlapped with their offsets (maps sorted by key), and what
+    /// cracks newly allowed to touch since the last pass. Scratch
     /// buffers (NBS, spheres, pair results, the started pairs' forces) are not
     /// written.
     pub(crate) fn encode(&self, e: &mut Encoder) {
@@ -79,6 +80,12 @@ impl Contact {
             e.u32(b);
             e.f64(off);
         }
+        // What cracks newly allowed since the last pass (empty between the
+        // steps of a run; not after `Solver::break_joints` or before the
+        // first step).
+        e.bool(self.newly.first);
+        e.u32s(&self.newly.tets);
+        put_pairs(e, &self.newly.pairs);
     }
 
     /// This pass (its settings and the model's fixed tables) with the
@@ -156,8 +163,13 @@ impl Contact {
             let key = (tet(d.u32()?)?, tet(d.u32()?)?);
             c.started.insert(key, d.f64()?);
         }
-        c.fresh.clear();
         c.in_contact.clear();
+        c.newly.clear();
+        c.newly.first = d.bool()?;
+        for t in d.u32s()? {
+            c.record_contactable(tet(t)?);
+        }
+        c.newly.pairs = get_pairs(d, &tet)?;
         // Written by every pass before its booking reads it.
         c.started_force.fill(Vec3::zeros());
         Ok(c)

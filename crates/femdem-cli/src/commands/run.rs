@@ -278,13 +278,13 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
 /// the user should know that the scene starts with an overlap.
 fn warn_initial_overlap(solver: &Solver) {
     let Some(c) = solver.contact() else { return };
-    if c.started_pairs() > 0 {
-        let depth = c.deepest_overlap(&solver.model, |n| solver.recorded_position(n as usize));
+    // Deeper than round-off of the element: faces that only touch (across
+    // a pre-existing fracture) are not an overlap.
+    let (pairs, depth) = c.started_overlaps(&solver.model, |n| solver.recorded_position(n as usize), 1e-9);
+    if pairs > 0 {
         eprintln!(
-            "femdem: warning: {} tet pairs overlap at t = 0 (the deepest by {:.3} of an element's shortest altitude); \
-             they start as [contact] activation = \"{}\" says",
-            c.started_pairs(),
-            depth,
+            "femdem: warning: {pairs} tet pairs overlap at t = 0 (the deepest by {depth:.3} of an element's shortest \
+             altitude); they start as [contact] activation = \"{}\" says",
             match c.settings.activation {
                 femdem_solver::Activation::Paper => "paper",
                 femdem_solver::Activation::Ramp => "ramp",

@@ -61,6 +61,7 @@
 //! coordinates (`pair::evaluate`), so it has the right moment and slows a
 //! spinning body.
 
+mod depth;
 mod detection;
 mod incremental;
 mod pair;
@@ -188,9 +189,8 @@ pub struct Contact {
     newly: NewlyAllowed,
     /// Normal force per node of the pairs that started overlapped, N.
     started_force: Vec<Vec3>,
-    /// The pairs in contact at the last pass (ascending) with their unit
-    /// contact normals (zero for a pair with no resultant).
-    in_contact: Vec<(u32, u32, Vec3)>,
+    /// The pairs in contact at the last pass (ascending).
+    in_contact: Vec<(u32, u32)>,
 }
 
 impl Contact {
@@ -484,7 +484,7 @@ impl Contact {
         for r in self.results.iter().flatten() {
             self.active_pairs += 1;
             let [a, b] = r.tets;
-            self.in_contact.push((a, b, r.direction));
+            self.in_contact.push((a, b));
             if r.friction != Vec3::zeros() || r.spring_energy > 0.0 {
                 self.stick_next.insert(spring_key(a, b), r.spring);
                 self.spring_energy += r.spring_energy;
@@ -530,36 +530,6 @@ impl Contact {
         std::mem::swap(&mut self.started, &mut self.started_next);
         self.started_next.clear();
         self.newly.clear();
-    }
-
-    /// The largest overlap of the pairs in contact at the last pass, as a
-    /// share of the element: over those pairs, the depth of the overlap
-    /// along the pair's contact normal `n̂` (the direction of Eq. 17's
-    /// resultant on the second tet, before a ramp or offset scales it:
-    /// from the first tet into the second), `max_{A's nodes} n̂·x − min_{B's nodes} n̂·x` at the positions
-    /// `x(node)` — the overlap of the two tets' projections on `n̂`, exactly
-    /// the depth for two faces pressed flat, more than it where corners
-    /// interlock — over the smaller of the two tets' shortest reference
-    /// altitudes `3V/A_max` (at 1 a face has gone through the whole tet).
-    /// 0 with no pair in contact. A measure of whether the penalty is stiff
-    /// enough for the mesh: Eq. 17 assumes small overlaps.
-    pub fn deepest_overlap(&self, model: &Model, x: impl Fn(u32) -> Vec3) -> Real {
-        let altitude = |t: u32| {
-            let p = model.tets[t as usize].map(|n| model.x0[n as usize]);
-            let largest = femdem_core::tet::FACES
-                .iter()
-                .map(|f| femdem_core::tet::triangle_area(&p[f[0]], &p[f[1]], &p[f[2]]))
-                .fold(0.0, Real::max);
-            3.0 * model.tet_ref[t as usize].volume / largest
-        };
-        self.in_contact
-            .iter()
-            .map(|&(a, b, n)| {
-                let reach = model.tets[a as usize].iter().map(|&k| n.dot(&x(k))).fold(Real::NEG_INFINITY, Real::max);
-                let start = model.tets[b as usize].iter().map(|&k| n.dot(&x(k))).fold(Real::INFINITY, Real::min);
-                (reach - start).max(0.0) / altitude(a).min(altitude(b))
-            })
-            .fold(0.0, Real::max)
     }
 
     /// The pairs in contact now that started overlapped (see

@@ -31,9 +31,6 @@ pub(crate) struct PairForce {
     /// Whether the pair is newly allowed to touch and overlaps: it starts
     /// overlapped now.
     pub fresh: bool,
-    /// The direction of Eq. 17's normal resultant on the second tet before
-    /// the ramp or offset scales it (unit; zero if it has none).
-    pub direction: Vec3,
 }
 
 /// A set of tet pairs keyed by [`spring_key`] (see [`PairHasher`]).
@@ -191,8 +188,7 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let centre = contact.centre?;
     let (mut fa, mut fb) = (contact.on_a, contact.on_b);
     let key = spring_key(a, b);
-    let resultant: Vec3 = fb.iter().sum();
-    let full = resultant.norm();
+    let full = fb.iter().sum::<Vec3>().norm();
     // A pair newly allowed to touch that overlaps starts overlapped; it is
     // followed (with its offset) until it separates.
     let fresh = input.fresh && (full > 0.0 || fa.iter().any(|f| *f != Vec3::zeros()));
@@ -233,7 +229,6 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         spring_energy: 0.0,
         started,
         fresh,
-        direction: if full > 0.0 { resultant / full } else { Vec3::zeros() },
     };
     let mu = input.friction.get(input.regions[a as usize], input.regions[b as usize]);
     if mu > 0.0 && n_mag > 0.0 {

@@ -170,7 +170,9 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
         // record stress in every history row; a checked step evaluates the
         // stresses too, so that the frame and row a guard stop adds below
         // carry the stresses of their own step (they are output only).
-        let energy_checked = checked && run.energy_tolerance.is_some();
+        // The contact guard reads the energy scale of the step it checks
+        // too.
+        let energy_checked = checked && (run.energy_tolerance.is_some() || run.contact_check.is_some());
         let probing = row_due && !run.probes.is_empty();
         solver.step(Want { stress: frame_due || probing || checked, energy: row_due || energy_checked });
         if n == 0 {
@@ -272,7 +274,6 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     Ok(())
 }
 
-/// The run loop's schedule at the start of step `n`.
 /// Warns when tets already overlap at the first step (a platen or part
 /// placed into another): how they start is `[contact] activation`'s, and
 /// the user should know that the scene starts with an overlap.
@@ -317,6 +318,7 @@ fn contact_trouble(
     }
 }
 
+/// The run loop's schedule at the start of step `n`.
 fn schedule_at(n: u64, next_frame: f64, next_row: f64, ended: bool, watch: &Option<PeakWatch>) -> Schedule {
     Schedule {
         next_step: n,

@@ -275,6 +275,9 @@ impl Contact {
         if compressed && self.settings.ramp_steps > 0 && self.settings.activation != Activation::Offset {
             self.ramp.insert(key, 0);
         }
+        if compressed {
+            self.newly.couples.push(key);
+        }
         // N4 N5 N6 share the original vertices of N3 N2 N1.
         let vertices = [0, 1, 2].map(|k| model.origin[model.joints[joint][k] as usize]);
         self.crack(model, &vertices, &tets, Some(key));
@@ -473,6 +476,7 @@ impl Contact {
                     springs: stick,
                     dt,
                     fresh: newly.is_some_and(|n| n.contains(a, b)),
+                    couple: newly.is_some_and(|n| n.is_couple(a, b)),
                     activation,
                     started,
                 })

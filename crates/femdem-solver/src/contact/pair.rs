@@ -120,6 +120,10 @@ pub(crate) struct PairInput<'a> {
     /// ([`super::ContactSettings::activation`]), and the pairs that started
     /// overlapped with their offsets (read only for a pair in contact).
     pub fresh: bool,
+    /// Whether the pair is the couple of a joint that failed in
+    /// compression since the last pass (it starts as with
+    /// `Activation::Paper` under `Activation::Couple`).
+    pub couple: bool,
     pub activation: Activation,
     pub started: &'a PairMap<Real>,
 }
@@ -194,7 +198,7 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     let fresh = input.fresh && (full > 0.0 || fa.iter().any(|f| *f != Vec3::zeros()));
     let offset = match input.activation {
         Activation::Offset => true,
-        Activation::Couple => !input.ramps.contains_key(&key),
+        Activation::Couple => !input.couple,
         Activation::Paper | Activation::Ramp => false,
     };
     let started =

@@ -86,6 +86,7 @@ impl Contact {
         e.bool(self.newly.first);
         e.u32s(&self.newly.tets);
         put_pairs(e, &self.newly.pairs);
+        put_pairs(e, &self.newly.couples);
     }
 
     /// This pass (its settings and the model's fixed tables) with the
@@ -170,6 +171,7 @@ impl Contact {
             c.record_contactable(tet(t)?);
         }
         c.newly.pairs = get_pairs(d, &tet)?;
+        c.newly.couples = get_pairs(d, &tet)?;
         // Written by every pass before its booking reads it.
         c.started_force.fill(Vec3::zeros());
         Ok(c)

@@ -38,12 +38,23 @@ pub(super) struct NewlyAllowed {
     /// Pairs of star tets that may touch since the last pass and could not
     /// before (keys as `spring_key`, ascending once `settle` has run).
     pub pairs: Vec<(u32, u32)>,
+    /// The couples (Eq. 14) of the joints that failed in compression since
+    /// the last pass (keys as `spring_key`, ascending once `settle` has
+    /// run): with `Activation::Couple` they start as with
+    /// `Activation::Paper` (Eq. 18, or at once with `ramp_steps = 0`).
+    pub couples: Vec<(u32, u32)>,
 }
 
 impl NewlyAllowed {
     /// Nothing new yet, for a model of `n_tets` tets, before the first pass.
     pub fn new(n_tets: usize) -> NewlyAllowed {
-        NewlyAllowed { first: true, contactable: vec![false; n_tets], tets: Vec::new(), pairs: Vec::new() }
+        NewlyAllowed {
+            first: true,
+            contactable: vec![false; n_tets],
+            tets: Vec::new(),
+            pairs: Vec::new(),
+            couples: Vec::new(),
+        }
     }
 
     /// Whether anything is new at the next pass.
@@ -55,6 +66,14 @@ impl NewlyAllowed {
     pub fn settle(&mut self) {
         self.pairs.sort_unstable();
         self.pairs.dedup();
+        self.couples.sort_unstable();
+        self.couples.dedup();
+    }
+
+    /// Whether `(a, b)` is the couple of a joint that failed since the last
+    /// pass.
+    pub fn is_couple(&self, a: u32, b: u32) -> bool {
+        self.couples.binary_search(&spring_key(a, b)).is_ok()
     }
 
     /// Whether the pair `(a, b)` (`a < b`) is newly allowed.
@@ -73,6 +92,7 @@ impl NewlyAllowed {
         }
         self.tets.clear();
         self.pairs.clear();
+        self.couples.clear();
     }
 }
 

@@ -380,6 +380,19 @@ pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result
     Ok(model)
 }
 
+/// The case file's names of `[contact] activation`'s options.
+const ACTIVATIONS: [(&str, Activation); 4] = [
+    ("couple", Activation::Couple),
+    ("offset", Activation::Offset),
+    ("paper", Activation::Paper),
+    ("ramp", Activation::Ramp),
+];
+
+/// The case file's name of `activation`.
+pub fn activation_name(activation: Activation) -> &'static str {
+    ACTIVATIONS.iter().find(|(_, a)| *a == activation).map_or("?", |(n, _)| n)
+}
+
 /// Builds the contact settings of the case's `[contact]`, if any.
 ///
 /// # Errors
@@ -404,11 +417,12 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         return Err(at(format!("negligible must be in [0, 1e-3), got {}", spec.negligible)));
     }
     let activation = match spec.activation.as_deref() {
-        Some("paper") => Activation::Paper,
-        Some("ramp") => Activation::Ramp,
-        Some("offset") => Activation::Offset,
-        None | Some("couple") => Activation::Couple,
-        Some(other) => return Err(at(format!("activation `{other}` is not `couple`, `offset`, `paper` or `ramp`"))),
+        None => Activation::default(),
+        Some(name) => ACTIVATIONS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|&(_, a)| a)
+            .ok_or_else(|| at(format!("activation `{name}` is not `couple`, `offset`, `paper` or `ramp`")))?,
     };
     let mut settings = ContactSettings {
         activation,

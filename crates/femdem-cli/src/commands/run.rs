@@ -286,12 +286,7 @@ fn warn_initial_overlap(solver: &Solver) {
         eprintln!(
             "femdem: warning: {pairs} tet pairs overlap at t = 0 (the deepest by {depth:.3} of an element's shortest \
              altitude); they start as [contact] activation = \"{}\" says",
-            match c.settings.activation {
-                femdem_solver::Activation::Paper => "paper",
-                femdem_solver::Activation::Ramp => "ramp",
-                femdem_solver::Activation::Offset => "offset",
-                femdem_solver::Activation::Couple => "couple",
-            }
+            case::setup::activation_name(c.settings.activation)
         );
     }
 }

@@ -66,9 +66,9 @@ impl Contact {
     /// pre-existing fracture at the start, where Eq. 17 may still see a
     /// contact of zero depth).
     pub fn started_overlaps(&self, model: &Model, x: impl Fn(u32) -> Vec3, least: Real) -> (usize, Real) {
-        let mut keys: Vec<(u32, u32)> = self.started.keys().copied().collect();
-        keys.sort_unstable();
-        keys.iter()
+        // A count and a maximum: the map's order does not matter.
+        self.started
+            .keys()
             .map(|&(a, b)| depth_share(model, &x, a, b))
             .filter(|&d| d > least)
             .fold((0, 0.0), |(n, m), d| (n + 1, m.max(d)))

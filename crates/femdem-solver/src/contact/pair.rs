@@ -24,9 +24,9 @@ pub(crate) struct PairForce {
     pub spring: Vec3,
     /// Elastic energy of the friction spring, `½ k_t |s|²`, J.
     pub spring_energy: Real,
-    /// For a pair that started overlapped (it overlapped when first
-    /// evaluated and has not separated since): its offset `N_off` after
-    /// this step ([`Activation::Offset`]; 0 with the other options).
+    /// For a pair that started overlapped (it overlapped when newly
+    /// allowed to touch and has not separated since): its offset `N_off`
+    /// after this step (0 where no offset applies).
     pub started: Option<Real>,
     /// Whether the pair is newly allowed to touch and overlaps: it starts
     /// overlapped now.

@@ -107,6 +107,7 @@
 //! ```
 
 mod bound;
+mod gradient;
 mod nbs;
 mod potential;
 mod separation;
@@ -114,6 +115,7 @@ mod separation;
 mod test_pairs;
 
 pub use bound::{MAX_SLACK, SLACK, contact_bound, tet_tet_contact_unless};
+pub use gradient::{GradientContact, tet_tet_gradient};
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};
 pub use separation::separated_by_face_plane;

@@ -130,6 +130,28 @@ pub struct JointHistory {
     pub failed: bool,
 }
 
+impl JointHistory {
+    /// The energy held by the joint's compression at its last evaluation,
+    /// J, for mid-plane area `area`: `A/3 Σ ½ σ δn` over the points with
+    /// `δn < 0`. There Eq. 11 is the linear branch `σ = 2 f_t δn / δnp`,
+    /// whatever the damage, which holds `f_t δnp (δn/δnp)² = ½ σ δn` per
+    /// unit area (the compressive part of `Coupling::stored`). When a joint
+    /// fails closed its two tets overlap by that opening, and contact's
+    /// penalty takes the compression over: the solver books what contact
+    /// gives back of such overlaps, up to this energy, as handed over from
+    /// the joint rather than dissipated by fracture.
+    pub fn compression_energy(&self, area: Real) -> Real {
+        let mut held = 0.0;
+        for (last, stress) in self.last.iter().zip(&self.last_stress) {
+            let (dn, sigma) = (last[0], stress[0]);
+            if dn < 0.0 && sigma < 0.0 {
+                held += 0.5 * sigma * dn;
+            }
+        }
+        area / 3.0 * held
+    }
+}
+
 /// The state of one integration point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointStress {
@@ -502,5 +524,30 @@ mod tests {
         }
         assert!(stored > 0.0 && h.damage == [0.0; 3]);
         assert!((h.work - stored).abs() < 1e-9 * stored, "work {} vs stored {stored}", h.work);
+    }
+    /// `compression_energy` is the compressive part of the stored energy:
+    /// all of it for a joint closed with no slip (the mid-plane area of the
+    /// test face is 0.5 mm²), none of it for one opened, and under slip
+    /// only the normal part, `f_t δnp r²` per unit area (Eq. 11 linear branch).
+    #[test]
+    fn compression_energy_is_the_stored_energy_of_closing() {
+        let j = Joint::new(params(), 1e-3);
+        let base = [Vec3::zeros(), Vec3::new(1e-3, 0.0, 0.0), Vec3::new(0.0, 1e-3, 0.0)];
+        let area = 0.5e-6;
+        let at = |d: Vec3| {
+            let x = [base[0], base[1], base[2], base[2] + d, base[1] + d, base[0] + d];
+            let mut h = JointHistory::default();
+            let stored = joint_update(&j, &mut h, &x, true).energy;
+            (stored, h.compression_energy(area))
+        };
+        let closed = Vec3::new(0.0, 0.0, -0.3 * j.delta_np);
+        let (stored, held) = at(closed);
+        assert!(stored > 0.0 && (held - stored).abs() < 1e-12 * stored, "held {held} vs stored {stored}");
+        let (stored, held) = at(-closed);
+        assert!(stored > 0.0 && held == 0.0);
+        let slip = Vec3::new(0.2 * 2.0 * j.params.cohesion * j.h / j.params.penalty, 0.0, 0.0);
+        let (stored, held) = at(closed + slip);
+        let normal = j.params.tensile_strength * j.delta_np * 0.3 * 0.3 * area;
+        assert!(stored > held && (held - normal).abs() < 1e-12 * normal, "held {held} vs f_t δnp r² A = {normal}");
     }
 }

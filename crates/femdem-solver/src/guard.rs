@@ -128,10 +128,11 @@ pub enum Trouble {
     /// The normal contact forces have given back more energy than they
     /// absorbed.
     #[error(
-        "step {step}, t = {time:e} s: the normal contact forces have given back {:.4e} J more than they absorbed, \
-         {:.3e} of the run's energy scale {scale:.4e} J, above the tolerance {tolerance:e}: contact has put energy \
-         into the run that no load supplied (pairs that started overlapped gave back {released:.4e} J: see \
-         [contact] activation)",
+        "step {step}, t = {time:e} s: the normal contact forces have given back {:.4e} J more than they absorbed \
+         and the failed joints held, {:.3e} of the run's energy scale {scale:.4e} J, above the tolerance \
+         {tolerance:e}: contact has put energy into the run that no load supplied (pairs that started overlapped \
+         gave back {released:.4e} J, of which the failed joints' compression held {handed:.4e} J: see [contact] \
+         activation)",
         -work,
         -work / scale
     )]
@@ -144,6 +145,9 @@ pub enum Trouble {
         work: Real,
         /// What the pairs that started overlapped have given back, J.
         released: Real,
+        /// The part of it the failed joints' compression held, J
+        /// ([`crate::ContactEnergy::handed`]; counted in `work`).
+        handed: Real,
         /// The run's energy scale, J.
         scale: Real,
         /// The tolerance, a fraction of the scale.
@@ -236,7 +240,8 @@ impl Solver {
     }
 
     /// Checks contact's own account: the work the normal contact forces
-    /// have absorbed ([`crate::Contact::normal_work`]) must not fall below
+    /// have absorbed, with what the failed joints' compression held counted
+    /// as absorbed ([`crate::Contact::normal_work`]), must not fall below
     /// `−tolerance · scale_n`, the scale of [`Solver::check_energy`] at the
     /// last evaluation. The energy balance cannot see energy that contact
     /// puts in (the contact term is the work of its forces, so the account
@@ -249,15 +254,15 @@ impl Solver {
     /// # Errors
     /// [`Trouble::ContactEnergy`] with the step and time of that
     /// evaluation, the work, what the pairs that started overlapped gave
-    /// back, and the scale.
+    /// back and how much of it the joints held, and the scale.
     pub fn check_contact_energy(&self, tolerance: Real) -> Result<(), Trouble> {
         let (Some(contact), Some(Imbalance { step, time, scale, .. })) = (self.contact(), self.imbalance()) else {
             return Ok(());
         };
         let work = contact.normal_work();
         if work < -tolerance * scale || work.is_nan() {
-            let released = contact.energy.released;
-            return Err(Trouble::ContactEnergy { step, time, work, released, scale, tolerance });
+            let (released, handed) = (contact.energy.released, contact.energy.handed());
+            return Err(Trouble::ContactEnergy { step, time, work, released, handed, scale, tolerance });
         }
         Ok(())
     }

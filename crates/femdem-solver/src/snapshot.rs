@@ -52,7 +52,9 @@ use crate::step::{Solver, StepRecord};
 /// account).
 /// 6: contact's pairs that started overlapped, with their offsets, and the
 /// work their normal forces did (`ContactSettings::activation`).
-pub const SNAPSHOT_VERSION: u32 = 6;
+/// 7: the compression energy the failed joints handed to contact
+/// (`ContactEnergy::held`).
+pub const SNAPSHOT_VERSION: u32 = 7;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]

@@ -65,19 +65,30 @@ pub const ENERGY_COLUMNS: [&str; 9] = [
 
 /// Contact's own columns, with `[contact]`: `contact_normal`, the work the
 /// normal contact forces have absorbed up to `t_n` (J; `contact` less what
-/// the friction springs hold: negative when contact has given back more
-/// energy than it took — a conservative force would return to zero after
+/// the friction springs hold, with `contact_handed` counted as absorbed:
+/// negative when contact has given back more energy than it took and the
+/// failed joints held — a conservative force would return to zero after
 /// a closed cycle; Eq. 17's leaves a residual, `docs/fidelity.md`),
 /// `contact_springs`, the elastic energy the friction springs hold (J),
 /// `contact_pairs`, the pairs in contact at the step, `contact_released`,
 /// the work done on the bodies by the normal forces of the pairs that
 /// started overlapped while they stayed in contact (J; the energy their
-/// initial overlap gave back, `[contact] activation`),
+/// initial overlap gave back, `[contact] activation`), `contact_handed`,
+/// the part of it the failed joints' compression supplied (J; at most the
+/// compression energy they held when they failed,
+/// `ContactEnergy::handed`: moved from `fracture` to `contact`),
 /// `contact_started`, how many such pairs are in contact, and
 /// `contact_depth_max`, the deepest overlap of a pair in contact over the
 /// element's shortest altitude (`Contact::deepest_overlap`).
-pub const CONTACT_COLUMNS: [&str; 6] =
-    ["contact_normal", "contact_springs", "contact_pairs", "contact_released", "contact_started", "contact_depth_max"];
+pub const CONTACT_COLUMNS: [&str; 7] = [
+    "contact_normal",
+    "contact_springs",
+    "contact_pairs",
+    "contact_released",
+    "contact_handed",
+    "contact_started",
+    "contact_depth_max",
+];
 
 /// What the history records besides the energies and the loads' forces.
 #[derive(Clone, Debug, Default)]
@@ -295,6 +306,7 @@ impl Output {
                 c.spring_energy,
                 r.contact_pairs as f64,
                 c.energy.released,
+                c.energy.handed(),
                 c.started_pairs() as f64,
                 // At t_n, where the pass found them in contact.
                 c.deepest_overlap(&solver.model, |n| solver.recorded_position(n as usize)),

@@ -110,6 +110,25 @@ pub struct ContactEnergy {
     pub released: Real,
     /// The same over the half step after `t_n`, booked with the next pass.
     released_ahead: Real,
+    /// The compression energy the failed joints held when they failed
+    /// (`JointHistory::compression_energy`), J, for the joints whose couple
+    /// starts without an offset (`Contact::joint_failed`): an upper bound
+    /// on what their overlaps can honestly give back.
+    pub held: Real,
+}
+
+impl ContactEnergy {
+    /// What the pairs that started overlapped gave back, up to the
+    /// compression energy the failed joints held (`clamp(released, 0,
+    /// held)`), J: energy the joints handed over to contact, which the
+    /// account moves from fracture to contact (`Energies::fracture` less
+    /// it, `Energies::contact` plus it). A joint that fails closed leaves
+    /// its two tets overlapping by its opening, and its compression was
+    /// stored work, not fracture; what contact gives back beyond it is
+    /// energy no load supplied, which `Solver::check_contact_energy` sees.
+    pub fn handed(&self) -> Real {
+        self.released.clamp(0.0, self.held.max(0.0))
+    }
 }
 
 /// The contact pass's state.
@@ -269,9 +288,22 @@ impl Contact {
     /// steps (Eq. 18), so that the joint force, which vanishes at failure,
     /// is not replaced by a sudden contact force (with
     /// [`Activation::Offset`] the offset does that instead).
-    pub fn joint_failed(&mut self, model: &Model, joint: usize, compressed: bool) {
+    ///
+    /// `held` is the compression energy the joint held when it failed
+    /// (`JointHistory::compression_energy`), J: it bounds what the couple's
+    /// overlap may give back ([`ContactEnergy::handed`]) unless the couple
+    /// starts from an offset (then its overlap gives nothing back).
+    pub fn joint_failed(&mut self, model: &Model, joint: usize, compressed: bool, held: Real) {
         let tets = model.joint_tets[joint];
         let key = spring_key(tets[0], tets[1]);
+        let offset = match self.settings.activation {
+            Activation::Offset => true,
+            Activation::Couple => !compressed,
+            Activation::Paper | Activation::Ramp => false,
+        };
+        if !offset {
+            self.energy.held += held;
+        }
         if compressed && self.settings.ramp_steps > 0 && self.settings.activation != Activation::Offset {
             self.ramp.insert(key, 0);
         }
@@ -543,9 +575,11 @@ impl Contact {
     }
 
     /// The work the normal contact forces have absorbed up to `t_n` of the
-    /// last pass, J: [`ContactEnergy::contact`] less the friction springs'
-    /// energy. Negative when contact has given back more than it took.
+    /// last pass, J, with what the failed joints handed over counted as
+    /// absorbed ([`ContactEnergy::handed`]): [`ContactEnergy::contact`] less
+    /// the friction springs' energy plus the handed energy. Negative when
+    /// contact has given back more than it took and the joints held.
     pub fn normal_work(&self) -> Real {
-        self.energy.contact - self.spring_energy
+        self.energy.contact - self.spring_energy + self.energy.handed()
     }
 }

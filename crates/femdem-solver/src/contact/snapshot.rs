@@ -49,6 +49,7 @@ impl Contact {
             en.friction_ahead,
             en.released,
             en.released_ahead,
+            en.held,
         ]
         .into_iter()
         .for_each(|x| e.f64(x));
@@ -142,6 +143,7 @@ impl Contact {
             friction_ahead: d.f64()?,
             released: d.f64()?,
             released_ahead: d.f64()?,
+            held: d.f64()?,
         };
         c.active_pairs = d.count()?;
         c.detections = d.u64()?;

@@ -22,7 +22,7 @@ impl Solver {
             let k = joint_kinematics(&xp);
             let area = k.as_ref().map_or(0.0, |k| k.frame.area);
             self.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
-            self.unbond(j, closed(k.as_ref()));
+            self.unbond(j, closed(k.as_ref()), area);
         }
     }
 
@@ -39,7 +39,9 @@ impl Solver {
             if !history.failed {
                 history.failed = true;
                 let xp = self.model.joints[j as usize].map(|n| self.state.x[n as usize]);
-                self.unbond(j as usize, closed(joint_kinematics(&xp).as_ref()));
+                let k = joint_kinematics(&xp);
+                let area = k.as_ref().map_or(0.0, |k| k.frame.area);
+                self.unbond(j as usize, closed(k.as_ref()), area);
             }
         }
     }
@@ -48,10 +50,14 @@ impl Solver {
     /// ([`crate::Contact::joint_failed`]): its two tets may touch (Eq. 14) and
     /// the tets around its vertices become contactable (Eq. 15–16). A joint
     /// that failed `compressed` (see [`closed`]) has its contact force ramped
-    /// in over the Eq. 18 steps.
-    pub(super) fn unbond(&mut self, j: usize, compressed: bool) {
+    /// in over the Eq. 18 steps. `area` is its mid-plane area now, for the
+    /// compression energy it held (`JointHistory::compression_energy`, at
+    /// its last evaluation), which contact may give back as handed over
+    /// ([`crate::ContactEnergy::handed`]).
+    pub(super) fn unbond(&mut self, j: usize, compressed: bool, area: Real) {
         if let Some(contact) = &mut self.contact {
-            contact.joint_failed(&self.model, j, compressed);
+            let held = self.state.joints[j].compression_energy(area);
+            contact.joint_failed(&self.model, j, compressed, held);
         }
     }
 }

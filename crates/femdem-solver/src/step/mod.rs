@@ -342,7 +342,7 @@ impl Solver {
         }
         if let Some(contact) = &mut self.contact {
             contact.book_work(&self.state.v, dt);
-            e.contact = contact.energy.contact;
+            e.contact = contact.energy.contact + contact.energy.handed();
             e.friction = contact.energy.friction;
         }
         e.damping += dt * sums.dissipation_rate;
@@ -350,7 +350,9 @@ impl Solver {
             e.kinetic = powers.kinetic;
             e.tet_elastic = sums.tet_energy;
             e.joint_elastic = sums.joint_energy;
-            e.fracture = sums.fracture;
+            // What the failed joints handed over to contact is not fracture
+            // energy (`ContactEnergy::handed`): moved to the contact term.
+            e.fracture = sums.fracture - self.contact.as_ref().map_or(0.0, |c| c.energy.handed());
             self.account.observe(self.state.step, t, e, self.floor);
         }
         let r = &mut self.record;
@@ -394,7 +396,9 @@ impl Solver {
         self.contact = Some(Contact::new(&self.model, settings, initial));
         for j in 0..self.state.joints.len() {
             if self.state.joints[j].failed {
-                self.unbond(j, false);
+                let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
+                let area = femdem_fracture::joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
+                self.unbond(j, false, area);
             }
         }
     }

@@ -312,7 +312,7 @@ fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
             ..ContactSettings::new(26e9)
         };
         let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
-        contact.joint_failed(&m, 0, true);
+        contact.joint_failed(&m, 0, true, 0.0);
         for step in 0..=n_total + 2 {
             contact.pass(&m, &x, &v, 1e-8);
             let on_b: Vec3 = m.tets[b as usize].iter().map(|&k| contact.force[k as usize]).sum();

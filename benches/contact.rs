@@ -4,7 +4,7 @@
 //! stay flat: the target is within 1.5× from 10⁴ to 10⁶.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use femdem_contact::{Nbs, contact_bound, tet_tet_forces};
+use femdem_contact::{Nbs, contact_bound, tet_tet_forces, tet_tet_gradient};
 use femdem_core::Vec3;
 
 /// `n` spheres of radius 0.5 on a jittered cubic lattice of spacing 1.
@@ -61,6 +61,14 @@ fn kernel(c: &mut Criterion) {
         let mut b = a.map(|v| -v + d * (2.0 * r_in - delta));
         b.swap(2, 3);
         g.bench_function(name, |bench| bench.iter(|| tet_tet_forces(&a, &b, 1e9)));
+    }
+    g.finish();
+    // The energy-conserving model on the same pairs: its cost against Eq. 17's.
+    let mut g = c.benchmark_group("tet_tet_gradient");
+    for (name, delta) in [("shallow", 0.01), ("deep", 0.3)] {
+        let mut b = a.map(|v| -v + d * (2.0 * r_in - delta));
+        b.swap(2, 3);
+        g.bench_function(name, |bench| bench.iter(|| tet_tet_gradient(&a, &b, 1e9)));
     }
     g.finish();
 }

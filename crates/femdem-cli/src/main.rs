@@ -75,6 +75,12 @@ enum Command {
         /// (when stderr is not a terminal; default 10).
         #[arg(long, value_name = "SECONDS", hide = true)]
         progress_interval: Option<f64>,
+        /// For measurement: the normal contact force, `potential` (Eq. 17,
+        /// what the case format runs) or `gradient` (energy-conserving; not
+        /// in the case format, as it misses its closed-cycle goal:
+        /// docs/fidelity.md section 12).
+        #[arg(long, value_name = "MODEL", hide = true, conflicts_with = "resume")]
+        contact_model: Option<String>,
         /// Run even if the mesh's estimated memory exceeds what is available.
         #[arg(long)]
         force: bool,
@@ -119,6 +125,7 @@ fn main() -> ExitCode {
             stop_after_steps,
             pause_checkpoint,
             progress_interval,
+            contact_model,
             force,
             overwrite,
         } => commands::memory::refuse_if_too_big(&case, &set, force).and_then(|()| {
@@ -130,6 +137,7 @@ fn main() -> ExitCode {
                 stop_after_steps,
                 pause_checkpoint,
                 progress_interval,
+                contact_model,
                 overwrite,
             };
             commands::run::run(&case, options)

@@ -248,18 +248,10 @@ fn term(t: &[Vec3; 4], apex: usize, u: &[Vec3; 4]) -> Option<Term> {
                 }
             });
             let mut poly = Polygon::triangle(corners);
-            for j in 0..4 {
-                poly = if own_is_t {
-                    if coplanar[j][f] {
-                        continue;
-                    }
-                    poly.clip(|v| v.u[j])
-                } else {
-                    if coplanar[f][j] {
-                        continue;
-                    }
-                    poly.clip(|v| v.t[j])
-                };
+            // The other tet's planes, but one this face lies in.
+            let planes = (0..4).filter(|&j| if own_is_t { !coplanar[j][f] } else { !coplanar[f][j] });
+            for j in planes {
+                poly = if own_is_t { poly.clip(|v| v.u[j]) } else { poly.clip(|v| v.t[j]) };
                 if poly.n < 3 {
                     break;
                 }
@@ -463,7 +455,8 @@ mod tests {
             prop_assert!((on_a - want_a).norm() <= 1e-10 * s, "{on_a} vs Eq. 17 {want_a}");
             prop_assert!((on_a + on_b).norm() <= 1e-10 * s);
             let l = (s / p).sqrt();
-            let torque: Vec3 = a.iter().zip(&c.contact.on_a).chain(b.iter().zip(&c.contact.on_b)).map(|(x, f)| x.cross(f)).sum();
+            let torque: Vec3 =
+                a.iter().zip(&c.contact.on_a).chain(b.iter().zip(&c.contact.on_b)).map(|(x, f)| x.cross(f)).sum();
             prop_assert!(torque.norm() <= 1e-10 * s * l, "torque {torque}");
             prop_assert!(c.energy >= -1e-12 * s * l, "energy {:e}", c.energy);
             if let Some(centre) = c.contact.centre {
@@ -475,7 +468,11 @@ mod tests {
                 let tolerance = 1e-12 * (least / c.volume).max(1.0);
                 for t in [&a, &b] {
                     let bary = Barycentric::new(t).unwrap();
-                    prop_assert!(bary.at(&centre).iter().all(|&x| x >= -tolerance), "centre outside a tet: {:?}", bary.at(&centre));
+                    prop_assert!(
+                        bary.at(&centre).iter().all(|&x| x >= -tolerance),
+                        "centre outside a tet: {:?}",
+                        bary.at(&centre)
+                    );
                 }
             } else {
                 // No overlap, or less than 10⁻⁹ of a tet (faces touching, or

@@ -14,6 +14,11 @@
 //!   penalty-function potential contact between two tets (Eq. 17), on their
 //!   eight nodes; [`tet_tet_contact`] also returns the force-weighted
 //!   contact centre where it acts (for friction).
+//! - [`tet_tet_gradient`] (`gradient.rs`): the energy-conserving
+//!   alternative, the exact gradient `−∂W/∂x` on all eight nodes of
+//!   `W = p ∫_{A∩B} (φ_A + φ_B) dV`, the energy whose rigid-translation
+//!   derivative is Eq. 17's resultant; with `W` itself and the centroid of
+//!   the overlap (for friction).
 //! - [`contact_bound`] (`bound.rs`): an upper bound on a pair's Eq. 17
 //!   forces from the vertices of the two tets' overlap, to skip pairs
 //!   whose forces are negligible before clipping them;

@@ -80,7 +80,7 @@ mod step;
 mod timestep;
 
 pub use account::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};
-pub use contact::{Activation, Contact, ContactEnergy, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
+pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
 pub use error::SolverError;
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};

@@ -53,7 +53,8 @@ use crate::step::{Solver, StepRecord};
 /// 6: contact's pairs that started overlapped, with their offsets, and the
 /// work their normal forces did (`ContactSettings::activation`).
 /// 7: the compression energy the failed joints handed to contact
-/// (`ContactEnergy::held`).
+/// (`ContactEnergy::held`), and the energy the pairs in contact hold
+/// (`Contact::potential`, `ContactModel::Gradient`).
 pub const SNAPSHOT_VERSION: u32 = 7;
 
 /// Writes values to a little-endian byte stream.

@@ -8,7 +8,8 @@ use femdem_material::{ElasticParams, Law};
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
 use femdem_solver::{
-    Activation, ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad, VelocityDrive,
+    Activation, ContactModel, ContactSettings, Fixed, Loads, Model, Ramp, RegionBehaviour, SurfaceKind, SurfaceLoad,
+    VelocityDrive,
 };
 use femdem_vtk::Compression;
 
@@ -434,6 +435,7 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         ramp_steps: spec.ramp_steps,
         incremental: true,
         negligible: spec.negligible,
+        model: ContactModel::Potential,
     };
     for (i, p) in spec.pairs.iter().enumerate() {
         let pair = p.get_ref();

@@ -43,6 +43,9 @@ pub struct RunOptions {
     /// `--progress-interval SECONDS` (for tests): wall time between plain
     /// progress lines (default 10 s).
     pub progress_interval: Option<f64>,
+    /// `--contact-model NAME` (for measurement): `potential` or `gradient`
+    /// ([`femdem_solver::ContactModel`]); not a key of the case format.
+    pub contact_model: Option<String>,
     /// `--overwrite`: remove the results of an earlier run from the output
     /// directory (femdem's own files only) instead of refusing it.
     pub overwrite: bool,
@@ -50,8 +53,17 @@ pub struct RunOptions {
 
 /// Runs the command.
 pub fn run(path: &Path, options: RunOptions) -> Result<()> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, progress_interval, overwrite } =
-        options;
+    let RunOptions {
+        out,
+        threads,
+        set,
+        resume,
+        stop_after_steps,
+        pause_checkpoint,
+        progress_interval,
+        contact_model,
+        overwrite,
+    } = options;
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     // The output directory is checked before the mesh is built: a refusal
@@ -71,6 +83,15 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     let checkpoints = spec.checkpoint;
     let identity = Identity::of(&prepared.case, &prepared.jointed.mesh);
     let solver = &mut run.solver;
+    if let Some(name) = &contact_model {
+        let model = match name.as_str() {
+            "potential" => femdem_solver::ContactModel::Potential,
+            "gradient" => femdem_solver::ContactModel::Gradient,
+            other => bail!("--contact-model `{other}` is not `potential` or `gradient`"),
+        };
+        solver.set_contact_model(model).map_err(|e| anyhow::anyhow!("--contact-model: {e}"))?;
+        eprintln!("femdem: contact model `{name}` (--contact-model, for measurement)");
+    }
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
     let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };

@@ -475,3 +475,28 @@ fn a_pressure_stopped_and_a_face_held_from_the_same_time() {
         assert!((ratio - 1.0).abs() < 0.085, "the hold carries {ratio} × the tension at t = {}", r[t]);
     }
 }
+
+/// `--contact-model` (hidden, for measurement: the energy-conserving model
+/// is not in the case format, `docs/fidelity.md` §12) picks the normal
+/// contact force of a run and says so; an unknown name is refused, naming
+/// the two. The small disc is run for its first 20 µs, platens touching.
+#[test]
+fn the_contact_model_flag_picks_the_model_or_refuses() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("contact-model-flag");
+    let _ = std::fs::remove_dir_all(&out);
+    let case = "crates/femdem-cli/tests/cases/small_brazilian.toml";
+    let args = |model: &'static str, dir: &str| {
+        let dir = out.join(dir).to_str().unwrap().to_owned();
+        femdem(&["run", case, "--out", &dir, "--set", "solver.end_time=2e-5", "--contact-model", model])
+    };
+    let o = args("gradient", "gradient");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("contact model `gradient`"), "{err}");
+    let history = History::read(&out.join("gradient"));
+    let pairs = history.col("contact_pairs");
+    assert!(history.rows.iter().any(|r| r[pairs] > 0.0), "the platens touch");
+    let o = args("clipped", "bad");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("`potential` or `gradient`"), "{err}");
+}

@@ -78,7 +78,7 @@ use crate::model::{Model, RIGID};
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 use settings::FrictionTable;
-pub use settings::{Activation, ContactSettings, NEGLIGIBLE};
+pub use settings::{Activation, ContactModel, ContactSettings, NEGLIGIBLE};
 use stars::Stars;
 use start::NewlyAllowed;
 
@@ -193,6 +193,10 @@ pub struct Contact {
     pub additions: u64,
     /// Elastic energy of the friction springs after the last pass, J.
     pub spring_energy: Real,
+    /// The energy the normal forces of the pairs in contact hold after the
+    /// last pass, `Σ W`, J, with [`ContactModel::Gradient`] (see
+    /// `PairForce::energy`); 0 with [`ContactModel::Potential`].
+    pub potential: Real,
     /// Tangential spring stretch of each pair in contact (friction history).
     stick: PairMap<Vec3>,
     stick_next: PairMap<Vec3>,
@@ -259,6 +263,7 @@ impl Contact {
             detections: 0,
             additions: 0,
             spring_energy: 0.0,
+            potential: 0.0,
             stick: PairMap::default(),
             stick_next: PairMap::default(),
             ramp: PairMap::default(),
@@ -487,7 +492,8 @@ impl Contact {
         self.newly.settle();
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
-        let (negligible, activation) = (self.settings.negligible, self.settings.activation);
+        let (negligible, activation, contact_model) =
+            (self.settings.negligible, self.settings.activation, self.settings.model);
         let newly = self.newly.any().then_some(&self.newly);
         self.candidates
             .par_iter()
@@ -500,6 +506,7 @@ impl Contact {
                     v,
                     volumes: [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume],
                     penalty,
+                    model: contact_model,
                     negligible,
                     friction,
                     regions: &model.tet_region,
@@ -516,6 +523,7 @@ impl Contact {
             .collect_into_vec(&mut self.results);
         self.active_pairs = 0;
         self.spring_energy = 0.0;
+        self.potential = 0.0;
         self.in_contact.clear();
         for r in self.results.iter().flatten() {
             self.active_pairs += 1;
@@ -525,6 +533,7 @@ impl Contact {
                 self.stick_next.insert(spring_key(a, b), r.spring);
                 self.spring_energy += r.spring_energy;
             }
+            self.potential += r.energy;
             if let Some(off) = r.started {
                 self.started_next.insert(spring_key(a, b), off);
             }

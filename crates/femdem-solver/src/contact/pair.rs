@@ -1,10 +1,10 @@
 //! One candidate pair of the contact pass: the normal potential force
 //! (Eq. 17), the Eq. 18 ramp, and Coulomb friction at the contact centre.
 
-use femdem_contact::{tet_tet_contact, tet_tet_contact_unless};
+use femdem_contact::{tet_tet_contact, tet_tet_contact_unless, tet_tet_gradient};
 use femdem_core::{Mat3, Real, Vec3};
 
-use super::settings::{Activation, FrictionTable};
+use super::settings::{Activation, ContactModel, FrictionTable};
 
 /// What one pair in contact contributes.
 #[derive(Clone, Copy, Debug)]
@@ -24,6 +24,11 @@ pub(crate) struct PairForce {
     pub spring: Vec3,
     /// Elastic energy of the friction spring, `½ k_t |s|²`, J.
     pub spring_energy: Real,
+    /// The energy of the normal force, `W = p ∫_{A∩B} (φ_A + φ_B) dV`
+    /// times the force's ramp or offset factor, J, with
+    /// [`ContactModel::Gradient`] (exact where the factor is 1); 0 with
+    /// [`ContactModel::Potential`], whose force has no energy.
+    pub energy: Real,
     /// For a pair that started overlapped (it overlapped when newly
     /// allowed to touch and has not separated since): its offset `N_off`
     /// after this step (0 where no offset applies).
@@ -103,6 +108,8 @@ pub(crate) struct PairInput<'a> {
     /// contact (a cube root per candidate was 5% of a fragmented step).
     pub volumes: [Real; 2],
     pub penalty: Real,
+    /// [`super::ContactSettings::model`].
+    pub model: ContactModel,
     /// [`super::ContactSettings::negligible`].
     pub negligible: Real,
     /// What is read only for a pair in contact (most candidates are not):
@@ -177,7 +184,15 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     if !boxes_overlap(pa, pb) {
         return None;
     }
-    let contact = if input.negligible > 0.0 {
+    let mut energy = 0.0;
+    let contact = if input.model == ContactModel::Gradient {
+        // No bound: every pair whose boxes overlap is evaluated. An
+        // overlap below 10⁻⁹ of the smaller tet has no centre and is
+        // dropped with it (its forces are of that order of `p ℓ²`).
+        let g = tet_tet_gradient(pa, pb, input.penalty);
+        energy = g.energy;
+        g.contact
+    } else if input.negligible > 0.0 {
         // Every normal force at most p · bound ≤ negligible · p · ℓ², ℓ³ =
         // V: as cubes, with no cube root (the bound is infinite, and the
         // pair evaluated, where it cannot bound).
@@ -231,6 +246,7 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         weights: [[0.25; 4]; 2],
         spring: Vec3::zeros(),
         spring_energy: 0.0,
+        energy: energy * scale,
         started,
         fresh,
     };

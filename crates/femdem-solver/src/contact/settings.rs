@@ -56,6 +56,31 @@ pub struct ContactSettings {
     /// of the joints that held it, or at the first step): see
     /// [`Activation`].
     pub activation: Activation,
+    /// The normal force between two tets: see [`ContactModel`].
+    pub model: ContactModel,
+}
+
+/// The normal force between two overlapping tets.
+///
+/// * [`ContactModel::Potential`] (the default): Eq. 17 as printed
+///   (`femdem_contact::tet_tet_contact`), each clipped piece's force shared
+///   among the nodes by its centroid's barycentric coordinates. Its
+///   resultant is the derivative of `W = p ∫_{A∩B} (φ_A + φ_B) dV` under a
+///   rigid translation, but its nodal shares are not `−∂W/∂x`: over a
+///   closed cycle of contact it gives back more or less than it took
+///   (`docs/fidelity.md`, section 10).
+/// * [`ContactModel::Gradient`]: `f = −∂W/∂x` on all eight nodes exactly
+///   (`femdem_contact::tet_tet_gradient`): the same energy and the same
+///   resultant on each tet, with nodal forces that conserve energy. About
+///   eight clippings where Eq. 17 needs two, and no bound to skip
+///   negligible pairs ([`ContactSettings::negligible`] is not read).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ContactModel {
+    /// Eq. 17 as printed.
+    #[default]
+    Potential,
+    /// The exact gradient of Eq. 17's potential energy.
+    Gradient,
 }
 
 /// How a pair that already overlaps when it is newly allowed to touch
@@ -131,6 +156,7 @@ impl ContactSettings {
             incremental: true,
             negligible: NEGLIGIBLE,
             activation: Activation::default(),
+            model: ContactModel::default(),
         }
     }
 

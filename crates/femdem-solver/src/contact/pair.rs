@@ -186,9 +186,7 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
     }
     let mut energy = 0.0;
     let contact = if input.model == ContactModel::Gradient {
-        // No bound: every pair whose boxes overlap is evaluated. An
-        // overlap below 10⁻⁹ of the smaller tet has no centre and is
-        // dropped with it (its forces are of that order of `p ℓ²`).
+        // No bound: every pair whose boxes overlap is evaluated.
         let g = tet_tet_gradient(pa, pb, input.penalty);
         energy = g.energy;
         g.contact

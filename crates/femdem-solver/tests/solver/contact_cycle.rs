@@ -237,7 +237,7 @@ fn sliding_across_a_crack_of_a_jointed_body_closes_its_cycle() {
 /// The energy-conserving model (`ContactModel::Gradient`, forces the exact
 /// gradient of `W = p ∫_{A∩B} (φ_A + φ_B) dV`): the same five impacts at
 /// safety 0.3, bounded by their measured residuals raised by a quarter.
-/// Where no face lands flat (edge, vertex, oblique) what remains is 10⁻⁷
+/// Where no face lands flat (edge, vertex, oblique) what remains is 10⁻⁸
 /// of the impact or less, whatever the step; a face landing flat (the
 /// plate, and the crack case's flat landing before it slides) leaves the
 /// leapfrog's error at the contact's onset, where `W`'s curvature jumps
@@ -250,29 +250,29 @@ fn gradient(impact: Impact) -> Impact {
 
 #[test]
 fn gradient_model_face_landing() {
-    check("face, gradient", gradient(Impact::flat()), 4.139e-5);
+    check("face, gradient", gradient(Impact::flat()), 4.128e-5);
 }
 
 #[test]
 fn gradient_model_edge_landing() {
-    check("edge, gradient", gradient(Impact { tilt: EDGE, ..Impact::flat() }), 1.224e-7);
+    check("edge, gradient", gradient(Impact { tilt: EDGE, ..Impact::flat() }), 5.611e-9);
 }
 
 #[test]
 fn gradient_model_vertex_landing() {
-    check("vertex, gradient", gradient(Impact { tilt: VERTEX, ..Impact::flat() }), 7.224e-9);
+    check("vertex, gradient", gradient(Impact { tilt: VERTEX, ..Impact::flat() }), 3.957e-9);
 }
 
 #[test]
 fn gradient_model_oblique_spinning_landing() {
     let impact = Impact { tilt: EDGE, velocity: [0.6, 0.3, -1.0], spin: [20.0, -30.0, 40.0], ..Impact::flat() };
-    check("oblique, spinning, gradient", gradient(impact), 3.636e-8);
+    check("oblique, spinning, gradient", gradient(impact), 9.878e-10);
 }
 
 #[test]
 fn gradient_model_sliding_across_a_crack() {
     let impact = Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..Impact::flat() };
-    check("across a crack, gradient", gradient(impact), 2.556e-4);
+    check("across a crack, gradient", gradient(impact), 2.557e-4);
 }
 
 /// The flat landing's residual with the energy-conserving model is the
@@ -288,32 +288,28 @@ fn the_flat_landing_residual_falls_with_the_time_step() {
     assert!(fine.abs() < coarse.abs() / 10.0, "{fine} vs {coarse}");
 }
 
-/// The sweep of `docs/fidelity.md` §10: residual of each case over penalty,
-/// speed, mesh and time step.
-#[test]
-#[ignore = "a measurement (minutes): run with --ignored --nocapture"]
-fn closed_cycle_sweep() {
-    let cases: [(&str, Impact); 5] = [
-        ("face", Impact::flat()),
-        ("edge", Impact { tilt: EDGE, ..Impact::flat() }),
-        ("vertex", Impact { tilt: VERTEX, ..Impact::flat() }),
-        ("oblique", Impact { tilt: EDGE, velocity: [0.6, 0.3, -1.0], spin: [20.0, -30.0, 40.0], ..Impact::flat() }),
-        ("crack", Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..Impact::flat() }),
-    ];
+/// The five impacts with `model`.
+fn five(model: ContactModel) -> [(&'static str, Impact); 5] {
+    let base = Impact { model, ..Impact::flat() };
+    [
+        ("face", base),
+        ("edge", Impact { tilt: EDGE, ..base }),
+        ("vertex", Impact { tilt: VERTEX, ..base }),
+        ("oblique", Impact { tilt: EDGE, velocity: [0.6, 0.3, -1.0], spin: [20.0, -30.0, 40.0], ..base }),
+        ("crack", Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..base }),
+    ]
+}
+
+/// Prints the residual of each case at each of `safeties`, then at safety
+/// 0.3 with penalty E/10 and 10 E, speed × 0.3 and × 3, and 5 mm tets.
+fn sweep(model: ContactModel, safeties: &[f64]) {
     println!("| case | penalty/E | V (m/s) | h (mm) | safety | residual | steps |");
     println!("|---|---:|---:|---:|---:|---:|---:|");
-    for (name, base) in cases {
-        let mut variants = vec![base];
+    for (name, base) in five(model) {
+        let mut variants: Vec<Impact> = safeties.iter().map(|&safety| Impact { safety, ..base }).collect();
         variants.extend([0.1, 10.0].map(|penalty| Impact { penalty, ..base }));
         variants.extend([0.3, 3.0].map(|k| Impact { velocity: base.velocity.map(|c| c * k), ..base }));
         variants.push(Impact { h: 0.005, ..base });
-        variants.extend([0.9, 0.1].map(|safety| Impact { safety, ..base }));
-        if std::env::var("FINE").is_ok() {
-            variants = [0.5, 0.3, 0.2, 0.15, 0.1, 0.07, 0.05].map(|safety| Impact { safety, ..base }).to_vec();
-            if name != "face" && name != "crack" {
-                continue;
-            }
-        }
         for i in variants {
             let c = bounce(&i);
             println!(
@@ -329,39 +325,18 @@ fn closed_cycle_sweep() {
     }
 }
 
+/// The sweep of `docs/fidelity.md` §10: residual of each case over penalty,
+/// speed, mesh and time step, with Eq. 17.
+#[test]
+#[ignore = "a measurement (minutes): run with --ignored --nocapture"]
+fn closed_cycle_sweep() {
+    sweep(ContactModel::Potential, &[0.3, 0.9, 0.1]);
+}
+
 /// The sweep of `docs/fidelity.md` §12 with the energy-conserving model
-/// (`ContactModel::Gradient`): each case over the time step, then over
-/// penalty, speed and mesh at safety 0.3.
+/// (`ContactModel::Gradient`), over more time steps.
 #[test]
 #[ignore = "a measurement (minutes): run with --ignored --nocapture"]
 fn closed_cycle_sweep_gradient() {
-    let g = Impact { model: ContactModel::Gradient, ..Impact::flat() };
-    let cases: [(&str, Impact); 5] = [
-        ("face", g),
-        ("edge", Impact { tilt: EDGE, ..g }),
-        ("vertex", Impact { tilt: VERTEX, ..g }),
-        ("oblique", Impact { tilt: EDGE, velocity: [0.6, 0.3, -1.0], spin: [20.0, -30.0, 40.0], ..g }),
-        ("crack", Impact { velocity: [0.8, 0.0, -1.0], ground: Ground::Cracked, ..g }),
-    ];
-    println!("| case | penalty/E | V (m/s) | h (mm) | safety | residual | steps |");
-    println!("|---|---:|---:|---:|---:|---:|---:|");
-    for (name, base) in cases {
-        let mut variants: Vec<Impact> =
-            [0.9, 0.5, 0.3, 0.2, 0.1, 0.05].map(|safety| Impact { safety, ..base }).to_vec();
-        variants.extend([0.1, 10.0].map(|penalty| Impact { penalty, ..base }));
-        variants.extend([0.3, 3.0].map(|k| Impact { velocity: base.velocity.map(|c| c * k), ..base }));
-        variants.push(Impact { h: 0.005, ..base });
-        for i in variants {
-            let c = bounce(&i);
-            println!(
-                "| {name} | {} | {:.2} | {} | {} | {:+.3e} | {} |",
-                i.penalty,
-                Vec3::from(i.velocity).norm(),
-                i.h * 1e3,
-                i.safety,
-                c.residual,
-                c.steps
-            );
-        }
-    }
+    sweep(ContactModel::Gradient, &[0.9, 0.5, 0.3, 0.2, 0.1, 0.05]);
 }

@@ -37,6 +37,13 @@ enum Command {
         /// TOML value: quote strings). Checked as a value in the file is.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Check even if the mesh's estimated memory exceeds what is
+        /// available.
+        #[arg(long)]
+        force: bool,
+        /// For tests: the memory available, bytes (instead of MemAvailable).
+        #[arg(long, value_name = "BYTES", hide = true)]
+        memory_available: Option<f64>,
     },
     /// Run a case to its end time, writing VTU frames, a PVD series and a
     /// CSV history.
@@ -84,6 +91,9 @@ enum Command {
         /// Run even if the mesh's estimated memory exceeds what is available.
         #[arg(long)]
         force: bool,
+        /// For tests: the memory available, bytes (instead of MemAvailable).
+        #[arg(long, value_name = "BYTES", hide = true)]
+        memory_available: Option<f64>,
         /// Remove the results of an earlier run from the output directory
         /// first (only femdem's own files: history.csv, failures.csv,
         /// .pvd series with their .vtu frames, checkpoints, plot_*.png;
@@ -115,7 +125,10 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Check { case, json, threads, set } => commands::check::run(&case, json, threads, &set),
+        Command::Check { case, json, threads, set, force, memory_available } => {
+            commands::memory::refuse_if_too_big(&case, &set, force, memory_available, "check")
+                .and_then(|()| commands::check::run(&case, json, threads, &set))
+        }
         Command::Run {
             case,
             out,
@@ -127,8 +140,9 @@ fn main() -> ExitCode {
             progress_interval,
             contact_model,
             force,
+            memory_available,
             overwrite,
-        } => commands::memory::refuse_if_too_big(&case, &set, force).and_then(|()| {
+        } => commands::memory::refuse_if_too_big(&case, &set, force, memory_available, "run").and_then(|()| {
             let options = commands::run::RunOptions {
                 out,
                 threads,

@@ -246,36 +246,70 @@ pub fn available_memory() -> Option<f64> {
     Some(kib * 1024.0)
 }
 
-/// The refusal message when `estimate` exceeds `available` bytes.
-pub fn refusal(path: &Path, estimate: &Estimate, available: f64) -> Option<String> {
+/// The memory a case may use, bytes, and where the figure comes from.
+#[derive(Clone, Copy, Debug)]
+pub struct Available {
+    /// Bytes.
+    pub bytes: f64,
+    /// `MemAvailable` of `/proc/meminfo`, or `--memory-available`.
+    pub from_flag: bool,
+}
+
+impl Available {
+    /// `--memory-available` if given, else `MemAvailable`; `None` when
+    /// neither is known.
+    pub fn of(flag: Option<f64>) -> Option<Available> {
+        match flag {
+            Some(bytes) => Some(Available { bytes, from_flag: true }),
+            None => available_memory().map(|bytes| Available { bytes, from_flag: false }),
+        }
+    }
+}
+
+/// The refusal message when `estimate` exceeds the `available` memory;
+/// `command` is `run` or `check`.
+pub fn refusal(path: &Path, estimate: &Estimate, available: Available, command: &str) -> Option<String> {
     const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
-    (estimate.bytes > available).then(|| {
+    let source = if available.from_flag { "--memory-available" } else { "MemAvailable" };
+    (estimate.bytes > available.bytes).then(|| {
         format!(
             "{}: the mesh would need about {:.1} GiB ({:.3e} tets, {:.3e} nodes, {:.3e} joints), more than the \
-             {:.1} GiB of memory available (MemAvailable); use a larger element_size, or run with --force to try \
-             anyway",
+             {:.1} GiB of memory available ({source}); use a larger element_size, or {command} with --force to \
+             try anyway",
             path.display(),
             estimate.bytes / GIB,
             estimate.tets,
             estimate.nodes,
             estimate.joints,
-            available / GIB
+            available.bytes / GIB
         )
     })
 }
 
-/// Before `femdem run` builds anything: refuses a case (with its `--set`
-/// arguments `sets`) whose estimate exceeds the available memory, unless
-/// `force`. A case that does not load or cannot be sized is left to the
+/// Before `femdem run` or `femdem check` (`command`) builds anything:
+/// refuses a case (with its `--set` arguments `sets`) whose estimate
+/// exceeds the available memory (`memory_available` bytes if given, for
+/// tests; else `MemAvailable`), unless `force`. A case that does not load or cannot be sized is left to the
 /// run, which reports why.
-pub fn refuse_if_too_big(path: &Path, sets: &[String], force: bool) -> Result<()> {
+pub fn refuse_if_too_big(
+    path: &Path,
+    sets: &[String],
+    force: bool,
+    memory_available: Option<f64>,
+    command: &str,
+) -> Result<()> {
     if force {
         return Ok(());
     }
-    let (Ok(loaded), Some(available)) = (case::load(path, sets), available_memory()) else {
+    if let Some(bytes) = memory_available {
+        if !(bytes.is_finite() && bytes > 0.0) {
+            bail!("--memory-available must be a number of bytes > 0, got {bytes}");
+        }
+    }
+    let (Ok(loaded), Some(available)) = (case::load(path, sets), Available::of(memory_available)) else {
         return Ok(());
     };
-    if let Some(message) = estimate(&loaded).and_then(|e| refusal(path, &e, available)) {
+    if let Some(message) = estimate(&loaded).and_then(|e| refusal(path, &e, available, command)) {
         bail!(message);
     }
     Ok(())
@@ -321,9 +355,14 @@ mod tests {
     #[test]
     fn a_run_that_does_not_fit_is_refused_with_its_figures() {
         let e = Estimate { tets: 1e8, nodes: 4e8, joints: 2e8, bytes: 3e11, viscous: false };
-        let message = refusal(Path::new("big.toml"), &e, 16e9).expect("refused");
+        let at = |bytes: f64| Available { bytes, from_flag: false };
+        let message = refusal(Path::new("big.toml"), &e, at(16e9), "run").expect("refused");
         assert!(message.starts_with("big.toml: the mesh would need about 279.4 GiB"), "{message}");
-        assert!(message.contains("1.000e8 tets") && message.contains("--force"), "{message}");
-        assert_eq!(refusal(Path::new("big.toml"), &e, 4e11), None);
+        assert!(message.contains("1.000e8 tets") && message.contains("run with --force"), "{message}");
+        assert!(message.contains("(MemAvailable)"), "{message}");
+        assert_eq!(refusal(Path::new("big.toml"), &e, at(4e11), "run"), None);
+        let given = Available { bytes: 16e9, from_flag: true };
+        let message = refusal(Path::new("big.toml"), &e, given, "check").expect("refused");
+        assert!(message.contains("(--memory-available)") && message.contains("check with --force"), "{message}");
     }
 }

@@ -380,8 +380,9 @@ fn loads_that_break_nothing_cost_no_contact_search() {
 /// kinetic energy (measured 0.34% when the kinetic energy was the mid-step
 /// one; with the account centred on `t_n`, `energy_guard.rs`, 9·10⁻⁶ of the
 /// run's energy scale).
-/// The guard may stop the run (crushed fragments can outrun the step):
-/// then it must say so before anything is non-finite.
+/// Crushed fragments could outrun the step, and the guard would stop the
+/// run; it does not here (measured: 1,262 failures, no trouble), and the
+/// test says so rather than skipping its checks if it did.
 #[test]
 fn a_100_m_per_s_impact_shatters_with_momentum_and_energy_kept() {
     let h = 0.005;
@@ -412,11 +413,7 @@ fn a_100_m_per_s_impact_shatters_with_momentum_and_energy_kept() {
         e.fracture,
         e.contact
     );
-    if let Some(t) = trouble {
-        // Stopped by the guard: the message names what went wrong.
-        assert!(!t.to_string().is_empty());
-        return;
-    }
+    assert_eq!(trouble, None, "the guard stopped the impact");
     assert!(s.failures().len() > 10, "the impact must break joints");
     assert!(dp < 1e-9, "momentum drift {dp}");
     assert!(drift < 0.05, "energy account drifted by {drift} of the initial kinetic energy");

@@ -21,9 +21,9 @@
 //!    `δn ≥ δnc` or `δs ≥ δsc`; it never decreases: `D = max(D, D_hist)`;
 //! 3. the stresses of Eq. 11: `σ = 2 (δn/δnp) f_t` in compression (not
 //!    affected by damage), the hardening branch for `0 ≤ δn ≤ δnp` as the
-//!    joint's [`Coupling`] says — `Printed`: `[2r − r²] f_t`;
-//!    `Multiplicative`: `z(D) [2r − r²] f_t`; `Capped` (the default):
-//!    `min([2r − r²] f_t, z(D) f_t)`, `r = δn/δnp` — and `z(D) f_t` beyond
+//!    joint's [`Coupling`] says — `Printed` (the default, Eq. 11 as
+//!    printed): `[2r − r²] f_t`; `Multiplicative`: `z(D) [2r − r²] f_t`;
+//!    `Capped`: `min([2r − r²] f_t, z(D) f_t)`, `r = δn/δnp` — and `z(D) f_t` beyond
 //!    `δnp`; `τ` likewise with `f_s`, along the slip. Every option keeps a
 //!    damaged point at or below its damaged strength when it unloads and
 //!    reloads (`Printed`: once that direction has been past its peak,

@@ -75,7 +75,8 @@ fn old_label(j: &Joint, dn: Real, ps: &PointStress) -> FailureMode {
 /// each coupling (the table is printed with `--nocapture`), and the labels
 /// the issue asks for: pure opening tensile; 10% slip, where the normal
 /// part holds `Dn² / D² ≈ 0.8`, tensile; 20% slip (`Ds ≈ Dn`) mixed;
-/// pure slip shear.
+/// 50% slip and pure slip shear — each predicted from the path's
+/// geometry, not from the labelling rule.
 ///
 /// The break is located to `δnc / n` with n = 200,000 (2.5e-10 m): `Dn`,
 /// `Ds` at the break are within `5k / n ≤ 3e-5` of the exact crossing of
@@ -103,19 +104,24 @@ fn opening_with_proportional_slip() {
                 format!("{label:?}"),
                 format!("{:?}", old_label(&j, dn, &ps)),
             );
-            assert_eq!(label, FailureMode::from_contributions(a, b), "the label is the rule's");
-            let expect = match k {
-                0.0 => Some((FailureMode::Tensile, 1.0)),
-                0.1 => Some((FailureMode::Tensile, 0.8)),
-                0.2 => Some((FailureMode::Mixed, 0.5)),
-                0.5 => Some((FailureMode::Shear, 0.14)),
-                _ => None,
+            // Ds/Dn ≈ 5k from the header (δsc varies with f_s by ±6%):
+            // the measured share within 0.04 of 1/(1 + 25k²), and the label
+            // the one that share predicts wherever it is more than 0.04
+            // from a threshold (¾ tensile, ¼ shear); at k = 0.115 and 0.35,
+            // on the thresholds, the label is not asserted.
+            let predicted = 1.0 / (1.0 + 25.0 * k * k);
+            assert!((share - predicted).abs() < 0.04, "{coupling:?} k {k}: Dn²/D² = {share}, predicted {predicted}");
+            let expect = if predicted >= 0.79 {
+                Some(FailureMode::Tensile)
+            } else if predicted <= 0.21 {
+                Some(FailureMode::Shear)
+            } else if (0.29..=0.71).contains(&predicted) {
+                Some(FailureMode::Mixed)
+            } else {
+                None
             };
-            if let Some((mode, approx_share)) = expect {
+            if let Some(mode) = expect {
                 assert_eq!(label, mode, "{coupling:?} k {k}: share {share}");
-                // Ds/Dn ≈ 5k from the header (δsc varies with f_s by ±6%):
-                // the measured share within 0.04 of 1/(1 + 25k²).
-                assert!((share - approx_share).abs() < 0.04, "{coupling:?} k {k}: Dn²/D² = {share}");
             }
         }
         // Pure slip, no opening.

@@ -34,7 +34,10 @@ fn a_case_that_cannot_fit_in_memory_is_refused_before_meshing() {
         assert!(!o.status.success(), "{command}");
         assert!(stderr.contains("too_big_for_memory.toml: the mesh would need about"), "{stderr}");
         assert!(stderr.contains("1.800e8 tets") && stderr.contains("16.0 GiB"), "{stderr}");
-        assert!(stderr.contains("(--memory-available)") && stderr.contains(&format!("{command} with --force")), "{stderr}");
+        assert!(
+            stderr.contains("(--memory-available)") && stderr.contains(&format!("{command} with --force")),
+            "{stderr}"
+        );
     }
     assert!(!out.exists(), "the run got as far as its output directory");
     let o = femdem(&["check", case, "--memory-available=-1"]);

@@ -34,8 +34,10 @@ impl<'a> LineChart<'a> {
 
     /// The same chart with each axis whose largest magnitude lies outside
     /// [0.01, 10⁴) shown in units of a power of ten that is a multiple of 3
-    /// (named in the axis label, e.g. `time (s) (×10⁻⁶)`), so that tick
-    /// labels stay short: SI histories span 1e-7 s to 1e9 Pa.
+    /// (named in the axis label: an SI unit takes its prefix, `time (µs)`,
+    /// a quantity with no unit in thousandths per mille, `strain (‰)`,
+    /// anything else `(×10ⁿ)`), so that tick labels stay short: SI
+    /// histories span 1e-7 s to 1e9 Pa.
     pub fn scaled(self) -> Self {
         LineChart { scaled: true, ..self }
     }
@@ -110,10 +112,33 @@ fn power_of(values: impl Iterator<Item = f64>) -> i32 {
     3 * (largest.log10() / 3.0).floor() as i32
 }
 
-/// `text` with the power of ten its axis is shown in, when there is one.
+/// SI units a label may end in, `name (unit)`, that take a prefix.
+const SI_UNITS: [&str; 7] = ["s", "m", "N", "J", "Pa", "W", "kg"];
+
+/// `text` with the power of ten its axis is shown in, when there is one:
+/// a label ending in an SI unit, `time (s)`, takes the prefix
+/// (`time (µs)`, `stress (MPa)`); one with no unit shown in thousandths
+/// takes per mille (`strain (‰)`); any other, `(×10ⁿ)`.
 fn label(text: &str, power: i32) -> String {
     if power == 0 {
         return text.to_owned();
+    }
+    const PREFIXES: [(i32, &str); 8] =
+        [(-12, "p"), (-9, "n"), (-6, "µ"), (-3, "m"), (3, "k"), (6, "M"), (9, "G"), (12, "T")];
+    if let Some((name, unit)) = text.strip_suffix(')').and_then(|stem| stem.rsplit_once(" (")) {
+        // `kg` already carries a prefix: grams take the new one.
+        let (base, shift) = if unit == "kg" { ("g", 3) } else { (unit, 0) };
+        let prefix = if power + shift == 0 {
+            Some("")
+        } else {
+            PREFIXES.iter().find(|(p, _)| *p == power + shift).map(|(_, s)| *s)
+        };
+        if let (true, Some(prefix)) = (SI_UNITS.contains(&unit), prefix) {
+            return format!("{name} ({prefix}{base})");
+        }
+    }
+    if power == -3 && !text.ends_with(')') {
+        return format!("{text} (‰)");
     }
     const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
     let mut exponent: String =
@@ -136,8 +161,16 @@ mod tests {
         assert_eq!(power_of([-3.2e7].into_iter()), 6);
         assert_eq!(power_of([0.0].into_iter()), 0);
         assert_eq!(power_of([0.01].into_iter()), 0);
-        assert_eq!(label("time (s)", -6), "time (s) (×10⁻⁶)");
+        assert_eq!(label("time (s)", -6), "time (µs)");
+        assert_eq!(label("time (s)", -3), "time (ms)");
+        assert_eq!(label("stress (Pa)", 6), "stress (MPa)");
+        assert_eq!(label("load (N)", 3), "load (kN)");
+        assert_eq!(label("mass (kg)", -3), "mass (g)");
+        assert_eq!(label("strain", -3), "strain (‰)");
+        assert_eq!(label("strain", -6), "strain (×10⁻⁶)");
         assert_eq!(label("stress", 12), "stress (×10¹²)");
+        assert_eq!(label("count (items)", 3), "count (items) (×10³)");
+        assert_eq!(label("time (s)", 15), "time (s) (×10¹⁵)");
         assert_eq!(label("load (N)", 0), "load (N)");
     }
 

@@ -8,4 +8,5 @@ mod output;
 pub mod plot;
 pub(crate) mod prepare;
 mod progress;
+mod provenance;
 pub mod run;

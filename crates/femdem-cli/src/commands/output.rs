@@ -30,10 +30,12 @@ fn check_fields(fields: &[String]) -> Result<()> {
 
 /// The comment lines `history.csv` starts with: the case file's name
 /// (`case: <name>`, what `--overwrite`'s refusal names), its title, the
-/// `--set` overrides in their canonical form and femdem's version; line
-/// breaks in the title become spaces. They do not depend on the output
-/// directory or the thread count, so a resumed run's history is the same
-/// byte for byte.
+/// `--set` overrides in their canonical form, and what produced the run
+/// (`provenance.rs`: femdem's version and commit, the processor, the
+/// vector instructions of the build, the worker threads, the GPU); line
+/// breaks in the title become spaces. They are written when a run starts
+/// and kept by a resumed run, whose history is then the same byte for byte
+/// as an uninterrupted run's.
 pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     let name = case.path.file_name().map_or_else(|| case.path.display().to_string(), |n| n.to_string_lossy().into());
     let mut lines = vec![format!("{CASE_COMMENT}{name}")];
@@ -45,7 +47,7 @@ pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     if !sets.is_empty() {
         lines.push(format!("set: {}", sets.join(" ")));
     }
-    lines.push(format!("femdem: {}", env!("CARGO_PKG_VERSION")));
+    lines.extend(super::provenance::lines());
     lines
 }
 

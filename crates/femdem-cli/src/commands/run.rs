@@ -275,6 +275,12 @@ pub fn run(path: &Path, options: RunOptions) -> Result<()> {
     }
     println!("wall time   {wall:.2} s");
     println!("throughput  {:.3e} tet-steps/s ({} threads)", progress.throughput(steps), rayon::current_num_threads());
+    println!(
+        "built       femdem {}; {}; simd {}",
+        super::provenance::build(),
+        super::provenance::cpu(),
+        super::provenance::simd()
+    );
     println!("results     {}", output.pvd().display());
     println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures().len());
     println!("history     {}", output.history_path().display());

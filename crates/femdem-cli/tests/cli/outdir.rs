@@ -42,20 +42,28 @@ fn frames(dir: &Path) -> (Vec<String>, Vec<String>) {
 }
 
 /// The run's history starts with comment lines naming the case, its title
-/// and the overrides, then the header.
+/// and the overrides, and what produced it (femdem's version and commit,
+/// the processor, the build's vector instructions, the threads, the GPU),
+/// then the header.
 #[test]
 fn the_history_names_its_case_before_the_header() {
     let out = fresh("outdir-comments");
     let o = run(BAR, &out, &["--set", "solver.end_time=1e-5"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
-    let lines: Vec<&str> = history.lines().take(5).collect();
+    let lines: Vec<&str> = history.lines().take(9).collect();
     assert_eq!(lines[0], "# case: elastic-bar.toml");
     assert_eq!(lines[1], "# title: P-wave in a confined bar");
     // The overrides in the form a checkpoint records them (TOML's spelling).
     assert_eq!(lines[2], "# set: solver.end_time=0.00001");
-    assert!(lines[3].starts_with("# femdem: "), "{lines:?}");
-    assert!(lines[4].starts_with("time,step,kinetic"), "{lines:?}");
+    assert!(lines[3].starts_with(&format!("# femdem: {} (commit ", env!("CARGO_PKG_VERSION"))), "{lines:?}");
+    for (line, key) in lines[4..8].iter().zip(["cpu", "simd", "threads", "gpu"]) {
+        assert!(line.starts_with(&format!("# {key}: ")), "{lines:?}");
+    }
+    assert!(lines[8].starts_with("time,step,kinetic"), "{lines:?}");
+    // The run summary names them too.
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(summary.lines().any(|l| l.starts_with("built       femdem ") && l.contains("simd")), "{summary}");
 }
 
 /// A second run into the same directory is refused and writes nothing; with

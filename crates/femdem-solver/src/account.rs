@@ -28,7 +28,7 @@
 
 use femdem_core::Real;
 
-use crate::model::{Model, RIGID};
+use crate::model::Model;
 use crate::state::Energies;
 use crate::step::Solver;
 
@@ -108,8 +108,8 @@ pub(crate) fn energy_floor(model: &Model) -> Real {
         .tet_material
         .iter()
         .zip(&model.tet_ref)
-        .filter(|(m, _)| **m != RIGID)
-        .map(|(&m, r)| 0.5 * model.materials[m as usize].1.p_wave_modulus() * FLOOR_STRAIN * FLOOR_STRAIN * r.volume)
+        .filter_map(|(m, r)| m.index().map(|i| (i, r)))
+        .map(|(i, r)| 0.5 * model.materials[i].1.p_wave_modulus() * FLOOR_STRAIN * FLOOR_STRAIN * r.volume)
         .sum()
 }
 

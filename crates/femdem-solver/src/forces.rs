@@ -13,7 +13,7 @@ use femdem_fracture::{FailureMode, JointHistory, KernelConsts, LANES, joint_upda
 use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
-use crate::model::{Model, RIGID};
+use crate::model::Model;
 
 /// Elements per parallel work item.
 pub const CHUNK: usize = 512;
@@ -167,12 +167,11 @@ fn tet_chunk(
     let mut sums = ForceSums::default();
     for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
         let t = first + k;
-        let mat = model.tet_material[t];
-        if mat == RIGID {
+        let Some(mat) = model.tet_material[t].index() else {
             *slot = [Vec3::zeros(); 4];
             continue;
-        }
-        let (law, material) = &model.materials[mat as usize];
+        };
+        let (law, material) = &model.materials[mat];
         let tet = model.tets[t];
         let xp = tet.map(|n| x[n as usize]);
         let vp = tet.map(|n| v[n as usize]);

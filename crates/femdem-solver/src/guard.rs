@@ -38,7 +38,7 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::account::Imbalance;
-use crate::model::{Model, RIGID};
+use crate::model::Model;
 use crate::step::Solver;
 
 /// A tolerance for [`Solver::check_contact_energy`] (the default of
@@ -163,7 +163,7 @@ fn altitude(p: &[Vec3; 4], volume: Real) -> Real {
 
 /// Per-tet factor `(ℓ/ℓ₀) · c₀/c(J)` by which tet `t`'s share of the
 /// critical step has changed, with its `J` and `ℓ/ℓ₀`.
-fn step_factor(model: &Model, x: &[Vec3], t: usize) -> (Real, Real, Real) {
+fn step_factor(model: &Model, x: &[Vec3], t: usize, material: usize) -> (Real, Real, Real) {
     let tet = model.tets[t];
     let p = tet.map(|n| x[n as usize]);
     let p0 = tet.map(|n| model.x0[n as usize]);
@@ -173,7 +173,7 @@ fn step_factor(model: &Model, x: &[Vec3], t: usize) -> (Real, Real, Real) {
         return (0.0, j, 0.0);
     }
     let shrink = altitude(&p, v) / altitude(&p0, v0);
-    let m = &model.materials[model.tet_material[t] as usize].1;
+    let m = &model.materials[material].1;
     let (l, mu) = (m.lambda(), m.mu());
     let stiffening = ((l + 2.0 * mu - l * j.ln()) / (l + 2.0 * mu)).max(1.0).sqrt();
     (shrink / stiffening, j, shrink)
@@ -199,9 +199,9 @@ impl Solver {
         let model = &self.model;
         let worst = (0..model.tets.len())
             .into_par_iter()
-            .filter(|&t| model.tet_material[t] != RIGID)
-            .map(|t| {
-                let (factor, j, shrink) = step_factor(model, &s.x, t);
+            .filter_map(|t| model.tet_material[t].index().map(|i| (t, i)))
+            .map(|(t, i)| {
+                let (factor, j, shrink) = step_factor(model, &s.x, t, i);
                 (factor, t, j, shrink)
             })
             .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));

@@ -85,7 +85,7 @@ pub use error::SolverError;
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
-pub use model::{Gather, Model, RIGID, RegionBehaviour};
+pub use model::{Gather, Model, RegionBehaviour, TetMaterial};
 pub use state::{Energies, Failure, State};
 pub use step::{FailureCounts, Solver, StepParams, StepRecord, held_nodes};
 pub use timestep::{StableStep, contact_omega, element_transit, stable_time_step};

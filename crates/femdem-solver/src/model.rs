@@ -27,8 +27,31 @@ pub enum RegionBehaviour {
     Rigid,
 }
 
-/// Marker of a rigid tet in [`Model::tet_material`].
-pub const RIGID: u16 = u16::MAX;
+/// What a tet is made of ([`Model::tet_material`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TetMaterial {
+    /// A rigid tet: no stress, no mass (a platen's).
+    Rigid,
+    /// A deformable tet of [`Model::materials`]`[i]`.
+    Deformable(u16),
+}
+
+impl TetMaterial {
+    /// The index into [`Model::materials`]; `None` for a rigid tet.
+    #[inline]
+    pub fn index(self) -> Option<usize> {
+        match self {
+            TetMaterial::Rigid => None,
+            TetMaterial::Deformable(i) => Some(i as usize),
+        }
+    }
+
+    /// Whether the tet is rigid.
+    #[inline]
+    pub fn is_rigid(self) -> bool {
+        self == TetMaterial::Rigid
+    }
+}
 
 /// Node-to-slot table in compressed rows: the slots of node `i` are
 /// `slots[offsets[i]..offsets[i + 1]]`, in increasing slot order, so sums
@@ -79,8 +102,8 @@ pub struct Model {
     pub tet_region: Vec<u16>,
     /// Reference shape data of each tet (inverse edge matrix, volume).
     pub tet_ref: Vec<TetReference>,
-    /// Index into [`Model::materials`], or [`RIGID`].
-    pub tet_material: Vec<u16>,
+    /// What each tet is made of: an index into [`Model::materials`], or rigid.
+    pub tet_material: Vec<TetMaterial>,
     /// Distinct (law, material) pairs.
     pub materials: Vec<(Law, Material)>,
     /// Joint connectivity `[N1 … N6]`.
@@ -138,9 +161,9 @@ impl Model {
                         materials.push((*law, *material));
                         materials.len() - 1
                     });
-                    region_material.push(idx as u16);
+                    region_material.push(TetMaterial::Deformable(idx as u16));
                 }
-                RegionBehaviour::Rigid => region_material.push(RIGID),
+                RegionBehaviour::Rigid => region_material.push(TetMaterial::Rigid),
             }
         }
         let mut mass = vec![0.0; x0.len()];
@@ -151,14 +174,14 @@ impl Model {
             let p = tet.map(|n| x0[n as usize]);
             let reference = TetReference::new(&p).ok_or(SolverError::InvertedTet(t))?;
             let mat = region_material[m.tet_region[t] as usize];
-            if mat == RIGID {
-                for &n in tet {
-                    rigid_node[n as usize] = true;
-                }
-            } else {
-                let share = materials[mat as usize].1.density() * reference.volume * mass_scaling / 4.0;
+            if let Some(i) = mat.index() {
+                let share = materials[i].1.density() * reference.volume * mass_scaling / 4.0;
                 for &n in tet {
                     mass[n as usize] += share;
+                }
+            } else {
+                for &n in tet {
+                    rigid_node[n as usize] = true;
                 }
             }
             tet_ref.push(reference);
@@ -271,6 +294,6 @@ impl Model {
 
     /// Number of deformable tets (the ones that cost a stress evaluation).
     pub fn num_deformable_tets(&self) -> usize {
-        self.tet_material.iter().filter(|&&m| m != RIGID).count()
+        self.tet_material.iter().filter(|m| !m.is_rigid()).count()
     }
 }

@@ -28,7 +28,7 @@ use femdem_fracture::JointHistory;
 use rayon::prelude::*;
 
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
-use crate::model::{Model, RIGID};
+use crate::model::Model;
 
 /// The result of [`stable_time_step`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -225,7 +225,7 @@ fn volume_and_largest_face(model: &Model, t: usize) -> (Real, Real) {
 /// 3 and 3 for `p` = 0.1 E, E, 10 E and 100 E, and 4 is unstable.
 pub fn contact_omega(model: &Model, penalty: Real) -> Real {
     (0..model.tets.len())
-        .filter(|&t| model.tet_material[t] != RIGID)
+        .filter(|&t| !model.tet_material[t].is_rigid())
         .map(|t| {
             let (v, a) = volume_and_largest_face(model, t);
             let k = 8.0 * penalty * a * a / (3.0 * v);
@@ -239,11 +239,11 @@ pub fn contact_omega(model: &Model, penalty: Real) -> Real {
 /// Smallest `ℓ_min / c_p` over the deformable tets.
 pub fn element_transit(model: &Model) -> Real {
     (0..model.tets.len())
-        .filter(|&t| model.tet_material[t] != RIGID)
-        .map(|t| {
+        .filter_map(|t| model.tet_material[t].index().map(|i| (t, i)))
+        .map(|(t, i)| {
             let (v, amax) = volume_and_largest_face(model, t);
             let altitude = 3.0 * v / amax;
-            altitude / model.materials[model.tet_material[t] as usize].1.p_wave_speed() * model.mass_scaling.sqrt()
+            altitude / model.materials[i].1.p_wave_speed() * model.mass_scaling.sqrt()
         })
         .fold(Real::INFINITY, Real::min)
 }

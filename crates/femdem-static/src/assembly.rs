@@ -3,7 +3,7 @@
 //! ([`crate::stiffness::joint_stiffness`]); rigid tets add nothing (their
 //! nodes are held), held components are left out.
 
-use femdem_solver::{Model, RIGID};
+use femdem_solver::Model;
 
 use crate::StaticError;
 use crate::dofs::{Dofs, HELD};
@@ -18,11 +18,11 @@ use crate::stiffness::{face_area, joint_initial_stiffness, joint_stiffness, tet_
 /// `p0 / h`.
 pub fn assemble(model: &Model, dofs: &Dofs, intact: &[bool]) -> Result<SymmetricCsc, StaticError> {
     let mut t = Triplets::default();
-    for (tet, (reference, &material)) in model.tets.iter().zip(model.tet_ref.iter().zip(&model.tet_material)) {
-        if material == RIGID {
+    for (tet, (reference, material)) in model.tets.iter().zip(model.tet_ref.iter().zip(&model.tet_material)) {
+        let Some(material) = material.index() else {
             continue;
-        }
-        let k = tet_stiffness(reference, &model.materials[material as usize].1);
+        };
+        let k = tet_stiffness(reference, &model.materials[material].1);
         for a in 0..4 {
             let ia = dofs.index[tet[a] as usize];
             for b in 0..=a {

@@ -74,7 +74,7 @@ use femdem_contact::Nbs;
 use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
-use crate::model::{Model, RIGID};
+use crate::model::Model;
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 use settings::FrictionTable;
@@ -221,7 +221,7 @@ impl Contact {
     /// in contact from the start (pre-existing fractures).
     pub fn new(model: &Model, settings: ContactSettings, initial: &[(u32, u32)]) -> Contact {
         let n_tets = model.tets.len();
-        let mut contactable: Vec<bool> = model.tet_material.iter().map(|&m| m == RIGID).collect();
+        let mut contactable: Vec<bool> = model.tet_material.iter().map(|m| m.is_rigid()).collect();
         if settings.surfaces {
             for (t, on) in model.surface_tets().into_iter().enumerate() {
                 contactable[t] |= on;
@@ -439,7 +439,7 @@ impl Contact {
     /// Whether tets `a` and `b` may exert contact forces on each other (see
     /// the module documentation).
     fn may_touch(&self, model: &Model, a: u32, b: u32) -> bool {
-        if model.tet_material[a as usize] == RIGID && model.tet_material[b as usize] == RIGID {
+        if model.tet_material[a as usize].is_rigid() && model.tet_material[b as usize].is_rigid() {
             return false;
         }
         if self.bonded.contains(&spring_key(a, b)) {

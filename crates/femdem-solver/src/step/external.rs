@@ -5,7 +5,7 @@
 use femdem_core::{Real, Vec3};
 
 use super::StepRecord;
-use super::prescribed::{Prescribed, held, prescribed};
+use super::prescribed::{Claim, Prescribed, held, prescribed};
 use crate::SolverError;
 use crate::loads::{Loads, surface_forces};
 use crate::model::Model;
@@ -136,7 +136,7 @@ impl External {
                 };
                 let f = f_in + self.f_surface[i] + weight(model, loads, i);
                 for c in 0..3 {
-                    if self.prescribed[i][c] == d as u16 {
+                    if self.prescribed[i][c] == Claim::Drive(d as u16) {
                         let r = model.mass[i] * (target[c] - state.v[i][c]) / dt - f[c];
                         total[c] += r;
                         back_d += 0.5 * dt * r * state.v[i][c];

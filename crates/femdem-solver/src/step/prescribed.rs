@@ -5,14 +5,19 @@ use crate::error::SolverError;
 use crate::loads::{Loads, VelocityDrive};
 use crate::model::Model;
 
-/// A component no constraint claims.
-pub(crate) const FREE: u16 = u16::MAX;
-/// A component held at zero velocity.
-pub(crate) const FIXED: u16 = u16::MAX - 1;
+/// What prescribes one velocity component of a node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Claim {
+    /// No constraint: the component moves freely.
+    Free,
+    /// Held at zero velocity.
+    Fixed,
+    /// Driven by [`Loads::drives`]`[d]`.
+    Drive(u16),
+}
 
-/// Per node and component: [`FREE`], [`FIXED`], or the index of the drive
-/// that prescribes it.
-pub(crate) type Prescribed = Vec<[u16; 3]>;
+/// Per node and component: what prescribes it.
+pub(crate) type Prescribed = Vec<[Claim; 3]>;
 
 /// The prescribed table of `loads` on `model`.
 ///
@@ -25,11 +30,11 @@ pub(crate) type Prescribed = Vec<[u16; 3]>;
 /// `start_time` is free at the start, and counts as such for the last two.
 pub(crate) fn prescribed(model: &Model, loads: &Loads) -> Result<Prescribed, SolverError> {
     let n = model.num_nodes();
-    let mut table = vec![[FREE; 3]; n];
-    let mut claim = |node: u32, c: usize, tag: u16, by: &dyn Fn() -> String| -> Result<(), SolverError> {
+    let mut table = vec![[Claim::Free; 3]; n];
+    let mut claim = |node: u32, c: usize, tag: Claim, by: &dyn Fn() -> String| -> Result<(), SolverError> {
         let slot =
             table.get_mut(node as usize).ok_or_else(|| SolverError::NodeOutOfRange { node, nodes: n, by: by() })?;
-        if slot[c] != FREE && slot[c] != tag {
+        if slot[c] != Claim::Free && slot[c] != tag {
             return Err(SolverError::PrescribedTwice { node, component: ["x", "y", "z"][c], by: by() });
         }
         slot[c] = tag;
@@ -38,14 +43,14 @@ pub(crate) fn prescribed(model: &Model, loads: &Loads) -> Result<Prescribed, Sol
     for f in &loads.fixed {
         for &node in &f.nodes {
             for c in (0..3).filter(|&c| f.components[c]) {
-                claim(node, c, FIXED, &|| "a fixed constraint".to_string())?;
+                claim(node, c, Claim::Fixed, &|| "a fixed constraint".to_string())?;
             }
         }
     }
     for (d, drive) in loads.drives.iter().enumerate() {
         for &node in &drive.nodes {
             for c in (0..3).filter(|&c| drive.components[c]) {
-                claim(node, c, d as u16, &|| format!("drive `{}`", drive.name))?;
+                claim(node, c, Claim::Drive(d as u16), &|| format!("drive `{}`", drive.name))?;
             }
         }
     }
@@ -78,11 +83,12 @@ pub(crate) fn held(table: &Prescribed, drives: &[VelocityDrive]) -> Vec<bool> {
     table.iter().map(|p| p.iter().all(|&tag| held_from_start(tag, drives))).collect()
 }
 
-/// Whether a component tagged `tag` is prescribed from the first step on.
-pub(crate) fn held_from_start(tag: u16, drives: &[VelocityDrive]) -> bool {
+/// Whether a component claimed by `tag` is prescribed from the first step
+/// on.
+pub(crate) fn held_from_start(tag: Claim, drives: &[VelocityDrive]) -> bool {
     match tag {
-        FREE => false,
-        FIXED => true,
-        d => drives[d as usize].from_start(),
+        Claim::Free => false,
+        Claim::Fixed => true,
+        Claim::Drive(d) => drives[d as usize].from_start(),
     }
 }

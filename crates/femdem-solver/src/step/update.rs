@@ -6,7 +6,7 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
 use super::external::{External, weight};
-use super::prescribed::{FIXED, FREE};
+use super::prescribed::Claim;
 use crate::forces::CHUNK;
 use crate::loads::Loads;
 use crate::model::Model;
@@ -109,10 +109,10 @@ fn advance_chunk(
         let mut new = if m > 0.0 { old + (f_in + f_ext) * (dt / m) } else { old };
         for comp in 0..3 {
             match prescribed[i][comp] {
-                FREE => {}
-                FIXED => new[comp] = 0.0,
-                d if active[d as usize] => new[comp] = targets[d as usize][comp],
-                _ => {} // a drive not yet started: free
+                Claim::Free => {}
+                Claim::Fixed => new[comp] = 0.0,
+                Claim::Drive(d) if active[d as usize] => new[comp] = targets[d as usize][comp],
+                Claim::Drive(_) => {} // a drive not yet started: free
             }
         }
         sums.back += f_ext.dot(&old);

@@ -193,7 +193,7 @@ fn spin_down(s: &mut Solver, settle: f64, omega: f64, t1: f64, t2: f64) -> (f64,
 fn mean_radius_by_plate_faces(s: &Solver, base: [Vec3; 3]) -> f64 {
     let (mut area, mut moment) = (0.0, 0.0);
     for (t, tet) in s.model.tets.iter().enumerate() {
-        if s.model.mass[tet[0] as usize] > 0.0 || s.model.tet_material[t] != femdem_solver::RIGID {
+        if s.model.mass[tet[0] as usize] > 0.0 || !s.model.tet_material[t].is_rigid() {
             continue;
         }
         for face in femdem_core::tet::FACES {

@@ -95,6 +95,7 @@ pub mod joints;
 mod mesh;
 pub mod msh;
 pub mod stats;
+pub mod trace_file;
 
 pub use error::MeshError;
 pub use faces::{FaceAdjacency, face_adjacency};

@@ -3,10 +3,10 @@
 use femdem_mesh::generate::{
     BoxSpec, ExtrusionSpec, Outline, PlatenSpec, Side, generate_box, generate_extrusion, generate_platen,
 };
+use femdem_mesh::trace_file::{TracePolyline, parse_traces};
 use femdem_mesh::{Region, TetMesh};
 
 use super::format::PartSpec;
-use super::traces::{TracePolyline, parse_traces};
 use super::{CaseError, LoadedCase};
 
 /// Default `jitter` of box parts (fraction of the element size).

@@ -8,7 +8,6 @@ pub mod mesh;
 pub mod overrides;
 pub mod probes;
 pub mod setup;
-pub mod traces;
 pub mod zones;
 
 use std::fmt;

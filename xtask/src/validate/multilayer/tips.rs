@@ -20,12 +20,9 @@ use std::path::Path;
 use anyhow::{Context, Result, anyhow};
 use femdem_mesh::generate::TraceNetwork;
 
-/// The parser `femdem` reads `traces_file` with. The CLI is a binary, so
-/// its module is compiled in here from its own source rather than copied:
+/// The parser `femdem` reads `traces_file` with (`femdem_mesh::trace_file`):
 /// the validation reads the map by exactly the rules the mesh was built by.
-#[path = "../../../../crates/femdem-cli/src/case/traces.rs"]
-#[allow(dead_code)]
-mod trace_file;
+use femdem_mesh::trace_file;
 
 /// The points of a fracture map where new fractures are expected to start.
 #[derive(Debug, Clone, Default, PartialEq)]

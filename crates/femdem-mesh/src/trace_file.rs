@@ -1,5 +1,7 @@
-//! Trace files: fracture maps as plain text, named by an extrusion part's
-//! `traces_file` (format in docs/case-format.md, "Trace files").
+//! Trace files: fracture maps as plain text (what a case's extrusion part
+//! names as its `traces_file`; format in docs/case-format.md, "Trace
+//! files"), read here so that the CLI and the validation read a map by
+//! the same rules.
 //!
 //! One polyline per line, `x1 y1 x2 y2 ...` in metres, numbers separated by
 //! spaces, tabs or commas; a line ending in `\` goes on on the next line;

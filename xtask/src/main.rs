@@ -1,11 +1,11 @@
 //! `cargo xtask <task>`: project automation that needs nothing but cargo.
 //!
-//! - `validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--out DIR] [--sensitivity]`: runs the
+//! - `validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--mesh M] [--weibull M] [--out DIR] [--sensitivity]`: runs the
 //!   reference paper's examples and reports against its numbers
 //!   (`docs/validation.md`).
 //! - `tradeoff [--quick] [--out DIR]`: the speed–accuracy trade of the
 //!   Brazilian disc, measured over its knobs (`docs/tradeoff.md`).
-//! - `bench [--memory | --callgrind] [criterion args…]`: the criterion
+//! - `bench [--memory | --callgrind | --paper] [-- criterion args…]`: the criterion
 //!   benchmarks; with `--memory` only the peak-memory run of joint insertion
 //!   on 10⁶ tets; with `--callgrind` the instructions per tet-step of each
 //!   kernel of the step (needs valgrind; `docs/performance.md`).
@@ -21,19 +21,33 @@ mod tradeoff;
 mod validate;
 
 use anyhow::{Result, bail};
+use clap::Parser;
+
+/// femdem's project tasks (`cargo xtask TASK --help` for each).
+#[derive(Parser)]
+#[command(name = "cargo xtask", bin_name = "cargo xtask", version, about)]
+enum Task {
+    /// Run the paper's examples through `femdem run`, check them against
+    /// the paper and closed forms, and write a report.
+    Validate(validate::Args),
+    /// Measure the speed–accuracy trade of the case file's knobs.
+    Tradeoff(tradeoff::Args),
+    /// The criterion benchmarks (arguments after `--` go to criterion).
+    Bench(bench::Args),
+    /// Regenerate the Gmsh test fixtures and the paper cases' meshes (needs
+    /// `pip install gmsh`).
+    Fixtures,
+    /// Write a layered fracture map (a trace file).
+    Map(map::Args),
+}
 
 fn main() -> Result<()> {
-    let mut args = std::env::args().skip(1);
-    let task = args.next();
-    let rest: Vec<String> = args.collect();
-    match task.as_deref() {
-        Some("bench") => bench::run(&rest),
-        Some("fixtures") => fixtures::run(),
-        Some("map") => map::run(&rest),
-        Some("validate") => validate::run(&rest),
-        Some("tradeoff") => tradeoff::run(&rest),
-        Some(other) => bail!("unknown task `{other}`; tasks: validate, tradeoff, bench, fixtures, map"),
-        None => bail!("usage: cargo xtask <validate|tradeoff|bench|fixtures|map>"),
+    match Task::parse() {
+        Task::Bench(args) => bench::run(args),
+        Task::Fixtures => fixtures::run(),
+        Task::Map(args) => map::run(args),
+        Task::Validate(args) => validate::run(args),
+        Task::Tradeoff(args) => tradeoff::run(args),
     }
 }
 

@@ -194,24 +194,30 @@ pub fn layered_map(seed: u64, width: f64, height: f64, clearance: Option<f64>) -
     out
 }
 
+/// `cargo xtask map`'s arguments.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The seed of the map's random traces.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The trace file to write (default: standard output).
+    #[arg(long, value_name = "FILE")]
+    out: Option<String>,
+    /// The block's width, m.
+    #[arg(long, default_value_t = 1.5)]
+    width: f64,
+    /// The block's height, m.
+    #[arg(long, default_value_t = 1.5)]
+    height: f64,
+    /// Leave out the cross fractures closer than this to the left or the
+    /// right side, m (the rest of the seed's map unchanged).
+    #[arg(long, value_name = "C")]
+    clearance: Option<f64>,
+}
+
 /// Parses the arguments and writes the map.
-pub fn run(args: &[String]) -> Result<()> {
-    let (mut seed, mut out, mut width, mut height, mut clearance) = (1u64, None::<String>, 1.5, 1.5, None::<f64>);
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        let mut value = || it.next().with_context(|| format!("{a} needs a value"));
-        match a.as_str() {
-            "--seed" => seed = value()?.parse().context("--seed")?,
-            "--out" => out = Some(value()?.clone()),
-            "--width" => width = value()?.parse().context("--width")?,
-            "--height" => height = value()?.parse().context("--height")?,
-            "--clearance" => clearance = Some(value()?.parse().context("--clearance")?),
-            other => bail!(
-                "unknown argument `{other}`; usage: cargo xtask map [--seed N] [--out FILE] [--width W] [--height H] \
-                 [--clearance C]"
-            ),
-        }
-    }
+pub fn run(args: Args) -> Result<()> {
+    let Args { seed, out, width, height, clearance } = args;
     if let Some(c) = clearance
         && !(c >= 0.0 && 2.0 * c < width)
     {

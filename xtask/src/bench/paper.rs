@@ -22,11 +22,7 @@ const RAMP: f64 = 1.0e-4;
 const END: f64 = 1.9e-4;
 
 /// Runs the benchmark (see the module documentation).
-pub fn run(args: &[String]) -> Result<()> {
-    let value = |flag: &str, default: &str| -> String {
-        args.iter().position(|a| a == flag).and_then(|i| args.get(i + 1)).cloned().unwrap_or_else(|| default.into())
-    };
-    let (threads, size) = (value("--threads", "2"), value("--size", "0.024"));
+pub fn run(threads: &str, size: &str) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     crate::run_in_root(Command::new(&cargo).args(["build", "--release", "-p", "femdem-cli"]))?;
     let root = crate::root();
@@ -37,7 +33,7 @@ pub fn run(args: &[String]) -> Result<()> {
     let mut cmd = Command::new(root.join("target").join("release").join("femdem"));
     let run = ["run", "cases/paper/multilayer.toml", "--overwrite", "--progress-interval", "2", "--threads"];
     cmd.args(run)
-        .arg(&threads)
+        .arg(threads)
         .arg("--out")
         .arg(&out)
         .args(sets.iter().flat_map(|s| ["--set", s.as_str()]))

@@ -17,7 +17,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 
 use self::setting::{Knob, Plan, Setting};
 use crate::validate::brazilian::analysis::Outcome;
@@ -76,18 +76,21 @@ fn deformable_tets(run: &RunOutput) -> Result<f64> {
     inner.parse().with_context(|| format!("{}: `{line}`", log.display()))
 }
 
+/// `cargo xtask tradeoff`'s arguments.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The short plan (fewer settings, coarse meshes).
+    #[arg(long)]
+    quick: bool,
+    /// Where the report and the runs go (default target/tradeoff).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
 /// Runs the task.
-pub fn run(args: &[String]) -> Result<()> {
-    let mut quick = false;
-    let mut out = crate::root().join("target").join("tradeoff");
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--quick" => quick = true,
-            "--out" => out = PathBuf::from(it.next().context("--out needs a value")?),
-            other => bail!("unknown argument `{other}`; usage: cargo xtask tradeoff [--quick] [--out DIR]"),
-        }
-    }
+pub fn run(args: Args) -> Result<()> {
+    let quick = args.quick;
+    let out = args.out.unwrap_or_else(|| crate::root().join("target").join("tradeoff"));
     std::fs::create_dir_all(&out)?;
     let load_before = load_average();
     let start = Instant::now();

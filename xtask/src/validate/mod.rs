@@ -50,7 +50,7 @@ use self::report::Report;
 use self::runner::Femdem;
 
 /// How much a validation runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Profile {
     /// Coarse meshes, minutes on two cores; paper comparisons reported but
     /// not gated (the meshes are not the paper's).
@@ -87,38 +87,54 @@ fn positive(flag: &str, text: &str, what: &str) -> Result<f64> {
     }
 }
 
+/// The platen speeds of `--rates`, m/s (a newtype: clap would read a
+/// `Vec` as repeated options).
+#[derive(Debug, Clone)]
+pub struct Rates(Vec<f64>);
+
+/// `cargo xtask validate`'s arguments.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// How much runs: coarse meshes (minutes) or the paper's (hours).
+    #[arg(long, value_enum, default_value_t = Profile::Quick)]
+    profile: Profile,
+    /// Only this case.
+    #[arg(long, value_name = "NAME", value_parser = ["brazilian", "polyaxial", "multilayer"])]
+    case: Option<String>,
+    /// The Brazilian platen speeds, m/s, comma-separated (default: the
+    /// paper's four).
+    #[arg(long, value_name = "LIST", value_parser = |s: &str| brazilian::parse_rates(s).map(Rates))]
+    rates: Option<Rates>,
+    /// Polyaxial: the time over which every pressure is ramped, s.
+    #[arg(long, value_name = "S", value_parser = |s: &str| seconds("--ramp", s))]
+    ramp: Option<f64>,
+    /// Polyaxial: when the runs end, s.
+    #[arg(long = "end-time", value_name = "S", value_parser = |s: &str| seconds("--end-time", s))]
+    end_time: Option<f64>,
+    /// Polyaxial: which meshes run (unstructured, lattice or both).
+    #[arg(long, value_name = "MESH", value_parser = |s: &str| polyaxial::Meshes::parse(s))]
+    mesh: Option<polyaxial::Meshes>,
+    /// Polyaxial: joints' f_t and c scaled by Weibull factors of this
+    /// modulus.
+    #[arg(long, value_name = "M", value_parser = |s: &str| positive("--weibull", s, "a positive Weibull modulus"))]
+    weibull: Option<f64>,
+    /// Where the report and the runs go (default target/validation).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Brazilian: also the sensitivity runs.
+    #[arg(long)]
+    sensitivity: bool,
+}
+
 /// Runs the task.
-pub fn run(args: &[String]) -> Result<()> {
-    let mut profile = Profile::Quick;
-    let mut only: Option<String> = None;
-    let mut sensitivity = false;
-    let mut rates: Option<Vec<f64>> = None;
-    let mut variant = polyaxial::Variant::default();
-    let mut out = crate::root().join("target").join("validation");
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        let mut value = || it.next().cloned().ok_or_else(|| anyhow::anyhow!("{a} needs a value"));
-        match a.as_str() {
-            "--profile" => {
-                profile = match value()?.as_str() {
-                    "quick" => Profile::Quick,
-                    "paper" => Profile::Paper,
-                    p => bail!("unknown profile `{p}`; profiles: quick, paper"),
-                }
-            }
-            "--case" => only = Some(value()?),
-            "--out" => out = PathBuf::from(value()?),
-            "--sensitivity" => sensitivity = true,
-            "--rates" => rates = Some(brazilian::parse_rates(&value()?)?),
-            "--ramp" => variant.ramp = Some(seconds(a, &value()?)?),
-            "--end-time" => variant.end = Some(seconds(a, &value()?)?),
-            "--mesh" => variant.meshes = polyaxial::Meshes::parse(&value()?)?,
-            "--weibull" => variant.weibull = Some(positive(a, &value()?, "a positive Weibull modulus")?),
-            other => bail!(
-                "unknown argument `{other}`; usage: cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--weibull M] [--out DIR] [--sensitivity]"
-            ),
-        }
+pub fn run(args: Args) -> Result<()> {
+    let Args { profile, case: only, rates, ramp, end_time, mesh, weibull, out, sensitivity } = args;
+    let rates = rates.map(|r| r.0);
+    let mut variant = polyaxial::Variant { ramp, end: end_time, weibull, ..polyaxial::Variant::default() };
+    if let Some(m) = mesh {
+        variant.meshes = m;
     }
+    let out = out.unwrap_or_else(|| crate::root().join("target").join("validation"));
     if let Some(name) = &only
         && !CASES.iter().any(|(c, _)| c == name)
     {

@@ -382,11 +382,12 @@ pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result
 }
 
 /// The case file's names of `[contact] activation`'s options.
-const ACTIVATIONS: [(&str, Activation); 4] = [
+const ACTIVATIONS: [(&str, Activation); 5] = [
     ("couple", Activation::Couple),
     ("offset", Activation::Offset),
     ("paper", Activation::Paper),
     ("ramp", Activation::Ramp),
+    ("settle", Activation::Settle),
 ];
 
 /// The case file's name of `activation`.
@@ -419,11 +420,11 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
     }
     let activation = match spec.activation.as_deref() {
         None => Activation::default(),
-        Some(name) => ACTIVATIONS
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|&(_, a)| a)
-            .ok_or_else(|| at(format!("activation `{name}` is not `couple`, `offset`, `paper` or `ramp`")))?,
+        Some(name) => ACTIVATIONS.iter().find(|(n, _)| *n == name).map(|&(_, a)| a).ok_or_else(|| {
+            let names: Vec<String> = ACTIVATIONS.iter().map(|(n, _)| format!("`{n}`")).collect();
+            let (last, rest) = names.split_last().expect("activations");
+            at(format!("activation `{name}` is not {} or {last}", rest.join(", ")))
+        })?,
     };
     let mut settings = ContactSettings {
         activation,
@@ -456,10 +457,9 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
 /// it absorbed (`[contact] energy_check`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ContactCheck {
-    /// Stop the run.
+    /// Stop the run (the default).
     Stop,
-    /// Warn once and go on (the default: `docs/fidelity.md` §11 says what
-    /// the default activation still gives back).
+    /// Warn once and go on.
     Warn,
 }
 
@@ -480,8 +480,8 @@ pub fn contact_check(case: &LoadedCase) -> Result<Option<(ContactCheck, f64)>, C
         return Err(case.error_at(c.span(), message));
     }
     let check = match spec.energy_check.as_deref() {
-        Some("stop") => ContactCheck::Stop,
-        None | Some("warn") => ContactCheck::Warn,
+        None | Some("stop") => ContactCheck::Stop,
+        Some("warn") => ContactCheck::Warn,
         Some("off") => return Ok(None),
         Some(other) => {
             return Err(

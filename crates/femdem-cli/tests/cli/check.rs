@@ -210,7 +210,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         (
             "contact_unknown_activation.toml",
             ":20:1:",
-            "contact.activation `gradual` is not `couple`, `offset`, `paper` or `ramp`",
+            "contact.activation `gradual` is not `couple`, `offset`, `paper`, `ramp` or `settle`",
         ),
         ("contact_unknown_energy_check.toml", ":20:1:", "contact.energy_check `ignore` is not `stop`, `warn` or `off`"),
         ("contact_energy_tolerance_zero.toml", ":20:1:", "contact.energy_tolerance must lie in (0, 1]"),

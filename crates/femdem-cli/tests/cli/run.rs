@@ -48,12 +48,12 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
 /// with the Eq. 18 ramp on every pair that starts overlapped gives back
 /// 3% of its energy scale through contact (measured: 1.44 mJ of 48.9 mJ),
 /// which the balance cannot see. At a tolerance of 1% (the default, 5%,
-/// leaves room for Eq. 17's closed-cycle residual) and `energy_check =
-/// "stop"` the guard stops it, naming the amount and what the started
-/// pairs gave back; by default (`"warn"`) the run goes on to its end and
-/// says so once; `activation = "offset"` gives
-/// nothing back, and the guard stays quiet. The history carries the
-/// started pairs' columns.
+/// leaves room for Eq. 17's closed-cycle residual) the guard stops it by
+/// default (`energy_check = "stop"`), naming the amount and what the
+/// started pairs gave back; with `"warn"` the run goes on to its end and
+/// says so once; `activation = "offset"` gives nothing back, and neither
+/// does the default `"settle"` beyond what the failed joints held: the
+/// guard stays quiet. The history carries the started pairs' columns.
 #[test]
 fn contact_that_gives_back_energy_is_stopped_or_warned() {
     let run = |name: &str, sets: &[&str]| {
@@ -67,19 +67,21 @@ fn contact_that_gives_back_energy_is_stopped_or_warned() {
         (femdem(&args), out)
     };
     let tolerance = "contact.energy_tolerance=0.01";
-    let (o, _) =
-        run("contact-guard-stop", &["contact.activation=\"ramp\"", "contact.energy_check=\"stop\"", tolerance]);
+    let (o, _) = run("contact-guard-stop", &["contact.activation=\"ramp\"", tolerance]);
     assert!(!o.status.success(), "the run must be stopped");
     let err = String::from_utf8(o.stderr).unwrap();
     assert!(err.contains("the run guard stopped the run") && err.contains("the normal contact forces have given back"));
     assert!(err.contains("pairs that started overlapped gave back"), "{err}");
-    let (o, out) = run("contact-guard-warn", &["contact.activation=\"ramp\"", tolerance]);
+    let (o, out) =
+        run("contact-guard-warn", &["contact.activation=\"ramp\"", "contact.energy_check=\"warn\"", tolerance]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let err = String::from_utf8(o.stderr).unwrap();
     assert_eq!(err.matches("femdem: warning ([contact] energy_check = \"warn\"").count(), 1, "{err}");
     let history = History::read(&out);
     let last = history.rows.last().unwrap();
     assert!(last[history.col("contact_released")] > 0.0 && last[history.col("contact_normal")] < 0.0);
+    let (o, _) = run("contact-guard-settle", &[tolerance]);
+    assert!(o.status.success(), "the default settling start: {}", String::from_utf8_lossy(&o.stderr));
     let (o, out) = run("contact-guard-offset", &["contact.activation=\"offset\"", tolerance]);
     assert!(o.status.success() && !String::from_utf8_lossy(&o.stderr).contains("warning"));
     let history = History::read(&out);

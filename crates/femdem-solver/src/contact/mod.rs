@@ -303,7 +303,7 @@ impl Contact {
         let key = spring_key(tets[0], tets[1]);
         let offset = match self.settings.activation {
             Activation::Offset => true,
-            Activation::Couple => !compressed,
+            Activation::Couple | Activation::Settle => !compressed,
             Activation::Paper | Activation::Ramp => false,
         };
         if !offset {

@@ -213,16 +213,31 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         Activation::Offset => true,
         Activation::Couple => !input.couple,
         Activation::Paper | Activation::Ramp => false,
+        // A couple with no ramp to settle over starts at full force.
+        Activation::Settle => !(input.couple && input.n_total == 0.0),
     };
-    let started =
+    let mut started =
         if fresh { Some(if offset { full } else { 0.0 }) } else { input.started.get(&key).map(|&off| off.min(full)) };
+    let ramp = input.ramps.get(&key).copied();
+    if input.activation == Activation::Settle
+        && let (Some(off), Some(n_c)) = (started.as_mut(), ramp)
+        && n_c > 0
+    {
+        // The couple's offset shrinks to zero over the Eq. 18 steps:
+        // `N_off = N₀ (1 − n_c / n_total)` (from the stored value, whose
+        // last step had `n_c − 1`).
+        let left = input.n_total - Real::from(n_c);
+        *off *= (left / (left + 1.0)).max(0.0);
+    }
     // Eq. 18's `n_c / n_total` while the ramp lasts (from 0 for a pair that
     // starts now with `Activation::Ramp`), else 1; with an offset, the share
     // of the resultant beyond it.
     let mut scale = if fresh && input.activation == Activation::Ramp && input.n_total > 0.0 {
         0.0
+    } else if input.activation == Activation::Settle {
+        1.0 // the ramp acts on the offset
     } else {
-        input.ramps.get(&key).map_or(1.0, |&n_c| Real::from(n_c) / input.n_total)
+        ramp.map_or(1.0, |n_c| Real::from(n_c) / input.n_total)
     };
     if let Some(off) = started.filter(|&off| off > 0.0) {
         scale *= if full > off { 1.0 - off / full } else { 0.0 };

@@ -104,8 +104,12 @@ pub enum ContactModel {
 /// * [`Activation::Ramp`]: the Eq. 18 ramp (`n_c / n_total`) for every
 ///   pair that overlaps when newly allowed. It only delays the force:
 ///   the overlap's energy is still given back as the pair separates;
-/// * [`Activation::Couple`] (the default): the failed joint's own couple
-///   as `Paper`, every other pair as `Offset`;
+/// * [`Activation::Couple`]: the failed joint's own couple as `Paper`,
+///   every other pair as `Offset`;
+/// * [`Activation::Settle`] (the default): the failed joint's own couple
+///   ramped in over the Eq. 18 steps as an offset that shrinks to zero
+///   (its first overlap's force comes in as Eq. 18's, and what it is
+///   pressed beyond that acts at once), every other pair as `Offset`;
 /// * [`Activation::Offset`]: the pair's first normal resultant `N₀` counts
 ///   as its zero, `f = f₁₇ · max(0, 1 − N_off / N)`, `N` the Eq. 17
 ///   resultant now and `N_off ← min(N_off, N)` at every step (first
@@ -130,10 +134,18 @@ pub enum Activation {
     /// Eq. 18 for the failed joint's own couple (Eq. 14) when it failed in
     /// compression — it takes over the load the joint carried — and the
     /// offset start for every other pair that starts overlapped, whose
-    /// overlap is the compliance of joints that still hold it; the default
+    /// overlap is the compliance of joints that still hold it.
+    Couple,
+    /// The failed joint's own couple, when it failed in compression, starts
+    /// as `Offset` with its offset shrunk to zero over the Eq. 18 steps,
+    /// `N_off = N₀ (1 − n_c / n_total)`: its initial overlap's force comes
+    /// in as Eq. 18's does, and anything it is pressed beyond that acts at
+    /// full force at once (Eq. 18 scales all of it, so a couple pressed
+    /// further during the ramp stores less than it gives back); every
+    /// other pair that starts overlapped as `Offset`. The default
     /// (`docs/fidelity.md`, section 11, says why).
     #[default]
-    Couple,
+    Settle,
 }
 
 /// The default of [`ContactSettings::negligible`].
@@ -141,10 +153,10 @@ pub const NEGLIGIBLE: Real = 1e-10;
 
 impl ContactSettings {
     /// Frictionless contact with penalty `p` (Pa) between all surfaces,
-    /// detected at every step, with the couple's Eq. 18 ramp over the
-    /// paper's 10 steps and the offset start of the other pairs that start
-    /// overlapped ([`Activation::Couple`]), incremental detection after joint failures and
-    /// negligible pairs skipped.
+    /// detected at every step, with the couple settling over the paper's
+    /// 10 Eq. 18 steps and the offset start of the other pairs that start
+    /// overlapped ([`Activation::Settle`]), incremental detection after
+    /// joint failures and negligible pairs skipped.
     pub fn new(penalty: Real) -> ContactSettings {
         ContactSettings {
             penalty,

@@ -40,7 +40,7 @@ pub(super) struct NewlyAllowed {
     pub pairs: Vec<(u32, u32)>,
     /// The couples (Eq. 14) of the joints that failed in compression since
     /// the last pass (keys as `spring_key`, ascending once `settle` has
-    /// run): with `Activation::Couple` they start as with
+    /// run): with `Activation::Couple` (and, settling, `Activation::Settle`) they start as with
     /// `Activation::Paper` (Eq. 18, or at once with `ramp_steps = 0`).
     pub couples: Vec<(u32, u32)>,
 }

@@ -324,3 +324,58 @@ fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
         }
     }
 }
+
+/// `Activation::Settle`: the couple of a joint failed in compression
+/// starts with its first resultant `N₀` as an offset that shrinks to zero
+/// over the Eq. 18 steps, `N_off = N₀ (1 − n_c / n_total)`. Held where it
+/// failed, its force rises as Eq. 18's, `N₀ n_c / n_total`; pressed a
+/// further 1 µm at step 3 of 10, it carries the extra force at once in
+/// full, `N(δ₀ + δ) − 0.7 N₀`, where Eq. 18 would carry 0.3 of all of it.
+#[test]
+fn a_settling_couple_ramps_its_first_overlap_and_carries_more_at_once() {
+    let mesh = box_mesh([0.0; 3], [0.01; 3], 0.01, 0.0, true);
+    let (jointed, m) = model(&mesh, Law::NeoHookean, rock(0.0), 2.6e11);
+    let [a, b] = m.joint_tets[0];
+    let jn = jointed.joints[0];
+    let p = |k: usize| m.x0[jn[k] as usize];
+    let n = (p(1) - p(0)).cross(&(p(2) - p(0))).normalize();
+    let pushed = |depth: f64| {
+        let mut x = m.x0.clone();
+        for &node in &m.tets[b as usize] {
+            x[node as usize] -= n * depth;
+        }
+        x
+    };
+    let resultant = |x: &[Vec3]| -> Vec3 {
+        let pa = m.tets[a as usize].map(|k| x[k as usize]);
+        let pb = m.tets[b as usize].map(|k| x[k as usize]);
+        femdem_contact::tet_tet_forces(&pa, &pb, 26e9).1.iter().sum()
+    };
+    let (x0, x1) = (pushed(1e-6), pushed(2e-6));
+    let (n0, n1) = (resultant(&x0), resultant(&x1));
+    assert!(n1.norm() > n0.norm() && n0.norm() > 0.0);
+    let v = vec![Vec3::zeros(); x0.len()];
+    let settings = ContactSettings {
+        surfaces: false,
+        activation: femdem_solver::Activation::Settle,
+        ..ContactSettings::new(26e9)
+    };
+    let total = f64::from(femdem_solver::RAMP_STEPS);
+    let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
+    contact.joint_failed(&m, 0, true, 0.0);
+    let on_b = |c: &femdem_solver::Contact| -> Vec3 { m.tets[b as usize].iter().map(|&k| c.force[k as usize]).sum() };
+    for step in 0..3 {
+        contact.pass(&m, &x0, &v, 1e-8);
+        let expected = n0 * (f64::from(step) / total);
+        assert!(
+            (on_b(&contact) - expected).norm() <= 1e-9 * n0.norm(),
+            "step {step}: {} vs {expected}",
+            on_b(&contact)
+        );
+    }
+    contact.pass(&m, &x1, &v, 1e-8);
+    let settled = n1 - n0 * (1.0 - 3.0 / total);
+    let eq18 = n1 * (3.0 / total);
+    assert!((on_b(&contact) - settled).norm() <= 1e-9 * n1.norm(), "{} vs {settled}", on_b(&contact));
+    assert!(settled.norm() > eq18.norm());
+}

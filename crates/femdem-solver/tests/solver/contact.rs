@@ -279,25 +279,40 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
     assert!((a / expected - 1.0).abs() < 0.03, "a = {a} vs {expected}");
 }
 
+/// One jointed 1 cm cube of rock (joints of p0 = 10 E): the model, the two
+/// tets of joint 0 and the unit normal of their common face, from side a
+/// to side b.
+fn jointed_cube() -> (Model, [u32; 2], Vec3) {
+    let mesh = box_mesh([0.0; 3], [0.01; 3], 0.01, 0.0, true);
+    let (jointed, m) = model(&mesh, Law::NeoHookean, rock(0.0), 2.6e11);
+    let jn = jointed.joints[0];
+    let p = |k: usize| m.x0[jn[k] as usize];
+    let n = (p(1) - p(0)).cross(&(p(2) - p(0))).normalize();
+    let tets = m.joint_tets[0];
+    (m, tets, n)
+}
+
+/// The cube's positions with tet `b` pushed `depth` (m) along `−n`, into
+/// its neighbour across joint 0.
+fn pushed(m: &Model, b: u32, n: Vec3, depth: f64) -> Vec<Vec3> {
+    let mut x = m.x0.clone();
+    for &node in &m.tets[b as usize] {
+        x[node as usize] -= n * depth;
+    }
+    x
+}
+
 /// Eq. 18: when a joint fails in compression, the contact force between its
 /// two tets rises linearly from zero to its full value over `n_total` steps
 /// (the paper's 10, the case's `ramp_steps`), so the force carried across
 /// the face does not jump; `n_total = 0` applies it at once. (With
-/// `Activation::Paper`, the paper's rule; the default offset start,
-/// `contact_start.rs`, counts the overlap as zero instead.)
+/// `Activation::Paper`, the paper's rule; the default settling start is
+/// the next test.)
 #[test]
 fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
-    let mesh = box_mesh([0.0; 3], [0.01; 3], 0.01, 0.0, true);
-    let (jointed, m) = model(&mesh, Law::NeoHookean, rock(0.0), 2.6e11);
-    let [a, b] = m.joint_tets[0];
-    let jn = jointed.joints[0];
-    let p = |k: usize| m.x0[jn[k] as usize];
-    let n = (p(1) - p(0)).cross(&(p(2) - p(0))).normalize();
+    let (m, [a, b], n) = jointed_cube();
     // Push tet b 1 µm into tet a, across their common face.
-    let mut x = m.x0.clone();
-    for &node in &m.tets[b as usize] {
-        x[node as usize] -= n * 1e-6;
-    }
+    let x = pushed(&m, b, n, 1e-6);
     let v = vec![Vec3::zeros(); x.len()];
     let pa = m.tets[a as usize].map(|k| x[k as usize]);
     let pb = m.tets[b as usize].map(|k| x[k as usize]);
@@ -333,19 +348,8 @@ fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
 /// full, `N(δ₀ + δ) − 0.7 N₀`, where Eq. 18 would carry 0.3 of all of it.
 #[test]
 fn a_settling_couple_ramps_its_first_overlap_and_carries_more_at_once() {
-    let mesh = box_mesh([0.0; 3], [0.01; 3], 0.01, 0.0, true);
-    let (jointed, m) = model(&mesh, Law::NeoHookean, rock(0.0), 2.6e11);
-    let [a, b] = m.joint_tets[0];
-    let jn = jointed.joints[0];
-    let p = |k: usize| m.x0[jn[k] as usize];
-    let n = (p(1) - p(0)).cross(&(p(2) - p(0))).normalize();
-    let pushed = |depth: f64| {
-        let mut x = m.x0.clone();
-        for &node in &m.tets[b as usize] {
-            x[node as usize] -= n * depth;
-        }
-        x
-    };
+    let (m, [a, b], n) = jointed_cube();
+    let pushed = |depth: f64| pushed(&m, b, n, depth);
     let resultant = |x: &[Vec3]| -> Vec3 {
         let pa = m.tets[a as usize].map(|k| x[k as usize]);
         let pb = m.tets[b as usize].map(|k| x[k as usize]);

@@ -97,9 +97,31 @@ pub fn tet_tet_contact_unless(
     Some(contact_in(a, b, in_a.as_ref(), in_b.as_ref(), penalty))
 }
 
+/// Whether [`contact_bound`] of `a` and `b` is finite as far as rounding
+/// goes: neither tet flat and the slack of its tests within [`MAX_SLACK`].
+pub(crate) fn within_slack(a: &[Vec3; 4], b: &[Vec3; 4]) -> bool {
+    let (Some(in_a), Some(in_b)) = (Barycentric::new(a), Barycentric::new(b)) else {
+        return false;
+    };
+    slack(a, &in_b).max(slack(b, &in_a)) <= MAX_SLACK
+}
+
 /// [`contact_bound`] with the two tets' barycentric coordinates given
 /// (`None` for a flat tet: no bound).
 fn bound_in(a: &[Vec3; 4], b: &[Vec3; 4], in_a: Option<&Barycentric>, in_b: Option<&Barycentric>) -> Real {
+    weighted_bound(a, b, in_a, in_b, [1.0, 1.0])
+}
+
+/// `S (w_A φ_A + w_B φ_B)`: [`bound_in`] with the two tets' potential
+/// terms weighted (`[1, 1]` is the bound itself; `bound_near.rs` weighs
+/// them by the tets' shape factors).
+pub(crate) fn weighted_bound(
+    a: &[Vec3; 4],
+    b: &[Vec3; 4],
+    in_a: Option<&Barycentric>,
+    in_b: Option<&Barycentric>,
+    weights: [Real; 2],
+) -> Real {
     let (Some(in_a), Some(in_b)) = (in_a, in_b) else {
         return Real::INFINITY;
     };
@@ -114,7 +136,7 @@ fn bound_in(a: &[Vec3; 4], b: &[Vec3; 4], in_a: Option<&Barycentric>, in_b: Opti
     let mut hull = Hull::EMPTY;
     one_way(a, &la, false, eta, &mut hull);
     one_way(b, &lb, true, eta, &mut hull);
-    hull.bound(eta)
+    hull.bound(eta, weights)
 }
 
 /// The box of the overlap's vertices and the largest barycentric
@@ -149,7 +171,7 @@ impl Hull {
         }
     }
 
-    fn bound(&self, eta: Real) -> Real {
+    fn bound(&self, eta: Real, [wa, wb]: [Real; 2]) -> Real {
         if !self.any {
             return 0.0;
         }
@@ -162,7 +184,7 @@ impl Hull {
         let e = (self.hi - self.lo) + (self.hi.abs() + self.lo.abs()) * (8.0 * Real::EPSILON);
         let area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
         let phi = |m: &[Real; 4]| 4.0 * (m.iter().copied().fold(Real::INFINITY, Real::min) + eta).max(0.0);
-        let bound = area * (phi(&self.max[0]) + phi(&self.max[1]));
+        let bound = area * (wa * phi(&self.max[0]) + wb * phi(&self.max[1]));
         // NaN (a coordinate not finite) bounds nothing.
         if bound.is_nan() { Real::INFINITY } else { bound }
     }

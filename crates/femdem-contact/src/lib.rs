@@ -24,6 +24,10 @@
 //!   whose forces are negligible before clipping them;
 //!   [`tet_tet_contact_unless`] checks it and clips with the same
 //!   barycentric coordinates.
+//! - [`contact_bound_near`] (`bound_near.rs`): the same bound over every
+//!   configuration whose nodes are within a radius of a given one (after a
+//!   common translation), so that a pair shown negligible need not be
+//!   bounded again until its nodes have moved that far.
 //! - [`separated_by_face_plane`] (`separation.rs`): a narrow-phase filter
 //!   for detection — a face plane of one tet keeps the other more than a
 //!   gap away, so the pair cannot touch before the next detection.
@@ -112,6 +116,7 @@
 //! ```
 
 mod bound;
+mod bound_near;
 mod gradient;
 mod nbs;
 mod potential;
@@ -120,6 +125,7 @@ mod separation;
 mod test_pairs;
 
 pub use bound::{MAX_SLACK, SLACK, contact_bound, tet_tet_contact_unless};
+pub use bound_near::contact_bound_near;
 pub use gradient::{GradientContact, tet_tet_gradient};
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};

@@ -55,7 +55,9 @@ use crate::step::{Solver, StepRecord};
 /// 7: the compression energy the failed joints handed to contact
 /// (`ContactEnergy::held`), and the energy the pairs in contact hold
 /// (`Contact::potential`, `ContactModel::Gradient`).
-pub const SNAPSHOT_VERSION: u32 = 7;
+/// 8: the certificates of contact's negligible pairs (each candidate's
+/// radius, the watched nodes' anchors, the epoch's age and counts).
+pub const SNAPSHOT_VERSION: u32 = 8;
 
 /// Writes values to a little-endian byte stream.
 #[derive(Debug, Default)]

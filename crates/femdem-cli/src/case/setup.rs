@@ -435,6 +435,7 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         buffer: spec.buffer,
         ramp_steps: spec.ramp_steps,
         incremental: true,
+        certify: true,
         negligible: spec.negligible,
         model: ContactModel::Potential,
     };

@@ -105,6 +105,7 @@ impl Contact {
         }
         self.x_ref.clear();
         self.x_ref.extend(self.nodes.iter().map(|&n| x[n as usize]));
+        self.certificates.cache(&self.candidates);
         self.stale = false;
         self.pending.clear();
         self.detections += 1;

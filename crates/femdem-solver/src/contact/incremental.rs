@@ -116,6 +116,7 @@ impl Contact {
             }
         }
         self.candidates = merge_unique(&self.candidates, &added);
+        self.certificates.cache(&self.candidates);
 
         let mut fresh: Vec<u32> = self
             .pending

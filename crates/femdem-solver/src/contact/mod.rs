@@ -61,6 +61,7 @@
 //! coordinates (`pair::evaluate`), so it has the right moment and slows a
 //! spinning body.
 
+mod certify;
 mod depth;
 mod detection;
 mod incremental;
@@ -75,6 +76,7 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
 use crate::model::Model;
+use certify::{Certificates, Verdict};
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 use settings::FrictionTable;
@@ -170,7 +172,9 @@ pub struct Contact {
     /// (ascending): their pairs with the contactable set are not yet all
     /// candidates (see `incremental.rs`).
     pending: Vec<u32>,
-    results: Vec<Option<PairForce>>,
+    results: Vec<(Option<PairForce>, Verdict)>,
+    /// The negligible pairs' certificates (`certify.rs`).
+    certificates: Certificates,
     /// Normal contact force per node from the last pass, N.
     pub force: Vec<Vec3>,
     /// Friction force per node from the last pass, N.
@@ -252,6 +256,7 @@ impl Contact {
             stale: true,
             pending: Vec::new(),
             results: Vec::new(),
+            certificates: Certificates::default(),
             force: vec![Vec3::zeros(); model.num_nodes()],
             friction_force: vec![Vec3::zeros(); model.num_nodes()],
             total: vec![Vec3::zeros(); model.num_nodes()],
@@ -351,6 +356,7 @@ impl Contact {
         for &t in &added {
             self.record_contactable(t);
         }
+        self.certificates.to_anchor.extend_from_slice(&added);
         self.record_newly_allowed(model, vertices, &before);
         if !added.is_empty() {
             added.sort_unstable();
@@ -431,6 +437,14 @@ impl Contact {
         &self.candidates
     }
 
+    /// The candidate pairs the last pass skipped by their certificates
+    /// (`certify.rs`): shown negligible for node motions up to a radius
+    /// that their nodes have not moved beyond since, and not bounded again
+    /// (ascending).
+    pub fn certified_skips(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.candidates.iter().zip(&self.results).filter(|(_, r)| r.1.skipped).map(|(p, _)| *p)
+    }
+
     /// The tets that can touch, ascending.
     pub fn contactable(&self) -> &[u32] {
         &self.list
@@ -470,6 +484,13 @@ impl Contact {
         }
     }
 
+    /// Whether negligible pairs are certified over many steps
+    /// (`certify.rs`): when [`ContactSettings::certify`] asks for it, with
+    /// the potential's kernel and a `negligible` threshold.
+    fn certifying(&self) -> bool {
+        self.settings.certify && self.settings.negligible > 0.0 && self.settings.model == ContactModel::Potential
+    }
+
     /// Detects contacts at positions `x` (when needed) and computes the
     /// contact forces on every node into [`Contact::force`] (normal) and
     /// [`Contact::friction_force`] (zero elsewhere; the nodes with a force
@@ -490,42 +511,84 @@ impl Contact {
             Update::Add { moved } => self.add_candidates(model, x, moved),
         }
         self.newly.settle();
+        let certifying = self.certifying();
+        if certifying {
+            let cert = &mut self.certificates;
+            if cert.stale() {
+                cert.renew(&model.tets, &self.list, x);
+            } else {
+                cert.anchor_new(&model.tets, x);
+            }
+        }
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
         let (negligible, activation, contact_model) =
             (self.settings.negligible, self.settings.activation, self.settings.model);
         let newly = self.newly.any().then_some(&self.newly);
+        let anchor = &self.certificates.anchor;
         self.candidates
             .par_iter()
-            .map(|&(a, b)| {
+            .zip(self.certificates.cached.par_iter())
+            .map(|(&(a, b), &radius)| {
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
-                evaluate(PairInput {
-                    tets: [a, b],
-                    x: [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])],
-                    nodes: [ta, tb],
-                    v,
-                    volumes: [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume],
-                    penalty,
-                    model: contact_model,
-                    negligible,
-                    friction,
-                    regions: &model.tet_region,
-                    ramps: ramp,
-                    n_total,
-                    springs: stick,
-                    dt,
-                    fresh: newly.is_some_and(|n| n.contains(a, b)),
-                    couple: newly.is_some_and(|n| n.is_couple(a, b)),
-                    activation,
-                    started,
-                })
+                let nodes = [ta, tb];
+                let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
+                let fresh = newly.is_some_and(|n| n.contains(a, b));
+                let volumes = [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume];
+                let mut verdict = Verdict::default();
+                // Within its certificate's radius: skipped (not a pair newly
+                // allowed, whose start is decided at this pass).
+                let deviation = (certifying && radius > 0.0 && !fresh)
+                    .then(|| certify::deviation(&xs, &certify::anchors(anchor, &nodes)));
+                if deviation.is_some_and(|d| d <= radius) {
+                    verdict.skipped = true;
+                    return (None, verdict);
+                }
+                let mut negligible_bound = None;
+                let force = evaluate(
+                    PairInput {
+                        tets: [a, b],
+                        x: xs,
+                        nodes,
+                        v,
+                        volumes,
+                        penalty,
+                        model: contact_model,
+                        negligible,
+                        friction,
+                        regions: &model.tet_region,
+                        ramps: ramp,
+                        n_total,
+                        springs: stick,
+                        dt,
+                        fresh,
+                        couple: newly.is_some_and(|n| n.is_couple(a, b)),
+                        activation,
+                        started,
+                    },
+                    &mut negligible_bound,
+                );
+                // An overlapping pair shown negligible: certified unless it
+                // is marked bounded for this epoch.
+                if certifying && negligible_bound.is_some_and(|b| b > 0.0) {
+                    verdict.bounded = true;
+                    if radius != certify::BOUNDED {
+                        let volume = volumes[0].min(volumes[1]);
+                        verdict.update =
+                            Some(certify::certify(&xs, &certify::anchors(anchor, &nodes), volume, negligible));
+                    }
+                }
+                (force, verdict)
             })
             .collect_into_vec(&mut self.results);
+        if certifying {
+            self.certificates.book(&self.candidates, self.results.iter().map(|r| r.1));
+        }
         self.active_pairs = 0;
         self.spring_energy = 0.0;
         self.potential = 0.0;
         self.in_contact.clear();
-        for r in self.results.iter().flatten() {
+        for r in self.results.iter().filter_map(|r| r.0.as_ref()) {
             self.active_pairs += 1;
             let [a, b] = r.tets;
             self.in_contact.push((a, b));

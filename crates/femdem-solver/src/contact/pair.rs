@@ -144,7 +144,8 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
 
 /// Evaluates one pair; `None` when the two tets do not overlap, or when
 /// their forces are provably below `negligible · p · ℓ²`
-/// ([`super::ContactSettings::negligible`]).
+/// ([`super::ContactSettings::negligible`]; then `*negligible_bound` is
+/// the bound that showed it).
 ///
 /// Normal force: Eq. 17 (`femdem_contact::tet_tet_contact`), times the
 /// Eq. 18 ramp factor `n_c / n_total` for a joint that failed in
@@ -178,7 +179,7 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
 /// A spinning body then feels the friction torque of its contact area, and
 /// a rotating fragment slips with the velocity of its contact, not of its
 /// centroid.
-pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
+pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>) -> Option<PairForce> {
     let [a, b] = input.tets;
     let [pa, pb] = &input.x;
     if !boxes_overlap(pa, pb) {
@@ -197,7 +198,11 @@ pub(crate) fn evaluate(input: PairInput<'_>) -> Option<PairForce> {
         let v = input.volumes[0].min(input.volumes[1]);
         tet_tet_contact_unless(pa, pb, input.penalty, |bound| {
             let r = bound / input.negligible;
-            r * r * r <= v * v
+            let skip = r * r * r <= v * v;
+            if skip {
+                *negligible_bound = Some(bound);
+            }
+            skip
         })?
     } else {
         tet_tet_contact(pa, pb, input.penalty)

@@ -51,6 +51,14 @@ pub struct ContactSettings {
     /// (`docs/performance.md`). 0 evaluates every candidate (Eq. 17 as
     /// printed); default [`NEGLIGIBLE`].
     pub negligible: Real,
+    /// Whether a pair shown negligible is certified for a radius of node
+    /// motion and skipped, without being bounded again, until its nodes
+    /// have moved that far (`contact/certify.rs`, the default), instead of
+    /// being bounded at every pass. It skips only pairs whose forces are
+    /// provably below the same `negligible` threshold, so the results move
+    /// within what that threshold allows; `false` is there for the tests
+    /// that compare the two and for profiling.
+    pub certify: bool,
     /// How a pair that is already overlapping when it is newly allowed to
     /// touch starts (around a failed joint, whose overlap is the compliance
     /// of the joints that held it, or at the first step): see
@@ -156,7 +164,8 @@ impl ContactSettings {
     /// detected at every step, with the couple settling over the paper's
     /// 10 Eq. 18 steps and the offset start of the other pairs that start
     /// overlapped ([`Activation::Settle`]), incremental detection after
-    /// joint failures and negligible pairs skipped.
+    /// joint failures and negligible pairs skipped (and certified over
+    /// many steps).
     pub fn new(penalty: Real) -> ContactSettings {
         ContactSettings {
             penalty,
@@ -167,6 +176,7 @@ impl ContactSettings {
             ramp_steps: crate::RAMP_STEPS,
             incremental: true,
             negligible: NEGLIGIBLE,
+            certify: true,
             activation: Activation::default(),
             model: ContactModel::default(),
         }

@@ -16,8 +16,9 @@ impl Contact {
     /// reference positions, staleness and the pending tets, the last pass's
     /// touched nodes with their forces and velocities, the energy account
     /// and counters, the friction springs, the Eq. 18 ramp counters and the pairs that
-    /// started overlapped with their offsets (maps sorted by key), and what
-    /// cracks newly allowed to touch since the last pass. Scratch
+    /// started overlapped with their offsets (maps sorted by key), what
+    /// cracks newly allowed to touch since the last pass, and the negligible
+    /// pairs' certificates (`certify.rs`). Scratch
     /// buffers (NBS, spheres, pair results, the started pairs' forces) are not
     /// written.
     pub(crate) fn encode(&self, e: &mut Encoder) {
@@ -89,6 +90,24 @@ impl Contact {
         e.u32s(&self.newly.tets);
         put_pairs(e, &self.newly.pairs);
         put_pairs(e, &self.newly.couples);
+        // The certificates (sorted by pair), the anchored nodes with their
+        // anchors, the tets still to anchor, the epoch's age and count.
+        let cert = &self.certificates;
+        let mut map: Vec<_> = cert.map.iter().map(|(&k, &r)| (k, r)).collect();
+        map.sort_unstable_by_key(|&(k, _)| k);
+        e.count(map.len());
+        for ((a, b), r) in map {
+            e.u32(a);
+            e.u32(b);
+            e.f64(r);
+        }
+        let anchored: Vec<u32> = (0..cert.anchored.len() as u32).filter(|&n| cert.anchored[n as usize]).collect();
+        e.bool(!cert.anchored.is_empty());
+        e.u32s(&anchored);
+        anchored.iter().for_each(|&n| e.vec3(&cert.anchor[n as usize]));
+        e.u32s(&cert.to_anchor);
+        e.u32(cert.age);
+        e.u64(cert.bounded);
     }
 
     /// This pass (its settings and the model's fixed tables) with the
@@ -176,6 +195,31 @@ impl Contact {
         }
         c.newly.pairs = get_pairs(d, &tet)?;
         c.newly.couples = get_pairs(d, &tet)?;
+        let cert = &mut c.certificates;
+        cert.map.clear();
+        for _ in 0..d.count()? {
+            let key = (tet(d.u32()?)?, tet(d.u32()?)?);
+            cert.map.insert(key, d.f64()?);
+        }
+        let any = d.bool()?;
+        cert.anchor.clear();
+        cert.anchored.clear();
+        if any {
+            cert.anchor.resize(n_nodes, Vec3::zeros());
+            cert.anchored.resize(n_nodes, false);
+        }
+        for n in d.u32s()? {
+            let n = node(n)? as usize;
+            if !any {
+                return Err(snapshot_error("contact: anchors before the first epoch"));
+            }
+            cert.anchored[n] = true;
+            cert.anchor[n] = d.vec3()?;
+        }
+        cert.to_anchor = d.u32s()?.into_iter().map(tet).collect::<Result<_, _>>()?;
+        cert.age = d.u32()?;
+        cert.bounded = d.u64()?;
+        cert.cache(&c.candidates);
         // Written by every pass before its booking reads it.
         c.started_force.fill(Vec3::zeros());
         Ok(c)

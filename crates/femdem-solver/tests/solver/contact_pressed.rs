@@ -174,6 +174,69 @@ fn load_passes_from_joints_to_contact_when_the_mid_plane_breaks() {
     assert!(balance.abs() < 0.01 * work, "energy balance {balance} vs work {work}");
 }
 
+/// The pairs skipped by their certificates (`contact/certify.rs`) on the
+/// column broken at its mid-plane and pressed: at every step, each is
+/// clipped here at the positions of the pass that skipped it, and its
+/// every nodal force is below the `negligible` threshold `ε p ℓ²` that the
+/// certificate vouched for (there are such pairs at most steps, asserted).
+/// With certificates off the run differs by less than the allowance of the
+/// test below.
+#[test]
+fn pairs_skipped_by_their_certificates_are_negligible_where_skipped() {
+    let (mut s, mid) = pressed_column(|c| c);
+    s.break_joints(&mid);
+    let penalty = 26e9;
+    let (mut checked, mut steps_with, mut worst) = (0_usize, 0, 0.0_f64);
+    let steps = (1.0e-4 / s.dt()) as usize;
+    for _ in 0..steps {
+        let x = s.state.x.clone();
+        s.step(Want::default());
+        let contact = s.contact().unwrap();
+        let mut any = false;
+        for (a, b) in contact.certified_skips() {
+            let at = |t: u32| s.model.tets[t as usize].map(|n| x[n as usize]);
+            let c = femdem_contact::tet_tet_contact(&at(a), &at(b), penalty);
+            let largest = c.on_a.iter().chain(&c.on_b).map(|f| f.norm()).fold(0.0, f64::max);
+            let volume = s.model.tet_ref[a as usize].volume.min(s.model.tet_ref[b as usize].volume);
+            let threshold = femdem_solver::NEGLIGIBLE * penalty * volume.powf(2.0 / 3.0);
+            assert!(largest <= threshold, "pair ({a}, {b}): force {largest} N above {threshold} N");
+            worst = worst.max(largest / threshold);
+            checked += 1;
+            any = true;
+        }
+        steps_with += usize::from(any);
+    }
+    eprintln!(
+        "{checked} certified skips over {steps} steps ({steps_with} with some); largest force {worst:.3e} of the threshold"
+    );
+    assert!(2 * steps_with > steps, "certified skips at {steps_with} of {steps} steps");
+}
+
+/// The certificates are part of a checkpoint: the broken column, stepped
+/// while pairs are skipped by their certificates (asserted), snapshot and
+/// restored into a second solver built the same way, continues bit for bit
+/// with the first, and ends with the same snapshot.
+#[test]
+fn a_restored_column_continues_bit_for_bit_with_its_certificates() {
+    let (mut a, mid) = pressed_column(|c| c);
+    a.break_joints(&mid);
+    for _ in 0..200 {
+        a.step(Want::default());
+    }
+    let certified = a.contact().unwrap().certified_skips().count();
+    assert!(certified > 0, "no pair skipped by its certificate at the snapshot");
+    let snap = a.snapshot();
+    let (mut b, _) = pressed_column(|c| c);
+    b.restore(&snap).unwrap();
+    for _ in 0..300 {
+        a.step(Want::default());
+        b.step(Want::default());
+    }
+    assert_eq!(a.state, b.state, "positions, velocities, joint histories");
+    assert_eq!(a.record(), b.record());
+    assert!(a.snapshot() == b.snapshot(), "the whole state, certificates included, differs");
+}
+
 /// Skipping the pairs whose forces are provably negligible (the default
 /// `negligible`) against evaluating every pair, on the column broken at
 /// its mid-plane and pressed: some pairs are skipped, and the base

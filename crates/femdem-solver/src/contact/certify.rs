@@ -90,6 +90,8 @@ pub(super) struct Certificates {
     /// Overlapping pairs shown negligible by the bound in full at the last
     /// pass.
     pub bounded: u64,
+    /// Pairs holding a certificate (the entries of `map` above zero).
+    pub certified: u64,
 }
 
 /// What one pair's evaluation did with certificates.
@@ -121,6 +123,7 @@ impl Certificates {
         self.cached.fill(UNTRIED);
         self.age = 0;
         self.bounded = 0;
+        self.certified = 0;
     }
 
     /// Anchors the nodes of [`Certificates::to_anchor`]'s tets not yet
@@ -148,12 +151,12 @@ impl Certificates {
     /// Whether this pass begins a new epoch: at the first, then as the
     /// module documentation says.
     pub fn stale(&self) -> bool {
-        self.anchored.is_empty() || (self.age >= MIN_AGE && RENEW * self.bounded > self.certified())
+        self.anchored.is_empty() || (self.age >= MIN_AGE && RENEW * self.bounded > self.certified)
     }
 
-    /// Pairs holding a certificate.
-    pub fn certified(&self) -> u64 {
-        self.map.values().filter(|&&r| r > 0.0).count() as u64
+    /// Counts the pairs holding a certificate (after `map` was read back).
+    pub fn count_certified(&mut self) {
+        self.certified = self.map.values().filter(|&&r| r > 0.0).count() as u64;
     }
 
     /// Books a pass's verdicts on `candidates` (in their order).
@@ -162,7 +165,8 @@ impl Certificates {
         for (i, v) in verdicts.enumerate() {
             self.bounded += u64::from(v.bounded);
             if let Some(r) = v.update {
-                self.map.insert(candidates[i], r);
+                let old = self.map.insert(candidates[i], r).unwrap_or(UNTRIED);
+                self.certified = self.certified + u64::from(r > 0.0) - u64::from(old > 0.0);
                 self.cached[i] = r;
             }
         }
@@ -252,7 +256,9 @@ mod tests {
         let bounded = Verdict { bounded: true, ..Verdict::default() };
         let certified = Verdict { update: Some(1e-6), ..Verdict::default() };
         c.book(&pairs, [certified, bounded].into_iter());
-        assert_eq!((c.map[&(0, 1)], c.cached.as_slice(), c.certified()), (1e-6, [1e-6, UNTRIED].as_slice(), 1));
+        assert_eq!((c.map[&(0, 1)], c.cached.as_slice(), c.certified), (1e-6, [1e-6, UNTRIED].as_slice(), 1));
+        c.count_certified();
+        assert_eq!(c.certified, 1);
         for pass in 2..=MIN_AGE {
             // Nothing bounded against one certificate: not stale; one
             // bounded is more than a quarter of it: stale once old enough.

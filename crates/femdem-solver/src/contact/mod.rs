@@ -172,7 +172,10 @@ pub struct Contact {
     /// (ascending): their pairs with the contactable set are not yet all
     /// candidates (see `incremental.rs`).
     pending: Vec<u32>,
-    results: Vec<(Option<PairForce>, Verdict)>,
+    /// Each candidate's force at the last pass (boxed: most candidates
+    /// have none, and a `PairForce` is some 350 bytes) and what its
+    /// certificate did.
+    results: Vec<(Option<Box<PairForce>>, Verdict)>,
     /// The negligible pairs' certificates (`certify.rs`).
     certificates: Certificates,
     /// Normal contact force per node from the last pass, N.
@@ -578,7 +581,7 @@ impl Contact {
                             Some(certify::certify(&xs, &certify::anchors(anchor, &nodes), volume, negligible));
                     }
                 }
-                (force, verdict)
+                (force.map(Box::new), verdict)
             })
             .collect_into_vec(&mut self.results);
         if certifying {
@@ -588,7 +591,7 @@ impl Contact {
         self.spring_energy = 0.0;
         self.potential = 0.0;
         self.in_contact.clear();
-        for r in self.results.iter().filter_map(|r| r.0.as_ref()) {
+        for r in self.results.iter().filter_map(|r| r.0.as_deref()) {
             self.active_pairs += 1;
             let [a, b] = r.tets;
             self.in_contact.push((a, b));

@@ -220,6 +220,7 @@ impl Contact {
         cert.age = d.u32()?;
         cert.bounded = d.u64()?;
         cert.cache(&c.candidates);
+        cert.count_certified();
         // Written by every pass before its booking reads it.
         c.started_force.fill(Vec3::zeros());
         Ok(c)

@@ -199,11 +199,11 @@ pub(super) fn deviation(x: &[[Vec3; 4]; 2], at: &[[Vec3; 4]; 2]) -> Real {
 }
 
 /// The radius a pair negligible now is certified for around its anchors
-/// `at`, from which its positions `x` deviate: `D + δ₀` for the first `δ₀`
-/// whose bound near `at` passes `negligible` (the module documentation), or
-/// [`BOUNDED`]. `volume` is the smaller tet's reference volume, m³.
-pub(super) fn certify(x: &[[Vec3; 4]; 2], at: &[[Vec3; 4]; 2], volume: Real, negligible: Real) -> Real {
-    let d = deviation(x, at);
+/// `at`, from which its positions deviate by `d` ([`deviation`]): `d + δ₀`
+/// for the first `δ₀` whose bound near `at` passes `negligible` (the module
+/// documentation), or [`BOUNDED`]. `volume` is the smaller tet's reference
+/// volume, m³.
+pub(super) fn certify(at: &[[Vec3; 4]; 2], d: Real, volume: Real, negligible: Real) -> Real {
     let base = volume.cbrt() * negligible.cbrt() / 4.0;
     for delta0 in [base, base / 8.0] {
         let delta = d + delta0;
@@ -236,9 +236,9 @@ mod tests {
 
     /// A new epoch anchors the contactable tets' nodes and forgets every
     /// certificate; tets made contactable later are anchored once, where
-    /// they are at the next pass; the epoch is stale once more overlapping
-    /// pairs were bounded than hold certificates, and not before
-    /// `MIN_AGE` passes.
+    /// they are at the next pass; the epoch is stale once the overlapping
+    /// pairs bounded at a pass exceed a quarter (`RENEW`) of the
+    /// certificates, and not before `MIN_AGE` passes.
     #[test]
     fn epochs_anchor_the_contactable_nodes_and_forget_certificates() {
         let tets = [[0, 1, 2, 3], [4, 5, 6, 7]];

@@ -541,8 +541,8 @@ impl Contact {
                 let mut verdict = Verdict::default();
                 // Within its certificate's radius: skipped (not a pair newly
                 // allowed, whose start is decided at this pass).
-                let deviation = (certifying && radius > 0.0 && !fresh)
-                    .then(|| certify::deviation(&xs, &certify::anchors(anchor, &nodes)));
+                let at = || certify::anchors(anchor, &nodes);
+                let deviation = (certifying && radius > 0.0 && !fresh).then(|| certify::deviation(&xs, &at()));
                 if deviation.is_some_and(|d| d <= radius) {
                     verdict.skipped = true;
                     return (None, verdict);
@@ -576,9 +576,10 @@ impl Contact {
                 if certifying && negligible_bound.is_some_and(|b| b > 0.0) {
                     verdict.bounded = true;
                     if radius != certify::BOUNDED {
-                        let volume = volumes[0].min(volumes[1]);
-                        verdict.update =
-                            Some(certify::certify(&xs, &certify::anchors(anchor, &nodes), volume, negligible));
+                        let (volume, at) = (volumes[0].min(volumes[1]), at());
+                        // A lapsed pair's deviation is known already.
+                        let d = deviation.unwrap_or_else(|| certify::deviation(&xs, &at));
+                        verdict.update = Some(certify::certify(&at, d, volume, negligible));
                     }
                 }
                 (force.map(Box::new), verdict)

@@ -1,9 +1,9 @@
 //! `femdem`: the command-line driver of the femdem FEMDEM simulator.
 //!
-//! This is the only crate (with xtask) that knows about TOML case files and
-//! the terminal; it composes the library crates.
+//! Argument parsing over the case library (`femdem_case`), the run driver
+//! (`femdem_run`) and the results library (`femdem_post`); the only crate
+//! (with xtask) that knows the terminal.
 
-mod case;
 mod commands;
 
 use std::path::PathBuf;
@@ -126,7 +126,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads, set, force, memory_available } => {
-            commands::memory::refuse_if_too_big(&case, &set, force, memory_available, "check")
+            femdem_case::memory::refuse_if_too_big(&case, &set, force, memory_available, "check")
                 .and_then(|()| commands::check::run(&case, json, threads, &set))
         }
         Command::Run {
@@ -142,19 +142,18 @@ fn main() -> ExitCode {
             force,
             memory_available,
             overwrite,
-        } => commands::memory::refuse_if_too_big(&case, &set, force, memory_available, "run").and_then(|()| {
-            let options = commands::run::RunOptions {
+        } => femdem_case::memory::refuse_if_too_big(&case, &set, force, memory_available, "run").and_then(|()| {
+            let options = femdem_run::RunOptions {
                 out,
                 threads,
                 set,
                 resume,
                 stop_after_steps,
                 pause_checkpoint,
-                progress_interval,
                 contact_model,
                 overwrite,
             };
-            commands::run::run(&case, options)
+            commands::run::run(&case, options, progress_interval)
         }),
         Command::Plot { results, x, y, out } => {
             commands::plot::run(&results, commands::plot::PlotOptions { x, y, out })

@@ -7,8 +7,8 @@ use anyhow::Result;
 use femdem_mesh::{face_adjacency, faces::face_key, stats};
 use serde::Serialize;
 
-use super::prepare::prepare;
-use crate::case;
+use femdem_case as case;
+use femdem_case::prepare::prepare;
 
 /// One region in the report.
 #[derive(Serialize)]
@@ -79,6 +79,9 @@ struct TimeStepReport {
 /// Runs the command.
 pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> Result<()> {
     let prepared = prepare(path, threads, sets)?;
+    for warning in &prepared.warnings {
+        eprintln!("warning: {warning}");
+    }
     let (loaded, mesh, jointed) = (&prepared.case, &prepared.mesh, &prepared.jointed);
     let s = stats(mesh);
 
@@ -114,7 +117,7 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> 
         min_inradius: s.min_inradius,
         max_aspect_ratio: s.max_aspect_ratio,
         memory_bytes: jointed.array_bytes(),
-        estimated_memory_bytes: super::memory::estimate(loaded).map(|e| e.bytes),
+        estimated_memory_bytes: femdem_case::memory::estimate(loaded).map(|e| e.bytes),
         regions: s
             .regions
             .iter()

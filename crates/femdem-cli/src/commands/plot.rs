@@ -22,7 +22,7 @@ pub struct PlotOptions {
 }
 
 /// The energy columns of a history, in the order drawn.
-const ENERGIES: [&str; 9] = super::output::ENERGY_COLUMNS;
+const ENERGIES: [&str; 9] = femdem_run::output::ENERGY_COLUMNS;
 
 /// The failure counts of a history, by mode.
 const FAILURES: [&str; 4] = ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"];

@@ -6,31 +6,20 @@
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
+use femdem_run::Status;
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// Seconds between plain progress lines when stderr is not a terminal.
 const PLAIN_INTERVAL: Duration = Duration::from_secs(10);
 
-/// The state of the model a progress report shows, besides steps and
-/// time.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Status {
-    /// Joints failed so far.
-    pub failed_joints: usize,
-    /// The load `F` of Eq. 21 at the last step, N, with `[output.load_strain]`.
-    pub load: Option<f64>,
-}
-
-impl Status {
-    /// `"12 joints failed  load 2.512e3 N"`.
-    fn text(&self) -> String {
-        let joints = if self.failed_joints == 1 { "joint" } else { "joints" };
-        let mut s = format!("{} {joints} failed", self.failed_joints);
-        if let Some(load) = self.load {
-            s.push_str(&format!("  load {load:.4e} N"));
-        }
-        s
+/// `"12 joints failed  load 2.512e3 N"`.
+fn status_text(status: &Status) -> String {
+    let joints = if status.failed_joints == 1 { "joint" } else { "joints" };
+    let mut s = format!("{} {joints} failed", status.failed_joints);
+    if let Some(load) = status.load {
+        s.push_str(&format!("  load {load:.4e} N"));
     }
+    s
 }
 
 /// Reports steps, simulated time, failures, load, element-steps per
@@ -83,11 +72,15 @@ impl Progress {
 
     /// Reports that `steps` steps are done at simulated time `time`;
     /// `status` is asked for only when a report is due.
-    pub fn update(&mut self, steps: u64, time: f64, status: impl FnOnce() -> Status) {
+    pub fn update(&mut self, steps: u64, time: f64, status: &dyn Fn() -> Status) {
         if let Some(b) = &self.bar {
             if steps % 64 == 0 || steps == self.total {
                 b.set_position(steps);
-                b.set_message(format!("{time:.4e} s  {}  {:.2e} el-steps/s", status().text(), self.throughput(steps)));
+                b.set_message(format!(
+                    "{time:.4e} s  {}  {:.2e} el-steps/s",
+                    status_text(&status()),
+                    self.throughput(steps)
+                ));
             }
         } else if self.last_line.elapsed() >= self.interval {
             self.last_line = Instant::now();
@@ -103,18 +96,13 @@ impl Progress {
             b.finish_and_clear();
         }
     }
-
-    /// Wall time since the start.
-    pub fn elapsed(&self) -> Duration {
-        self.start.elapsed()
-    }
 }
 
 /// One plain progress line.
 fn plain_line(steps: u64, total: u64, time: f64, status: &Status, throughput: f64, eta: f64) -> String {
     format!(
         "step {steps}/{total}  t = {time:.4e} s  {}  {throughput:.3e} element-steps/s  eta {eta:.0} s",
-        status.text()
+        status_text(status)
     )
 }
 

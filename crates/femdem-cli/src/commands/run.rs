@@ -1,422 +1,93 @@
-//! `femdem run CASE.toml [--out DIR] [--overwrite] [--resume [DIR]]`:
-//! integrate a case to its end time, writing VTU frames, a PVD series, a
-//! CSV history and checkpoints (`checkpoint.rs`) into a directory checked
-//! first (`outdir.rs`: dangerous targets and earlier results are refused;
-//! `--overwrite` removes the latter); `--resume` continues from the latest
-//! complete checkpoint, and the results are those of an uninterrupted run.
+//! `femdem run CASE.toml [--out DIR] [--overwrite] [--resume [DIR]]`: the
+//! run driver of `femdem_run` with a progress bar or plain progress lines
+//! on stderr, the driver's notes on stderr, a summary on stdout, and the
+//! signals SIGINT, SIGTERM (what cluster schedulers send at a time limit)
+//! and SIGHUP turned into its stop flag: the run then writes its state and
+//! a checkpoint, and exits with an error that says how to resume.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
-use std::time::{Duration, Instant};
+use anyhow::{Result, bail};
+use femdem_run::{Observer, RunOptions, Status, provenance};
 
-use anyhow::{Context, Result, bail};
-use femdem_solver::{Solver, Want};
+use super::progress::Progress;
 
-use super::checkpoint::{self, Checkpoint, Identity, Schedule};
-use super::outdir;
-use super::output::{Output, Recorded, history_comments};
-use super::prepare::{Start, prepare, start_static};
-use super::progress::{Progress, Status};
-use crate::case;
-use crate::case::setup::LoadStrain;
-
-/// What `femdem run` was asked for, beyond the case file.
-#[derive(Clone, Debug, Default)]
-pub struct RunOptions {
-    /// `--out`: the output directory.
-    pub out: Option<PathBuf>,
-    /// `--threads`.
-    pub threads: Option<usize>,
-    /// `--set key.path=value` arguments.
-    pub set: Vec<String>,
-    /// `--resume [DIR]`: continue from the latest complete checkpoint in
-    /// `DIR` (`Some(None)`: in the usual output directory).
-    pub resume: Option<Option<PathBuf>>,
-    /// `--stop-after-steps N` (for tests): stop as a signal would once `N`
-    /// steps are done, writing a checkpoint.
-    pub stop_after_steps: Option<u64>,
-    /// `--pause-checkpoint N` (for tests): the checkpoint of step `N`
-    /// pauses before its rename ([`checkpoint::write`]).
-    pub pause_checkpoint: Option<u64>,
-    /// `--progress-interval SECONDS` (for tests): wall time between plain
-    /// progress lines (default 10 s).
-    pub progress_interval: Option<f64>,
-    /// `--contact-model NAME` (for measurement): `potential` or `gradient`
-    /// ([`femdem_solver::ContactModel`]); not a key of the case format.
-    pub contact_model: Option<String>,
-    /// `--overwrite`: remove the results of an earlier run from the output
-    /// directory (femdem's own files only) instead of refusing it.
-    pub overwrite: bool,
+/// The terminal as the run's [`Observer`].
+struct Terminal {
+    progress: Option<Progress>,
+    /// `--progress-interval`: wall time between plain progress lines.
+    interval: Option<Duration>,
 }
 
-/// Runs the command.
-pub fn run(path: &Path, options: RunOptions) -> Result<()> {
-    let RunOptions {
-        out,
-        threads,
-        set,
-        resume,
-        stop_after_steps,
-        pause_checkpoint,
-        progress_interval,
-        contact_model,
-        overwrite,
-    } = options;
-    let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
-    let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
-    // The output directory is checked before the mesh is built: a refusal
-    // costs nothing, and nothing is removed unless the case prepares.
-    let dir = outdir::resolve(&case::load(path, &set)?, &stem, out, &resume)?;
-    outdir::refuse_dangerous(&dir, path)?;
-    if resume.is_none() {
-        outdir::refuse_earlier_results(&dir, &stem, &case_name, overwrite)?;
+impl Observer for Terminal {
+    fn note(&mut self, line: &str) {
+        eprintln!("femdem: {line}");
     }
-    let prepared = prepare(path, threads, &set)?;
-    let Some(mut run) = prepared.run else {
-        bail!("{}: a [solver] section is needed to run the case", path.display());
-    };
-    let spec = run.output.clone();
-    let (interval, history_interval) = (spec.interval, spec.history_interval);
-    let written = (spec.fields, spec.compression);
-    let checkpoints = spec.checkpoint;
-    let identity = Identity::of(&prepared.case, &prepared.jointed.mesh);
-    let solver = &mut run.solver;
-    if let Some(name) = &contact_model {
-        let model = match name.as_str() {
-            "potential" => femdem_solver::ContactModel::Potential,
-            "gradient" => femdem_solver::ContactModel::Gradient,
-            other => bail!("--contact-model `{other}` is not `potential` or `gradient`"),
-        };
-        solver.set_contact_model(model).map_err(|e| anyhow::anyhow!("--contact-model: {e}"))?;
-        eprintln!("femdem: contact model `{name}` (--contact-model, for measurement)");
-    }
-    let m = &prepared.jointed.mesh;
-    let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
-    let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
-    let (mut output, schedule) = if resume.is_some() {
-        let (file, saved) = checkpoint::latest(&dir)?;
-        saved.identity.check(&identity, &file)?;
-        solver.restore(&saved.solver).with_context(|| format!("checkpoint {}", file.display()))?;
-        let output =
-            Output::resume(&dir, &stem, written, solver, pre_existing, columns, &saved.marks).with_context(|| {
-                format!("continuing the output in {} from checkpoint {}", dir.display(), file.display())
-            })?;
-        checkpoint::remove_after(&dir, Some(saved.schedule.next_step))?;
-        eprintln!(
-            "femdem: resuming from {} (step {}, t = {:.6e} s)",
-            file.display(),
-            saved.schedule.next_step,
-            solver.state.time
-        );
-        (output, saved.schedule)
-    } else {
-        if run.start == Start::Static {
-            let initial: Vec<(u32, u32)> =
-                prepared.jointed.initial_contacts.iter().map(|(a, b)| (a.tet, b.tet)).collect();
-            let solved = start_static(solver, &initial).map_err(|e| {
-                let span = prepared.case.case.solver.as_ref().map_or(0..0, |s| s.span());
-                prepared.case.error_at(
-                    span,
-                    format!("solver: `start = \"static\"`: {e}; `start = \"dynamic\"` ramps the loads instead"),
-                )
-            })?;
-            report_static(&solved);
-        }
-        if overwrite {
-            outdir::clear(&dir, &stem)?;
-        }
-        let comments = history_comments(&prepared.case);
-        let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
-            .with_context(|| format!("output directory {}", dir.display()))?;
-        checkpoint::remove_after(&dir, None)?;
-        let schedule = Schedule { next_step: 0, next_frame: 0.0, next_row: 0.0, ended_past_peak: false, peak: None };
-        (output, schedule)
-    };
 
+    fn started(&mut self, first: u64, total: u64, elements: u64) {
+        let mut progress = Progress::new(total, elements).starting_at(first);
+        if let Some(interval) = self.interval {
+            progress = progress.every(interval);
+        }
+        self.progress = Some(progress);
+    }
+
+    fn stepped(&mut self, steps: u64, time: f64, status: &dyn Fn() -> Status) {
+        if let Some(p) = &mut self.progress {
+            p.update(steps, time, status);
+        }
+    }
+
+    fn ended(&mut self) {
+        if let Some(p) = &self.progress {
+            p.finish();
+        }
+    }
+}
+
+/// Runs the command; `progress_interval` is `--progress-interval`, s.
+pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> Result<()> {
     let stop = Arc::new(AtomicBool::new(false));
     {
         let stop = stop.clone();
-        // SIGINT, SIGTERM (what cluster schedulers send at a time limit) and SIGHUP
-        // stop the run after writing its state. A second handler cannot be
-        // installed (tests call run twice): then the signal kills as usual.
+        // A second handler cannot be installed (tests call run twice): then
+        // the signal kills as usual.
         let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
     }
-
-    let elements = solver.model.num_deformable_tets() as u64;
-    if !prepared.case.overrides.is_empty() {
-        eprintln!("femdem: with --set {}", prepared.case.overrides.args().join(" --set "));
-    }
-    eprintln!(
-        "femdem: {} tets ({} deformable), {} joints, {} nodes; dt = {:.4e} s ({:.2} of the critical {:.4e} s), {} steps",
-        solver.model.tets.len(),
-        elements,
-        solver.model.joints.len(),
-        solver.model.num_nodes(),
-        solver.dt(),
-        solver.dt() / run.stable.critical,
-        run.stable.critical,
-        run.steps
-    );
-    let first = schedule.next_step;
-    let mut progress = Progress::new(run.steps, elements).starting_at(first);
-    if let Some(seconds) = progress_interval {
-        progress = progress.every(Duration::from_secs_f64(seconds.max(0.0)));
-    }
-    let dt = solver.dt();
-    let Schedule { mut next_frame, mut next_row, mut ended_past_peak, .. } = schedule;
-    let mut interrupted = false;
-    let mut past_peak = run.load_strain.and_then(PeakWatch::new);
-    if let (Some(w), Some((peak, last))) = (past_peak.as_mut(), schedule.peak) {
-        (w.peak, w.last) = (peak, last);
-    }
-    let mut saved_at = Instant::now();
-    let mut last_checkpoint: Option<PathBuf> = None;
-    let mut contact_warned = false;
-    for n in first..run.steps {
-        let t = solver.state.time;
-        let last = n + 1 == run.steps || ended_past_peak;
-        let stopping = stop.load(Ordering::SeqCst) || stop_after_steps.is_some_and(|s| n >= s);
-        if stopping {
-            // The state to continue from: this step has not been taken, and
-            // the frame and row the interruption adds below are not in it.
-            let at = schedule_at(n, next_frame, next_row, ended_past_peak, &past_peak);
-            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
-        }
-        let frame_due = t >= next_frame - 0.5 * dt || last || stopping;
-        let row_due = frame_due || t >= next_row - 0.5 * dt;
-        let checked = run.check_interval > 0 && ((n + 1) % run.check_interval == 0 || last);
-        // The energy check reads the energies of the step it checks; probes
-        // record stress in every history row; a checked step evaluates the
-        // stresses too, so that the frame and row a guard stop adds below
-        // carry the stresses of their own step (they are output only).
-        // The contact guard reads the energy scale of the step it checks
-        // too.
-        let energy_checked = checked && (run.energy_tolerance.is_some() || run.contact_check.is_some());
-        let probing = row_due && !run.probes.is_empty();
-        solver.step(Want { stress: frame_due || probing || checked, energy: row_due || energy_checked });
-        if n == 0 {
-            warn_initial_overlap(solver);
-        }
-        let record = solver.record();
-        if !record.new_failures.is_empty() {
-            output.failure_rows(solver, record)?;
-        }
-        if row_due {
-            output.history_row(solver, record)?;
-            next_row += history_interval * ((t - next_row) / history_interval + 1.0).floor().max(1.0);
-        }
-        if frame_due {
-            output.frames(solver, t)?;
-            next_frame += interval * ((t - next_frame) / interval + 1.0).floor().max(1.0);
-        }
-        let trouble = checked
-            .then(|| {
-                solver
-                    .check(run.stable.critical)
-                    .err()
-                    .or_else(|| run.energy_tolerance.and_then(|tolerance| solver.check_energy(tolerance).err()))
-                    .or_else(|| contact_trouble(solver, run.contact_check, &mut contact_warned))
-            })
-            .flatten();
-        if let Some(trouble) = trouble {
-            // Keep what shows the trouble: the history so far with this
-            // step's row (its energies, if evaluated) and this step's frame,
-            // both of t_n, as every row and frame (unless already written).
-            if !row_due && solver.record().energies_current {
-                output.history_row(solver, solver.record())?;
-            }
-            if !frame_due {
-                output.frames(solver, t)?;
-            }
-            progress.finish();
-            bail!(
-                "the run guard stopped the run: {trouble}\nthe state at that point was written to {}",
-                output.pvd().display()
-            );
-        }
-        progress.update(n + 1, solver.state.time, || Status {
-            failed_joints: solver.failures().len(),
-            load: run.load_strain.map(|ls| {
-                let r = solver.record();
-                ls.evaluate(&r.drive_forces, &r.drive_displacements).0
-            }),
-        });
-        if ended_past_peak {
-            break;
-        }
-        // Past the peak, one more step writes the final row and frame with
-        // their energies and stresses, as the last step does.
-        ended_past_peak = past_peak.as_mut().is_some_and(|w| w.ended(solver));
-        if stopping {
-            interrupted = true;
-            break;
-        }
-        let by_steps = checkpoints.interval_steps > 0 && (n + 1) % checkpoints.interval_steps == 0;
-        let by_wall = checkpoints.interval_wall > 0.0 && saved_at.elapsed().as_secs_f64() >= checkpoints.interval_wall;
-        if !last && (by_steps || by_wall) {
-            let at = schedule_at(n + 1, next_frame, next_row, ended_past_peak, &past_peak);
-            last_checkpoint = Some(save(&dir, &identity, at, &mut output, solver, pause_checkpoint)?);
-            saved_at = Instant::now();
-        }
-    }
-    output.flush()?;
-    progress.finish();
-    let wall = progress.elapsed().as_secs_f64();
-    let steps = solver.state.step;
+    let mut terminal =
+        Terminal { progress: None, interval: progress_interval.map(|s| Duration::from_secs_f64(s.max(0.0))) };
+    let s = femdem_run::run(path, options, &stop, &mut terminal)?;
     println!(
-        "{} after {steps} steps, t = {:.6e} s",
-        if interrupted { "interrupted" } else { "finished" },
-        solver.state.time
+        "{} after {} steps, t = {:.6e} s",
+        if s.interrupted { "interrupted" } else { "finished" },
+        s.steps,
+        s.time
     );
-    if let (true, Some(w)) = (ended_past_peak, &past_peak) {
+    if let Some(w) = &s.past_peak {
         println!("ended       past the peak: load {:.6e} N below {} of its peak {:.6e} N", w.last, w.fraction, w.peak);
     }
-    println!("wall time   {wall:.2} s");
-    println!("throughput  {:.3e} tet-steps/s ({} threads)", progress.throughput(steps), rayon::current_num_threads());
-    println!(
-        "built       femdem {}; {}; simd {}",
-        super::provenance::build(),
-        super::provenance::cpu(),
-        super::provenance::simd()
-    );
-    println!("results     {}", output.pvd().display());
-    println!("fractures   {} ({} joints failed)", output.fracture_pvd().display(), solver.failures().len());
-    println!("history     {}", output.history_path().display());
-    println!("failures    {}", output.history_path().with_file_name("failures.csv").display());
-    if let Some(file) = &last_checkpoint {
+    println!("wall time   {:.2} s", s.wall);
+    println!("throughput  {:.3e} tet-steps/s ({} threads)", s.throughput, rayon::current_num_threads());
+    println!("built       femdem {}; {}; simd {}", provenance::build(), provenance::cpu(), provenance::simd());
+    println!("results     {}", s.frames.display());
+    println!("fractures   {} ({} joints failed)", s.fractures.display(), s.failed_joints);
+    println!("history     {}", s.history.display());
+    println!("failures    {}", s.failures.display());
+    if let Some(file) = &s.checkpoint {
         println!("checkpoint  {}", file.display());
     }
-    if interrupted {
+    if s.interrupted {
         bail!(
             "interrupted by a signal (Ctrl-C, SIGTERM or SIGHUP); the state at t = {:.6e} s was written, and a \
              checkpoint to continue from: femdem run {}{} --resume {}",
-            solver.state.time,
+            s.time,
             path.display(),
-            prepared.case.overrides.args().iter().map(|a| format!(" --set '{a}'")).collect::<String>(),
-            dir.display()
+            s.overrides.iter().map(|a| format!(" --set '{a}'")).collect::<String>(),
+            s.dir.display()
         );
     }
     Ok(())
-}
-
-/// Warns when tets already overlap at the first step (a platen or part
-/// placed into another): how they start is `[contact] activation`'s, and
-/// the user should know that the scene starts with an overlap.
-fn warn_initial_overlap(solver: &Solver) {
-    let Some(c) = solver.contact() else { return };
-    // Deeper than round-off of the element: faces that only touch (across
-    // a pre-existing fracture) are not an overlap.
-    let (pairs, depth) = c.started_overlaps(&solver.model, |n| solver.recorded_position(n as usize), 1e-9);
-    if pairs > 0 {
-        eprintln!(
-            "femdem: warning: {pairs} tet pairs overlap at t = 0 (the deepest by {depth:.3} of an element's shortest \
-             altitude); they start as [contact] activation = \"{}\" says",
-            case::setup::activation_name(c.settings.activation)
-        );
-    }
-}
-
-/// The guard's check of contact's own account
-/// (`Solver::check_contact_energy`) under `[contact] energy_check`: the
-/// trouble that stops the run, or `None` after warning once (`warned`).
-fn contact_trouble(
-    solver: &Solver,
-    check: Option<(case::setup::ContactCheck, f64)>,
-    warned: &mut bool,
-) -> Option<femdem_solver::Trouble> {
-    let (check, tolerance) = check?;
-    let trouble = solver.check_contact_energy(tolerance).err()?;
-    match check {
-        case::setup::ContactCheck::Stop => Some(trouble),
-        case::setup::ContactCheck::Warn => {
-            if !*warned {
-                *warned = true;
-                eprintln!("femdem: warning ([contact] energy_check = \"warn\"; reported once): {trouble}");
-            }
-            None
-        }
-    }
-}
-
-/// The run loop's schedule at the start of step `n`.
-fn schedule_at(n: u64, next_frame: f64, next_row: f64, ended: bool, watch: &Option<PeakWatch>) -> Schedule {
-    Schedule {
-        next_step: n,
-        next_frame,
-        next_row,
-        ended_past_peak: ended,
-        peak: watch.as_ref().map(|w| (w.peak, w.last)),
-    }
-}
-
-/// Writes a checkpoint of `solver` and `output` at `schedule` into `dir`
-/// (pausing before the rename if its step is `pause`, for tests); returns
-/// its file.
-fn save(
-    dir: &Path,
-    identity: &Identity,
-    schedule: Schedule,
-    output: &mut Output,
-    solver: &Solver,
-    pause: Option<u64>,
-) -> Result<PathBuf> {
-    let saved = Checkpoint { identity: identity.clone(), schedule, marks: output.marks()?, solver: solver.snapshot() };
-    checkpoint::write(dir, &saved, pause)
-}
-
-/// `[output.load_strain] stop_below_peak`: watches the load `F` of Eq. 21
-/// step by step and says when a run is over, i.e. once a joint has failed
-/// and `F` has fallen below `fraction` of its largest value so far.
-struct PeakWatch {
-    ls: LoadStrain,
-    fraction: f64,
-    peak: f64,
-    last: f64,
-}
-
-impl PeakWatch {
-    fn new(ls: LoadStrain) -> Option<Self> {
-        ls.stop_below_peak.map(|fraction| PeakWatch { ls, fraction, peak: 0.0, last: 0.0 })
-    }
-
-    /// Updates the watch with the solver's last record; true once the run
-    /// is over.
-    fn ended(&mut self, solver: &Solver) -> bool {
-        let r = solver.record();
-        let (load, _) = self.ls.evaluate(&r.drive_forces, &r.drive_displacements);
-        self.last = load;
-        self.peak = self.peak.max(load);
-        !solver.failures().is_empty() && self.peak > 0.0 && load < self.fraction * self.peak
-    }
-}
-
-/// One line on the static start: its size, its checks and its cost.
-fn report_static(s: &femdem_static::StaticSolution) {
-    let t = s.seconds;
-    eprintln!(
-        "femdem: static start: {} unknowns, {} bodies ({} free, load {:.1e} unbalanced); residual {:.1e}, explicit model {:.1e} \
-         after {} corrections; factor {:.1} MiB; {:.2} s (assembly {:.2}, factorisation {:.2}, solve {:.2}, correction {:.2})",
-        s.dofs,
-        s.bodies,
-        s.free_bodies,
-        s.unbalanced,
-        s.residual,
-        s.model_residual.unwrap_or(0.0),
-        s.corrections,
-        s.memory_bytes() as f64 / (1024.0 * 1024.0),
-        t.assembly + t.factorisation + t.solve + t.correction,
-        t.assembly,
-        t.factorisation,
-        t.solve,
-        t.correction
-    );
-    if s.joints.past_peak > 0 {
-        eprintln!(
-            "femdem: warning: the static start leaves {} joints past their peak ({} failed): the loaded state is not elastic \
-             everywhere, and the first step damages them at once",
-            s.joints.past_peak, s.joints.failed
-        );
-    }
 }

@@ -45,7 +45,7 @@ use anyhow::{Context, Result, bail};
 use femdem_mesh::TetMesh;
 use femdem_solver::snapshot::{Decoder, Encoder};
 
-use crate::case::LoadedCase;
+use femdem_case::LoadedCase;
 
 /// The first bytes of every checkpoint file.
 pub const MAGIC: &[u8; 8] = b"FEMDEMCK";
@@ -98,7 +98,7 @@ pub struct Identity {
     /// FNV-1a of the jointed mesh (coordinates by their bits, tets).
     pub mesh_hash: u64,
     /// The `--set` overrides, in their canonical form
-    /// ([`crate::case::Overrides::canonical`]: sorted, values as TOML
+    /// ([`femdem_case::Overrides::canonical`]: sorted, values as TOML
     /// writes them).
     pub overrides: Vec<String>,
 }
@@ -347,12 +347,12 @@ pub fn write(dir: &Path, checkpoint: &Checkpoint, pause: Option<u64>) -> Result<
 }
 
 /// The newest complete checkpoint in `dir` and its file. Incomplete or
-/// damaged ones newer than it are reported on stderr and skipped.
+/// damaged ones newer than it are skipped, each told to `note` with why.
 ///
 /// # Errors
 /// When `dir` holds no complete checkpoint, with the reason for each file
 /// that is not.
-pub fn latest(dir: &Path) -> Result<(PathBuf, Checkpoint)> {
+pub fn latest(dir: &Path, note: &mut dyn FnMut(&str)) -> Result<(PathBuf, Checkpoint)> {
     let found = list(dir)?;
     let mut skipped = Vec::new();
     for (_, path) in found {
@@ -360,7 +360,7 @@ pub fn latest(dir: &Path) -> Result<(PathBuf, Checkpoint)> {
         match read {
             Ok(c) => return Ok((path, c)),
             Err(why) => {
-                eprintln!("femdem: skipping checkpoint {}: {why}", path.display());
+                note(&format!("skipping checkpoint {}: {why}", path.display()));
                 skipped.push(format!("\n  {}: {why}", path.display()));
             }
         }

@@ -16,6 +16,10 @@ use femdem_vtk::Compression;
 use super::format::{LoadSpec, NodeSpec, OutputSpec};
 use super::{CaseError, LoadedCase};
 
+/// The fields `[output] fields` may name (written into every VTU frame
+/// by the run driver).
+pub const FIELDS: [&str; 6] = ["displacement", "velocity", "stress", "principal_stress", "von_mises", "region"];
+
 /// The default joint penalty as a multiple of E (the top of Eq. 9's range).
 pub const DEFAULT_PENALTY_FACTOR: f64 = 10.0;
 
@@ -24,8 +28,14 @@ pub const DEFAULT_PENALTY_FACTOR: f64 = 10.0;
 /// # Errors
 /// A located [`CaseError`] for an unknown region, a region with two
 /// materials, a deformable region without one, bad parameters, or missing
-/// joint strengths in a breakable region.
-pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBehaviour>, CaseError> {
+/// joint strengths in a breakable region. What is legal but probably not
+/// meant (a cohesion that caps the tensile strength through Eq. 5's
+/// tension cut-off) is pushed onto `warnings`.
+pub fn behaviours(
+    case: &LoadedCase,
+    mesh: &JointedMesh,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<RegionBehaviour>, CaseError> {
     let m = &mesh.mesh;
     let stats = femdem_mesh::stats(m);
     let mut out: Vec<Option<RegionBehaviour>> = vec![None; m.regions.len()];
@@ -127,13 +137,13 @@ pub fn behaviours(case: &LoadedCase, mesh: &JointedMesh) -> Result<Vec<RegionBeh
             };
             let params = params.validate().map_err(|e| at(e.to_string()))?;
             if params.cohesion_limits_tension() {
-                eprintln!(
-                    "warning: {}: cohesion {} Pa ≤ tensile_strength × tan(friction_angle): Eq. 5's tension cut-off \
+                warnings.push(format!(
+                    "{}: cohesion {} Pa ≤ tensile_strength × tan(friction_angle): Eq. 5's tension cut-off \
                      caps the tensile strength at c / tan φ = {:.6e} Pa",
                     at(format!("materials, region `{}`", s.region)),
                     params.cohesion,
                     params.effective_tensile_strength()
-                );
+                ));
             }
             Some(params)
         } else {
@@ -354,9 +364,15 @@ fn start(start_time: Option<f64>) -> Result<Option<f64>, String> {
 /// Builds the model with the case's mass scaling.
 ///
 /// # Errors
-/// As [`behaviours`], plus model set-up errors.
-pub fn model(case: &LoadedCase, mesh: &JointedMesh, mass_scaling: f64) -> Result<Model, CaseError> {
-    let b = behaviours(case, mesh)?;
+/// As [`behaviours`], plus model set-up errors; its warnings are pushed
+/// onto `warnings`.
+pub fn model(
+    case: &LoadedCase,
+    mesh: &JointedMesh,
+    mass_scaling: f64,
+    warnings: &mut Vec<String>,
+) -> Result<Model, CaseError> {
+    let b = behaviours(case, mesh, warnings)?;
     let mut model = Model::new(mesh, &b, mass_scaling).map_err(|e| CaseError {
         path: case.path.clone(),
         at: None,
@@ -619,7 +635,7 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
         return Err(at(format!("`fields`: `{f}` is not one of {}", fields_known.join(", "))));
     }
     let compression = compression(spec.compression.as_deref().unwrap_or("lz4")).map_err(at)?;
-    let default_checkpoint = crate::case::format::CheckpointSpec::default();
+    let default_checkpoint = crate::format::CheckpointSpec::default();
     let (cp, cp_span) = match &spec.checkpoint {
         Some(c) => (c.get_ref(), Some(c.span())),
         None => (&default_checkpoint, None),

@@ -1,11 +1,28 @@
-//! Reading case files: parsing, with errors that name the file, the line,
-//! the column and the key.
+//! femdem's case format as a library: a TOML case file read with errors
+//! that name the file, the line, the column and the key ([`load`]);
+//! `--set` overrides applied to it ([`overrides`]); its memory estimated
+//! before anything is built ([`memory`]); and its mesh, joints, model,
+//! loads and time step built into a solver ready to step
+//! ([`prepare::prepare`]).
+//!
+//! This crate and the command line (with xtask) are the only ones that
+//! know the TOML case format; the physics crates below never see it. It
+//! writes nothing to the terminal: what it finds is returned.
+//!
+//! ```no_run
+//! let prepared = femdem_case::prepare::prepare(std::path::Path::new("cases/brazilian.toml"), None, &[])?;
+//! let run = prepared.run.expect("the case has a [solver] section");
+//! println!("{} tets, dt = {:.3e} s", run.solver.model.tets.len(), run.solver.dt());
+//! # Ok::<(), anyhow::Error>(())
+//! ```
 
 pub mod format;
 #[cfg(test)]
 mod fuzz;
+pub mod memory;
 pub mod mesh;
 pub mod overrides;
+pub mod prepare;
 pub mod probes;
 pub mod setup;
 pub mod zones;

@@ -8,14 +8,13 @@ use femdem_material::{principal_stresses, von_mises};
 use femdem_solver::{Solver, StepRecord};
 use femdem_vtk::{Compression, Field, Frame, HistoryWriter, SeriesWriter, VtuOptions};
 
-use super::checkpoint::Marks;
-use super::outdir::CASE_COMMENT;
-use crate::case::LoadedCase;
-use crate::case::probes::Probe;
-use crate::case::setup::LoadStrain;
+use femdem_case::setup::FIELDS;
 
-/// Fields a case may ask for.
-pub const FIELDS: [&str; 6] = ["displacement", "velocity", "stress", "principal_stress", "von_mises", "region"];
+use crate::checkpoint::Marks;
+use crate::outdir::CASE_COMMENT;
+use femdem_case::LoadedCase;
+use femdem_case::probes::Probe;
+use femdem_case::setup::LoadStrain;
 
 /// The columns of `failures.csv`.
 const FAILURE_COLUMNS: [&str; 7] = ["time", "joint", "x", "y", "z", "area", "mode"];
@@ -47,7 +46,7 @@ pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     if !sets.is_empty() {
         lines.push(format!("set: {}", sets.join(" ")));
     }
-    lines.extend(super::provenance::lines());
+    lines.extend(crate::provenance::lines());
     lines
 }
 

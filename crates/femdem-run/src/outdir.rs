@@ -17,8 +17,8 @@ use std::path::{Component, Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-use super::checkpoint;
-use crate::case::LoadedCase;
+use crate::checkpoint;
+use femdem_case::LoadedCase;
 
 /// The comment line of `history.csv` that names the case (see
 /// `output::history_comments`).

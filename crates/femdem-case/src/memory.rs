@@ -10,7 +10,7 @@
 //! insertion and carry a joint on each interior face, about two per tet;
 //! an unbreakable region keeps its vertices and has no joints. With
 //! `joints_within`, the jointed share `s` of a part's tets is the share of
-//! its volume in the zones (sampled on a grid, `case::zones::sampled_share`;
+//! its volume in the zones (sampled on a grid, `crate::zones::sampled_share`;
 //! exact from the centroids for an MSH part; 1 for a platen part, whose
 //! place is not known before meshing): `4 s T + (1 − s) V` nodes and
 //! `2 s T` joints for `T` tets on `V` vertices.
@@ -26,9 +26,9 @@ use std::path::Path;
 use anyhow::{Result, bail};
 use femdem_core::{Mat3, Vec3};
 
-use crate::case::format::PartSpec;
-use crate::case::zones::{centroid_share, sampled_share, zones_of};
-use crate::case::{self, LoadedCase};
+use crate::LoadedCase;
+use crate::format::PartSpec;
+use crate::zones::{centroid_share, sampled_share, zones_of};
 
 /// Bytes per node after joint insertion: positions in the mesh, the
 /// model's reference and the state (`x0`, `x`, `v`), the gathered internal
@@ -176,7 +176,7 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
                 if lo[0] > hi[0] {
                     return None;
                 }
-                let side = crate::case::mesh::parse_side(side)?;
+                let side = crate::mesh::parse_side(side)?;
                 let axis = side.axis();
                 let others = [(axis + 1) % 3, (axis + 2) % 3];
                 let others = if others[0] < others[1] { others } else { [others[1], others[0]] };
@@ -306,7 +306,7 @@ pub fn refuse_if_too_big(
             bail!("--memory-available must be a number of bytes > 0, got {bytes}");
         }
     }
-    let (Ok(loaded), Some(available)) = (case::load(path, sets), Available::of(memory_available)) else {
+    let (Ok(loaded), Some(available)) = (crate::load(path, sets), Available::of(memory_available)) else {
         return Ok(());
     };
     if let Some(message) = estimate(&loaded).and_then(|e| refusal(path, &e, available, command)) {
@@ -333,15 +333,15 @@ mod tests {
     fn the_estimate_counts_what_the_mesh_holds() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         for (file, tet_tol, joint_tol) in [
-            ("tests/cases/small_brazilian.toml", 0.1, 0.15),
-            ("tests/cases/bad/crushed_cube.toml", 0.0, 0.0),
+            ("../femdem-cli/tests/cases/small_brazilian.toml", 0.1, 0.15),
+            ("../femdem-cli/tests/cases/bad/crushed_cube.toml", 0.0, 0.0),
             ("../../cases/brazilian-split-band.toml", 0.1, 0.15),
         ] {
             let path = root.join(file);
-            let loaded = case::load(&path, &[]).unwrap();
+            let loaded = crate::load(&path, &[]).unwrap();
             let e = estimate(&loaded).expect("the case can be sized");
-            let mesh = case::mesh::build_mesh(&loaded).unwrap();
-            let zone = case::zones::joint_zone(&loaded, &mesh).unwrap();
+            let mesh = crate::mesh::build_mesh(&loaded).unwrap();
+            let zone = crate::zones::joint_zone(&loaded, &mesh).unwrap();
             let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).unwrap();
             let (tets, joints) = (mesh.num_tets() as f64, jointed.joints.len() as f64);
             let rel = |a: f64, b: f64| if b == 0.0 { a } else { (a - b).abs() / b };

@@ -216,7 +216,7 @@ pub fn sampled_share(zones: &[ZoneSpec], lo: [f64; 3], hi: [f64; 3], inside: imp
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::case::format::{BoxSpec, CylinderSpec, SphereSpec};
+    use crate::format::{BoxSpec, CylinderSpec, SphereSpec};
 
     #[test]
     fn zones_contain_their_inside_and_surface() {

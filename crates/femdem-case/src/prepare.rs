@@ -4,7 +4,7 @@ use anyhow::{Result, bail};
 use femdem_mesh::{JointedMesh, TetMesh};
 use femdem_solver::{Solver, SolverError, StableStep, StepParams, contact_omega, held_nodes, stable_time_step};
 
-use crate::case::{self, LoadedCase};
+use crate::LoadedCase;
 
 /// The most steps a run may take (1e9 steps of even a 1000-tet model is
 /// days of computing: more is a unit mistake, not a plan).
@@ -26,12 +26,15 @@ pub struct Prepared {
     /// The mesh before joint insertion.
     pub mesh: TetMesh,
     /// The joint zone: false for the tets that `joints_within` leaves
-    /// without joints (`case::zones::joint_zone`).
+    /// without joints (`crate::zones::joint_zone`).
     pub zone: Vec<bool>,
     /// The mesh with joints.
     pub jointed: JointedMesh,
     /// The solver, its time step set, when the case can run.
     pub run: Option<Runnable>,
+    /// What is legal in the case but probably not meant, one sentence
+    /// each, for the caller to show.
+    pub warnings: Vec<String>,
 }
 
 /// How a run starts (`[solver] start`).
@@ -82,13 +85,13 @@ pub struct Runnable {
     /// What the guard does when contact has given back more than it took,
     /// and the tolerance, a fraction of the run's energy scale (`None`
     /// without contact, or with no check).
-    pub contact_check: Option<(case::setup::ContactCheck, f64)>,
+    pub contact_check: Option<(crate::setup::ContactCheck, f64)>,
     /// `[output]`, resolved and checked.
-    pub output: case::setup::OutputSettings,
+    pub output: crate::setup::OutputSettings,
     /// The load–strain columns, if asked for.
-    pub load_strain: Option<case::setup::LoadStrain>,
+    pub load_strain: Option<crate::setup::LoadStrain>,
     /// The probes of `[[output.probes]]`, placed.
-    pub probes: Vec<case::probes::Probe>,
+    pub probes: Vec<crate::probes::Probe>,
     /// How the run starts.
     pub start: Start,
 }
@@ -99,7 +102,7 @@ pub struct Runnable {
 /// `--threads`) overrides `[solver] threads`; either is set before any
 /// parallel work, meshing included.
 pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) -> Result<Prepared> {
-    let loaded = case::load(path, sets)?;
+    let loaded = crate::load(path, sets)?;
     let from_case = loaded.case.solver.as_ref().and_then(|s| s.get_ref().threads.map(|n| (n, s.span())));
     match (threads, from_case) {
         (Some(0), _) => bail!("--threads must be ≥ 1"),
@@ -114,16 +117,16 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         }
         (None, None) => {}
     }
-    case::zones::check(&loaded)?;
-    let mesh = case::mesh::build_mesh(&loaded)?;
-    let zone = case::zones::joint_zone(&loaded, &mesh)?;
-    let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).map_err(|e| case::CaseError {
+    crate::zones::check(&loaded)?;
+    let mesh = crate::mesh::build_mesh(&loaded)?;
+    let zone = crate::zones::joint_zone(&loaded, &mesh)?;
+    let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).map_err(|e| crate::CaseError {
         path: loaded.path.clone(),
         at: None,
         message: format!("mesh: inserting the joints failed: {e}"),
     })?;
     let Some(spec) = &loaded.case.solver else {
-        return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None });
+        return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None, warnings: Vec::new() });
     };
     let s = spec.get_ref();
     let at = |msg: String| loaded.error_at(spec.span(), format!("solver: {msg}"));
@@ -142,15 +145,16 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             jointed.initial_contacts.len()
         )));
     }
-    let model = case::setup::model(&loaded, &jointed, s.mass_scaling)?;
-    let mut loads = case::setup::loads(&loaded, &jointed, s.gravity)?;
+    let mut warnings = Vec::new();
+    let model = crate::setup::model(&loaded, &jointed, s.mass_scaling, &mut warnings)?;
+    let mut loads = crate::setup::loads(&loaded, &jointed, s.gravity)?;
     if start == Start::Static {
         femdem_static::hold_surface_loads(&mut loads);
     }
-    let load_strain = case::setup::load_strain(&loaded, &loads)?;
+    let load_strain = crate::setup::load_strain(&loaded, &loads)?;
     let held = held_nodes(&model, &loads).map_err(|e| at(e.to_string()))?;
-    let contact = case::setup::contact(&loaded, &jointed)?;
-    let contact_check = case::setup::contact_check(&loaded)?;
+    let contact = crate::setup::contact(&loaded, &jointed)?;
+    let contact_check = crate::setup::contact_check(&loaded)?;
     let mut stable = stable_time_step(&model, &held, POWER_ITERATIONS);
     if let Some(settings) = &contact {
         stable = stable.with_contact(contact_omega(&model, settings.penalty));
@@ -188,8 +192,8 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     let steps = steps as u64;
     let end_time = s.end_time;
     let check_interval = s.check_interval;
-    let output = case::setup::output(&loaded, end_time, &super::output::FIELDS)?;
-    let probes = case::probes::probes(&loaded, &solver.model, &solver.loads)?;
+    let output = crate::setup::output(&loaded, end_time, &crate::setup::FIELDS)?;
+    let probes = crate::probes::probes(&loaded, &solver.model, &solver.loads)?;
     Ok(Prepared {
         case: loaded,
         mesh,
@@ -207,6 +211,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             probes,
             start,
         }),
+        warnings,
     })
 }
 

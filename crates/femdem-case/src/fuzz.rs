@@ -27,7 +27,7 @@ use std::sync::OnceLock;
 use proptest::prelude::*;
 use toml::{Table, Value};
 
-use crate::commands::prepare::{MAX_THREADS, prepare};
+use crate::prepare::{MAX_THREADS, prepare};
 
 /// Where a value sits: keys and array indices from the root.
 #[derive(Clone, Debug)]

@@ -1,5 +1,5 @@
 //! Records the commit the binary is built from, for the provenance lines of
-//! every history header and run summary (`commands/provenance.rs`):
+//! every history header and run summary (`src/provenance.rs`):
 //! `FEMDEM_COMMIT`, the short hash with `-dirty` when the work tree has
 //! changes, or `unknown` outside a git checkout (a source tarball, a
 //! machine without git). Nothing fails for want of git.

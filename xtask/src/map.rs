@@ -234,9 +234,16 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
+/// `n` points drawn uniformly in the rectangle `lo`–`hi` from `seed`: the
+/// baseline a placement "near the sites" has to beat.
+pub fn uniform_points(n: usize, lo: [f64; 2], hi: [f64; 2], seed: u64) -> Vec<[f64; 2]> {
+    let mut rng = Rng::new(seed);
+    (0..n).map(|_| [rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1])]).collect()
+}
+
 #[cfg(test)]
 mod tests {
-    use super::layered_map;
+    use super::{layered_map, uniform_points};
 
     #[test]
     fn the_same_seed_gives_the_same_map_and_another_seed_another() {
@@ -273,5 +280,16 @@ mod tests {
     fn the_default_map_is_the_shipped_stand_in() {
         let shipped = std::fs::read_to_string(crate::root().join("cases/paper/multilayer-map.txt")).unwrap();
         assert_eq!(layered_map(1, 1.5, 1.5, None), shipped);
+    }
+
+    #[test]
+    fn uniform_points_cover_the_rectangle_evenly_and_repeat_with_the_seed() {
+        let p = uniform_points(20_000, [0.0, 0.0], [2.0, 1.0], 7);
+        assert_eq!(p, uniform_points(20_000, [0.0, 0.0], [2.0, 1.0], 7));
+        assert!(p.iter().all(|q| (0.0..2.0).contains(&q[0]) && (0.0..1.0).contains(&q[1])));
+        // A disc of radius 0.25 around the centre holds π/32 of the area;
+        // the binomial standard error at n = 20,000 is 0.0018.
+        let share = femdem_post::tips::share_within(&p, &[[1.0, 0.5]], 0.25);
+        assert!((share - std::f64::consts::PI / 32.0).abs() < 0.006, "{share}");
     }
 }

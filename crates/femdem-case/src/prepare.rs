@@ -117,14 +117,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         }
         (None, None) => {}
     }
-    crate::zones::check(&loaded)?;
-    let mesh = crate::mesh::build_mesh(&loaded)?;
-    let zone = crate::zones::joint_zone(&loaded, &mesh)?;
-    let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).map_err(|e| crate::CaseError {
-        path: loaded.path.clone(),
-        at: None,
-        message: format!("mesh: inserting the joints failed: {e}"),
-    })?;
+    let (mesh, zone, jointed) = jointed(&loaded)?;
     let Some(spec) = &loaded.case.solver else {
         return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None, warnings: Vec::new() });
     };
@@ -213,6 +206,26 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         }),
         warnings,
     })
+}
+
+/// The case's mesh, its joint zone (false for the tets that
+/// `joints_within` leaves without joints) and the mesh with its joints:
+/// what a run of the case is built on, and what its `failures.csv` joint
+/// indices index (for `femdem_post::fragments`).
+///
+/// # Errors
+/// A located [`crate::CaseError`] for a bad zone or mesh, or when joint
+/// insertion fails.
+pub fn jointed(loaded: &LoadedCase) -> Result<(TetMesh, Vec<bool>, JointedMesh), crate::CaseError> {
+    crate::zones::check(loaded)?;
+    let mesh = crate::mesh::build_mesh(loaded)?;
+    let zone = crate::zones::joint_zone(loaded, &mesh)?;
+    let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).map_err(|e| crate::CaseError {
+        path: loaded.path.clone(),
+        at: None,
+        message: format!("mesh: inserting the joints failed: {e}"),
+    })?;
+    Ok((mesh, zone, jointed))
 }
 
 /// The static start: solves for the equilibrium of `solver`'s model under

@@ -75,7 +75,7 @@ enum Command {
         stop_after_steps: Option<u64>,
         /// For tests: the checkpoint of step N stops between writing its
         /// temporary file and renaming it, for a test to kill the run
-        /// there (`commands/checkpoint.rs`, `PAUSED`).
+        /// there (`femdem_run::checkpoint::PAUSED`).
         #[arg(long, value_name = "N", hide = true)]
         pause_checkpoint: Option<u64>,
         /// For tests: seconds of wall time between plain progress lines

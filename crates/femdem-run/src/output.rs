@@ -9,15 +9,13 @@ use femdem_solver::{Solver, StepRecord};
 use femdem_vtk::{Compression, Field, Frame, HistoryWriter, SeriesWriter, VtuOptions};
 
 use femdem_case::setup::FIELDS;
+use femdem_post::columns::{BROKEN, CONTACT, ENERGY, FAILURES};
 
 use crate::checkpoint::Marks;
 use crate::outdir::CASE_COMMENT;
 use femdem_case::LoadedCase;
 use femdem_case::probes::Probe;
 use femdem_case::setup::LoadStrain;
-
-/// The columns of `failures.csv`.
-const FAILURE_COLUMNS: [&str; 7] = ["time", "joint", "x", "y", "z", "area", "mode"];
 
 /// Fails unless every field is one of [`FIELDS`].
 fn check_fields(fields: &[String]) -> Result<()> {
@@ -50,47 +48,6 @@ pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     lines
 }
 
-/// The energy columns of `history.csv`, J, in order (after `time` and
-/// `step`).
-pub const ENERGY_COLUMNS: [&str; 9] = [
-    "kinetic",
-    "tet_elastic",
-    "joint_elastic",
-    "damping",
-    "fracture",
-    "contact",
-    "friction",
-    "external_work",
-    "balance",
-];
-
-/// Contact's own columns, with `[contact]`: `contact_normal`, the work the
-/// normal contact forces have absorbed up to `t_n` (J; `contact` less what
-/// the friction springs hold, with `contact_handed` counted as absorbed:
-/// negative when contact has given back more energy than it took and the
-/// failed joints held — a conservative force would return to zero after
-/// a closed cycle; Eq. 17's leaves a residual, `docs/fidelity.md`),
-/// `contact_springs`, the elastic energy the friction springs hold (J),
-/// `contact_pairs`, the pairs in contact at the step, `contact_released`,
-/// the work done on the bodies by the normal forces of the pairs that
-/// started overlapped while they stayed in contact (J; the energy their
-/// initial overlap gave back, `[contact] activation`), `contact_handed`,
-/// the part of it the failed joints' compression supplied (J; at most the
-/// compression energy they held when they failed,
-/// `ContactEnergy::handed`: moved from `fracture` to `contact`),
-/// `contact_started`, how many such pairs are in contact, and
-/// `contact_depth_max`, the deepest overlap of a pair in contact over the
-/// element's shortest altitude (`Contact::deepest_overlap`).
-pub const CONTACT_COLUMNS: [&str; 7] = [
-    "contact_normal",
-    "contact_springs",
-    "contact_pairs",
-    "contact_released",
-    "contact_handed",
-    "contact_started",
-    "contact_depth_max",
-];
-
 /// What the history records besides the energies and the loads' forces.
 #[derive(Clone, Debug, Default)]
 pub struct Recorded {
@@ -101,21 +58,17 @@ pub struct Recorded {
 }
 
 /// The columns of `history.csv`: energies and failure counts, with contact
-/// its own columns ([`CONTACT_COLUMNS`]), each drive's force, displacement
+/// its own columns ([`CONTACT`]), each drive's force, displacement
 /// and work, each surface load's force and work, the load–strain pair when
 /// asked for, and each probe's twelve columns.
 fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
-    let mut columns: Vec<String> = ["time", "step"]
-        .iter()
-        .chain(&ENERGY_COLUMNS)
-        .chain(&["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"])
-        .map(|s| s.to_string())
-        .collect();
+    let mut columns: Vec<String> =
+        ["time", "step"].iter().chain(&ENERGY).chain(&BROKEN).map(|s| s.to_string()).collect();
     if !solver.model.joints.is_empty() {
         columns.push("fracture_gf_area".into());
     }
     if solver.contact().is_some() {
-        columns.extend(CONTACT_COLUMNS.map(String::from));
+        columns.extend(CONTACT.map(String::from));
     }
     for d in &solver.loads.drives {
         columns.extend(["fx", "fy", "fz", "ux", "uy", "uz", "work"].map(|c| format!("{}_{c}", d.name)));
@@ -231,13 +184,13 @@ impl Output {
                     &comments.iter().map(String::as_str).collect::<Vec<_>>(),
                     &names,
                 )?,
-                HistoryWriter::create(&failures_path, &FAILURE_COLUMNS)?,
+                HistoryWriter::create(&failures_path, &FAILURES)?,
             ),
             Begin::Resumed(m) => (
                 SeriesWriter::resume(dir, stem, &m.frames)?,
                 SeriesWriter::resume(dir, &fracture_stem, &m.fracture_frames)?,
                 HistoryWriter::resume(&history_path, &names, m.history_len)?,
-                HistoryWriter::resume(&failures_path, &FAILURE_COLUMNS, m.failures_len)?,
+                HistoryWriter::resume(&failures_path, &FAILURES, m.failures_len)?,
             ),
         };
         let (series, fractures) = (series.with_options(options), fractures.with_options(options));

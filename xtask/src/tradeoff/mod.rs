@@ -120,7 +120,7 @@ pub fn run(args: Args) -> Result<()> {
             vs_reference: o.peak / p_ref - 1.0,
             error: (o.peak / p_anchor - 1.0).abs(),
             on_diameter: o.on_diameter(),
-            central_tensile: o.central(base.disc).share(1),
+            central_tensile: o.central(base.disc.geometry()).share(femdem_post::failures::FailureMode::Tensile),
             modes: o.modes().text(),
             energy_error: o.energy_error,
             passed_peak: o.passed_peak,

@@ -32,14 +32,12 @@
 //! (`runner.rs`), so an interrupted validation resumes where it stopped.
 
 pub(crate) mod brazilian;
-pub(crate) mod failures;
-pub(crate) mod history;
+pub(crate) mod colours;
 mod multilayer;
 pub(crate) mod plot;
 mod polyaxial;
 mod report;
 pub(crate) mod runner;
-mod vtu;
 
 use std::path::PathBuf;
 use std::time::Instant;

@@ -64,6 +64,8 @@ pub struct RunOutput {
     pub dir: PathBuf,
     /// The case file's stem (the frames are `<stem>_*.vtu`).
     pub stem: String,
+    /// The case file the run ran.
+    pub case: PathBuf,
     /// Wall time of the run, s (of the earlier run when reused), summed
     /// over its attempts when it was resumed.
     pub wall: f64,
@@ -83,6 +85,34 @@ impl RunOutput {
             (false, n) => format!(" (resumed {n}×)"),
         }
     }
+}
+
+impl RunOutput {
+    /// The pieces the run's breakable regions had broken into at its end
+    /// (`femdem_post::fragments` on the case's jointed mesh, rebuilt by
+    /// the case library, and the joints of `failures.csv`), largest first.
+    pub fn fragments(&self) -> Result<Vec<femdem_post::fragments::Fragment>> {
+        let loaded = femdem_case::load(&self.case, &[])?;
+        let (_, _, jointed) = femdem_case::prepare::jointed(&loaded)?;
+        let failed = femdem_post::failures::Failure::read_all(&self.dir)?;
+        let m = &jointed.mesh;
+        let breakable = |t: u32| m.regions[usize::from(m.tet_region[t as usize])].breakable;
+        Ok(femdem_post::fragments::fragments(&jointed, failed.iter().map(|f| f.joint), breakable))
+    }
+}
+
+/// One line on `fragments`: how many, and the shares of the volume the
+/// largest two hold.
+pub fn fragments_line(fragments: &[femdem_post::fragments::Fragment]) -> String {
+    let total: f64 = fragments.iter().map(|f| f.volume).sum::<f64>().max(f64::MIN_POSITIVE);
+    let share = |i: usize| fragments.get(i).map_or(0.0, |f| 100.0 * f.volume / total);
+    format!(
+        "{} fragments of the breakable regions at the end (connected pieces: femdem_post::fragments); the largest \
+         holds {:.1}% of their volume, the second {:.1}%",
+        fragments.len(),
+        share(0),
+        share(1)
+    )
 }
 
 /// The bookkeeping files of a run directory.
@@ -123,11 +153,9 @@ impl Files {
 /// complete and belongs to the case).
 pub fn has_checkpoint(out: &Path) -> bool {
     std::fs::read_dir(out).is_ok_and(|entries| {
-        entries.filter_map(|e| e.ok()).any(|e| {
-            let name = e.file_name();
-            let name = name.to_string_lossy();
-            name.starts_with("checkpoint_") && name.ends_with(".femdem-ckpt")
-        })
+        entries
+            .filter_map(|e| e.ok())
+            .any(|e| femdem_run::checkpoint::is_checkpoint_name(&e.file_name().to_string_lossy()))
     })
 }
 
@@ -210,7 +238,7 @@ impl Femdem {
         if let Some(wall) = done {
             eprintln!("validate: reusing the finished run in {}", dir.display());
             let (_, resumed) = files.elapsed();
-            return Ok(RunOutput { dir: files.out, stem: stem.into(), wall, reused: true, resumed });
+            return Ok(RunOutput { dir: files.out, stem: stem.into(), case: files.case, wall, reused: true, resumed });
         }
         let _ = std::fs::remove_file(&files.finished);
         let resume = same && has_checkpoint(&files.out);
@@ -224,6 +252,9 @@ impl Femdem {
             std::fs::OpenOptions::new().append(true).create(true).open(&files.log)?
         } else {
             std::fs::write(&files.case, &case)?;
+            // A generator's mistake names its line and key here, before a
+            // femdem starts (the same reader femdem runs it with).
+            femdem_case::load(&files.case, &[]).context("validate generated a case femdem cannot read")?;
             eprintln!("validate: femdem run {}", files.case.display());
             command.arg("--overwrite");
             std::fs::File::create(&files.log)?
@@ -252,7 +283,7 @@ impl Femdem {
             bail!("femdem run {} failed ({status}); see {}{hint}", files.case.display(), files.log.display());
         }
         std::fs::write(&files.finished, format!("{wall}\n"))?;
-        Ok(RunOutput { dir: files.out, stem: stem.into(), wall, reused: false, resumed: resumes })
+        Ok(RunOutput { dir: files.out, stem: stem.into(), case: files.case, wall, reused: false, resumed: resumes })
     }
 }
 
@@ -345,7 +376,13 @@ mod tests {
         std::fs::read_to_string(dir.join("calls")).unwrap_or_default().lines().map(String::from).collect()
     }
 
-    const CASE: &str = "# generated\n[solver]\nend_time = 1.0\n";
+    /// A case the case library reads (the stand-in femdem does not run it).
+    const CASE: &str = include_str!("../../../crates/femdem-cli/tests/cases/small_brazilian.toml");
+
+    /// `CASE` with another end time.
+    fn changed(end_time: &str) -> String {
+        CASE.replacen("end_time = 2.0e-4", &format!("end_time = {end_time}"), 1)
+    }
 
     #[test]
     fn an_interrupted_run_is_resumed_then_reused_and_a_changed_case_starts_over() {
@@ -382,12 +419,11 @@ mod tests {
         assert!(again.reused && again.provenance() == " (reused)");
         assert_eq!(again.wall, out.wall);
 
-        let changed = CASE.replace("1.0", "2.0");
-        let fresh = femdem.run(&run_dir, "case", &changed).unwrap();
+        let fresh = femdem.run(&run_dir, "case", &changed("3.0e-4")).unwrap();
         assert!(calls(&dir)[3].ends_with("--overwrite"), "{:?}", calls(&dir));
         assert_eq!((fresh.reused, fresh.resumed), (false, 0));
-        let written = std::fs::read_to_string(run_dir.join("case.toml")).unwrap();
-        assert!(written.contains("end_time = 2.0"), "{written}");
+        let written: Table = std::fs::read_to_string(run_dir.join("case.toml")).unwrap().parse().unwrap();
+        assert_eq!(written["solver"]["end_time"].as_float(), Some(3.0e-4), "{written}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -399,7 +435,7 @@ mod tests {
         std::fs::write(dir.join("interrupt"), "").unwrap();
         assert!(femdem.run(&run_dir, "case", CASE).is_err());
         std::fs::remove_file(dir.join("interrupt")).unwrap();
-        let out = femdem.run(&run_dir, "case", &CASE.replace("1.0", "3.0")).unwrap();
+        let out = femdem.run(&run_dir, "case", &changed("3.0e-4")).unwrap();
         assert!(calls(&dir)[1].ends_with("--overwrite"), "{:?}", calls(&dir));
         assert_eq!(out.resumed, 0);
         let _ = std::fs::remove_dir_all(&dir);
@@ -454,8 +490,20 @@ mod tests {
     }
 
     #[test]
+    fn a_generated_case_femdem_cannot_read_is_refused_with_its_line_before_femdem_runs() {
+        let dir = scratch("unreadable");
+        let femdem = stand_in(&dir);
+        let bad = CASE.replacen("end_time = 2.0e-4", "end_time = 2.0e-4\nend_tme = 1.0", 1);
+        let err = format!("{:#}", femdem.run(&dir.join("v1"), "case", &bad).unwrap_err());
+        assert!(err.contains("validate generated a case femdem cannot read") && err.contains("end_tme"), "{err}");
+        assert!(calls(&dir).is_empty(), "femdem was not started");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
     fn every_case_checkpoints_on_the_wall_clock_unless_it_says_otherwise() {
-        let with = with_checkpoints(CASE).unwrap();
+        let generated = "# generated\n[solver]\nend_time = 1.0\n";
+        let with = with_checkpoints(generated).unwrap();
         assert!(with.starts_with("# generated\n"), "{with}");
         let table: Table = with.parse().unwrap();
         assert_eq!(table["output"]["checkpoint"]["interval_wall"].as_float(), Some(CHECKPOINT_WALL));

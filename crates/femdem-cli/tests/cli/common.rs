@@ -22,26 +22,21 @@ pub fn history_csv(dir: &Path) -> String {
     text.lines().skip_while(|l| l.starts_with('#')).map(|l| format!("{l}\n")).collect()
 }
 
-/// The `history.csv` in `dir` as numbers: its column names and its rows.
-pub struct History {
-    /// The column names, in order.
-    pub header: Vec<String>,
-    /// One row of values per recorded step.
-    pub rows: Vec<Vec<f64>>,
+pub use femdem_post::table::Table;
+
+/// The `history.csv` in `dir`, read by `femdem_post` (as `femdem plot` and
+/// the validation read it).
+pub fn history(dir: &Path) -> Table {
+    Table::history(dir).expect("read history.csv")
 }
 
-impl History {
-    /// Reads the history of the run written to `dir`.
-    pub fn read(dir: &Path) -> History {
-        let text = history_csv(dir);
-        let mut lines = text.lines();
-        let header = lines.next().expect("a header").split(',').map(str::to_owned).collect();
-        let rows = lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
-        History { header, rows }
-    }
+/// The index of column `name` of `table`; panics naming it when there is
+/// none.
+pub fn col(table: &Table, name: &str) -> usize {
+    table.index(name).unwrap_or_else(|e| panic!("{e}"))
+}
 
-    /// The index of the column `name`; panics naming it when there is none.
-    pub fn col(&self, name: &str) -> usize {
-        self.header.iter().position(|c| c == name).unwrap_or_else(|| panic!("no column {name}"))
-    }
+/// How many joints `failures.csv` in `dir` lists, read by `femdem_post`.
+pub fn failures(dir: &Path) -> usize {
+    femdem_post::failures::Failure::read_all(dir).expect("read failures.csv").len()
 }

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::common::{femdem, history_csv, root};
+use crate::common::{femdem, history, history_csv, root};
 
 /// The bundled bar case with `probes` (TOML text) appended, written to a
 /// fresh folder of the test's own; returns the case path and an output
@@ -41,15 +41,14 @@ fn a_probe_records_the_p_wave_passing_mid_bar() {
     );
     let o = femdem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let text = history_csv(&out);
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    let table = history(&out);
+    let header: Vec<&str> = table.columns.iter().map(String::as_str).collect();
+    let rows = &table.rows;
     let (t, vz, szz, uz) = (
-        column(&header, &rows, "time"),
-        column(&header, &rows, "mid_vz"),
-        column(&header, &rows, "mid_szz"),
-        column(&header, &rows, "mid_uz"),
+        column(&header, rows, "time"),
+        column(&header, rows, "mid_vz"),
+        column(&header, rows, "mid_szz"),
+        column(&header, rows, "mid_uz"),
     );
     let (e, nu, rho, v0): (f64, f64, f64, f64) = (26.0e9, 0.2, 2340.0, 0.1);
     let c = (e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)) / rho).sqrt();
@@ -77,7 +76,7 @@ fn a_probe_records_the_p_wave_passing_mid_bar() {
         assert!((u - u_exact).abs() < 0.05 * u_exact, "displacement {u:e} m after the pulse against {u_exact:e}");
     }
     // The probe at the piston's face moves with the piston's nodes.
-    let (end, piston) = (column(&header, &rows, "end_uz"), column(&header, &rows, "piston_uz"));
+    let (end, piston) = (column(&header, rows, "end_uz"), column(&header, rows, "piston_uz"));
     for (a, b) in end.iter().zip(&piston) {
         assert!((a - b).abs() <= 1e-9 * b.abs().max(1e-12), "end probe {a:e} m, piston {b:e} m");
     }

@@ -4,7 +4,7 @@
 //! joints start failing at step ~760, they count up to the number of rows
 //! of `failures.csv`, and the last line's load is the last history row's.
 
-use crate::common::{history_csv, root};
+use crate::common::{col, failures, history, root};
 use std::path::Path;
 use std::process::Command;
 
@@ -33,14 +33,12 @@ fn progress_lines_carry_the_failed_joints_and_the_load() {
         .collect();
     assert!(lines.len() > 1000, "a line per step: {}", lines.len());
     assert!(lines.windows(2).all(|w| w[0].0 <= w[1].0), "the failure count never falls");
-    let failures = std::fs::read_to_string(out.join("failures.csv")).unwrap().lines().count() - 1;
+    let failures = failures(&out);
     let (failed, load) = *lines.last().unwrap();
     assert!(failures > 0);
     assert_eq!(failed, failures, "the last line counts every failure");
-    let history = history_csv(&out);
-    let header: Vec<&str> = history.lines().next().unwrap().split(',').collect();
-    let col = header.iter().position(|c| *c == "load").unwrap();
-    let last: f64 = history.lines().last().unwrap().split(',').nth(col).unwrap().parse().unwrap();
+    let history = history(&out);
+    let last = history.rows.last().unwrap()[col(&history, "load")];
     // The line prints 5 significant digits.
     assert!((load - last).abs() <= 1e-4 * last.abs(), "load {load} on the line, {last} in the history");
     let peak = lines.iter().map(|l| l.1).fold(0.0, f64::max);

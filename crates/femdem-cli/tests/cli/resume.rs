@@ -10,7 +10,7 @@
 //! run killed with SIGKILL while it writes a checkpoint (Unix); and a
 //! checkpoint is refused to another case, naming both.
 
-use crate::common::{femdem, history_csv, root};
+use crate::common::{col, failures, femdem, history, root};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -70,10 +70,7 @@ fn stop_after(case: &str, out: &Path, steps: u64) -> (Vec<Vec<f64>>, usize) {
     assert!(!o.status.success(), "a stopped run exits non-zero");
     assert!(stderr.contains("interrupted") && stderr.contains("--resume"), "{stderr}");
     assert!(out.join(format!("checkpoint_{steps:012}.femdem-ckpt")).is_file(), "no checkpoint of step {steps}");
-    let history = history_csv(out);
-    let rows = history.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
-    let failures = std::fs::read_to_string(out.join("failures.csv")).unwrap().lines().count() - 1;
-    (rows, failures)
+    (history(out).rows, failures(out))
 }
 
 fn resume(case: &str, dir: &Path) -> std::process::Output {
@@ -86,8 +83,7 @@ fn a_run_stopped_and_resumed_ends_identical_to_an_uninterrupted_one() {
     let (rows, failures) = stop_after(CASE, &out, 1000);
     // Fracture and contact were both at work before the stop: joints had
     // failed, and the contact energy was not zero.
-    let header = history_csv(&out);
-    let contact = header.lines().next().unwrap().split(',').position(|c| c == "contact").unwrap();
+    let contact = col(&history(&out), "contact");
     assert!(failures > 0, "no joint failed before the stop");
     assert!(rows.last().unwrap()[contact] != 0.0, "no contact work before the stop");
     let o = resume(CASE, &out);

@@ -3,7 +3,7 @@
 //! whose energy account balances; bad solver settings are refused with the
 //! estimate or the parameter named.
 
-use crate::common::{History, femdem, history_csv, root};
+use crate::common::{col, femdem, history, root};
 use std::path::Path;
 use std::process::Command;
 
@@ -24,14 +24,11 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
         assert!(out.join(f).is_file(), "{f} listed but missing");
     }
 
-    let history = history_csv(&out);
-    let mut lines = history.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    for col in ["time", "kinetic", "tet_elastic", "external_work", "balance", "piston_fz"] {
-        assert!(header.contains(&col), "missing column {col}");
+    let history = history(&out);
+    for name in ["time", "kinetic", "tet_elastic", "external_work", "balance", "piston_fz"] {
+        assert!(history.columns.iter().any(|c| c == name), "missing column {name}");
     }
-    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let (rows, col) = (&history.rows, |name: &str| col(&history, name));
     assert!(rows.len() > 100);
     let last = rows.last().unwrap();
     let work = last[col("external_work")];
@@ -77,20 +74,20 @@ fn contact_that_gives_back_energy_is_stopped_or_warned() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let err = String::from_utf8(o.stderr).unwrap();
     assert_eq!(err.matches("femdem: warning ([contact] energy_check = \"warn\"").count(), 1, "{err}");
-    let history = History::read(&out);
-    let last = history.rows.last().unwrap();
-    assert!(last[history.col("contact_released")] > 0.0 && last[history.col("contact_normal")] < 0.0);
+    let warned = history(&out);
+    let last = warned.rows.last().unwrap();
+    assert!(last[col(&warned, "contact_released")] > 0.0 && last[col(&warned, "contact_normal")] < 0.0);
     let (o, _) = run("contact-guard-settle", &[tolerance]);
     assert!(o.status.success(), "the default settling start: {}", String::from_utf8_lossy(&o.stderr));
     let (o, out) = run("contact-guard-offset", &["contact.activation=\"offset\"", tolerance]);
     assert!(o.status.success() && !String::from_utf8_lossy(&o.stderr).contains("warning"));
-    let history = History::read(&out);
-    let (released, started) = (history.col("contact_released"), history.col("contact_started"));
+    let history = history(&out);
+    let (released, started) = (col(&history, "contact_released"), col(&history, "contact_started"));
     assert!(history.rows.iter().all(|r| r[started] == r[started].round() && r[started] >= 0.0));
     assert!(history.rows.iter().any(|r| r[started] > 0.0), "failed joints start pairs overlapped");
     // What the offset pairs give back is at most the closed-cycle residual
     // of what they took: measured at most 1e-5 J here, 0.02% of the work.
-    let work = history.rows.last().unwrap()[history.col("external_work")];
+    let work = history.rows.last().unwrap()[col(&history, "external_work")];
     assert!(history.rows.iter().all(|r| r[released] <= 1e-3 * work), "the offset start gives back nothing");
 }
 
@@ -147,11 +144,8 @@ fn a_run_past_its_energy_tolerance_is_stopped_with_its_state_written() {
     assert!(err.contains("the state at that point was written to"), "{err}");
     let pvd = std::fs::read_to_string(out.join("elastic-bar.pvd")).unwrap();
     assert!(pvd.matches("file=\"").count() >= 2, "the state at the stop must be written: {pvd}");
-    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
-    let mut lines = history.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let history = history(&out);
+    let (rows, col) = (&history.rows, |name: &str| col(&history, name));
     let (first, last) = (&rows[0], rows.last().unwrap());
     assert_eq!(last[col("step")], 99.0, "the history ends on the checked step's row");
     let work = last[col("external_work")];
@@ -236,11 +230,9 @@ fn pulled_bar_writes_its_crack_and_closes_its_energy_account() {
     let cells: usize = vtu.split("NumberOfCells=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
     assert!(cells >= 16, "the crack has {cells} faces");
 
-    let history = history_csv(&out);
-    let mut lines = history.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
-    let last: Vec<f64> = lines.last().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+    let history = history(&out);
+    let col = |name: &str| col(&history, name);
+    let last = history.rows.last().unwrap();
     let broken = last[col("broken_tensile")] + last[col("broken_shear")] + last[col("broken_mixed")];
     assert_eq!(broken as usize, cells);
     let work = last[col("external_work")];
@@ -281,8 +273,8 @@ fn a_guard_stop_writes_the_stopped_steps_stresses() {
     let o = femdem(&["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert!(!o.status.success(), "the guard must stop this run");
     assert!(String::from_utf8_lossy(&o.stderr).contains("the run guard stopped the run"));
-    let history = History::read(&out);
-    let (t, szz) = (history.col("time"), history.col("mid_szz"));
+    let history = history(&out);
+    let (t, szz) = (col(&history, "time"), col(&history, "mid_szz"));
     let last = history.rows.last().unwrap();
     assert!(history.rows.len() >= 2 && last[t] > 0.0, "the stop adds a row: {} rows", history.rows.len());
     // Crushed at 200 m/s for dozens of steps: the centre is in compression
@@ -337,8 +329,8 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
     let stdout = String::from_utf8(o.stdout).unwrap();
     assert!(stdout.contains("ended       past the peak"), "{stdout}");
 
-    let history = History::read(&out);
-    let (rows, col) = (&history.rows, |name: &str| history.col(name));
+    let history = history(&out);
+    let (rows, col) = (&history.rows, |name: &str| col(&history, name));
     let peak = rows.iter().map(|r| r[col("load")]).fold(f64::MIN, f64::max);
     let last = rows.last().unwrap();
     assert!(last[col("load")] < 0.5 * peak, "last load {} vs peak {peak}", last[col("load")]);
@@ -399,8 +391,8 @@ fn negative_pressure_pulls_on_its_side_only() {
     let _ = std::fs::remove_dir_all(&out);
     let o = femdem(&["run", "crates/femdem-cli/tests/cases/tensile_pressure.toml", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let history = History::read(&out);
-    let (rows, col) = (&history.rows, |name: &str| history.col(name));
+    let history = history(&out);
+    let (rows, col) = (&history.rows, |name: &str| col(&history, name));
     let last = rows.last().unwrap();
     assert!(last[col("time")] > 1.0e-5, "the ramp is over");
     let f = [col("block.xmax_fx"), col("block.xmax_fy"), col("block.xmax_fz")].map(|c| last[c]);
@@ -459,8 +451,8 @@ fn a_pressure_stopped_and_a_face_held_from_the_same_time() {
     let case = "crates/femdem-cli/tests/cases/hold_after_ramp.toml";
     let o = femdem(&["run", case, "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let history = History::read(&out);
-    let (rows, col) = (&history.rows, |name: &str| history.col(name));
+    let history = history(&out);
+    let (rows, col) = (&history.rows, |name: &str| col(&history, name));
     let (t_s, t) = (2e-3, col("time"));
     let before: Vec<&Vec<f64>> = rows.iter().filter(|r| r[t] < 0.99 * t_s).collect();
     let after: Vec<&Vec<f64>> = rows.iter().filter(|r| r[t] > t_s).collect();
@@ -495,8 +487,8 @@ fn the_contact_model_flag_picks_the_model_or_refuses() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     assert!(err.contains("contact model `gradient`"), "{err}");
-    let history = History::read(&out.join("gradient"));
-    let pairs = history.col("contact_pairs");
+    let history = history(&out.join("gradient"));
+    let pairs = col(&history, "contact_pairs");
     assert!(history.rows.iter().any(|r| r[pairs] > 0.0), "the platens touch");
     let o = args("clipped", "bad");
     let err = String::from_utf8_lossy(&o.stderr);

@@ -7,12 +7,10 @@
 use crate::common::{femdem, history_csv, root};
 use std::path::Path;
 
-/// The history's rows by column name.
+/// The history's column names and rows (`femdem_post`).
 fn history(dir: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = history_csv(dir);
-    let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(str::to_string).collect();
-    (header, lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect())
+    let t = crate::common::history(dir);
+    (t.columns, t.rows)
 }
 
 /// The cube's surface loads are held from the first row, the body is at

@@ -1,144 +1,38 @@
-//! What one Brazilian run measured: the load–strain curve and its peak
-//! (Eq. 21–23), the energy account, and where and how joints failed.
+//! What one Brazilian run measured, with the run it came from: the
+//! measurement itself (the load–strain curve and its peak, Eq. 21–23, the
+//! energy account, where and how joints failed) is
+//! `femdem_post::brazilian::Measured`, which this derefs to.
+
+use std::ops::Deref;
 
 use anyhow::Result;
+use femdem_post::brazilian::Measured;
+pub use femdem_post::brazilian::{BAND, DROP};
 
 use super::case::Disc;
-use crate::validate::failures::{Failure, Modes};
-use crate::validate::history::Table;
 use crate::validate::runner::RunOutput;
 
-/// Half-width of the band around the loaded diameter that counts as "on
-/// the diameter" (the issue's 5 mm), m.
-pub const BAND: f64 = 5.0e-3;
-
-/// Relative fall of the load that marks a load drop (a crushing event or
-/// the split): 5%, well above the few-per-mille ripple of the curves.
-pub const DROP: f64 = 0.05;
-
-/// The first local maximum of `load` after which the load falls by more
-/// than `drop` of it (ignoring maxima below a tenth of the largest load,
-/// the start-up ripple): its row. `None` when the load never drops so far.
-pub fn first_drop(load: &[f64], drop: f64) -> Option<usize> {
-    let floor = 0.1 * load.iter().copied().fold(0.0, f64::max);
-    let mut top = 0;
-    for (i, &f) in load.iter().enumerate() {
-        if f > load[top] {
-            top = i;
-        }
-        if load[top] > floor && f < (1.0 - drop) * load[top] {
-            return Some(top);
-        }
-    }
-    None
-}
-
-/// The measured outcome of one run.
+/// The measured outcome of one run, with its files.
 #[derive(Debug, Clone)]
 pub struct Outcome {
     /// The run's files.
     pub run: RunOutput,
-    /// Time of every history row, s.
-    pub time: Vec<f64>,
-    /// `(ε_yy, F)` of every history row (Eq. 22, Eq. 21).
-    pub curve: Vec<(f64, f64)>,
-    /// Peak load F, N.
-    pub peak: f64,
-    /// Time of the peak, s.
-    pub peak_time: f64,
-    /// Indirect tensile strength of Eq. 23 at the peak, Pa.
-    pub f_bt: f64,
-    /// Whether the load fell below 90% of the peak afterwards (the peak was
-    /// passed, not cut off by the end time).
-    pub passed_peak: bool,
-    /// The first load drop of [`DROP`] (Eq. 21's F before it, N, and its
-    /// time, s): the first crushing event under a platen when that comes
-    /// before the split.
-    pub first_drop: Option<(f64, f64)>,
-    /// Largest |balance| / external work once the work reached 10% of its
-    /// final value.
-    pub energy_error: f64,
-    /// Every joint failure.
-    pub failures: Vec<Failure>,
-    /// Steps taken.
-    pub steps: f64,
+    /// What it measured.
+    pub measured: Measured,
 }
 
 impl Outcome {
-    /// Reads a finished run.
+    /// Reads a finished run of `disc`.
     pub fn read(run: RunOutput, disc: Disc) -> Result<Outcome> {
-        let h = Table::read(&run.dir.join("history.csv"))?;
-        let (time, load, strain) = (h.col("time")?, h.col("load")?, h.col("strain")?);
-        let energy_error = h.energy_error()?;
-        let curve: Vec<(f64, f64)> = strain.iter().copied().zip(load.iter().copied()).collect();
-        let (ipk, peak) =
-            load.iter().copied().enumerate().fold((0, f64::NEG_INFINITY), |a, (i, f)| if f > a.1 { (i, f) } else { a });
-        let passed_peak = load[ipk..].iter().any(|&f| f < 0.9 * peak);
-        let failures = Failure::read_all(&run.dir)?;
-        let first_drop = first_drop(&load, DROP).map(|i| (load[i], time[i]));
-        Ok(Outcome {
-            first_drop,
-            run,
-            peak_time: time[ipk],
-            time,
-            curve,
-            peak,
-            f_bt: 2.0 * peak / (std::f64::consts::PI * disc.diameter * disc.thickness),
-            passed_peak,
-            energy_error,
-            failures,
-            steps: h.col("step")?.last().copied().unwrap_or(0.0),
-        })
-    }
-
-    /// The load F at the history row nearest time `t`, N.
-    pub fn load_at(&self, t: f64) -> f64 {
-        let i =
-            self.time.iter().enumerate().min_by(|a, b| (a.1 - t).abs().total_cmp(&(b.1 - t).abs())).map_or(0, |x| x.0);
-        self.curve.get(i).map_or(0.0, |c| c.1)
-    }
-
-    /// The first failure, if any.
-    pub fn first_failure(&self) -> Option<&Failure> {
-        self.failures.iter().min_by(|a, b| a.time.total_cmp(&b.time))
-    }
-
-    /// Share of failures within [`BAND`] of the loaded diameter (x = 0).
-    pub fn on_diameter(&self) -> f64 {
-        let n = self.failures.iter().filter(|f| f.at[0].abs() < BAND).count();
-        n as f64 / self.failures.len().max(1) as f64
-    }
-
-    /// Modes of the central fracture: on the diameter band and within half
-    /// the radius of the centre along it.
-    pub fn central(&self, disc: Disc) -> Modes {
-        Modes::of(self.failures.iter().filter(|f| f.at[0].abs() < BAND && f.at[1].abs() < 0.25 * disc.diameter))
-    }
-
-    /// Modes within [`BAND`] of the top (`+1`) or bottom (`−1`) contact.
-    pub fn at_contact(&self, disc: Disc, side: f64) -> Modes {
-        let r = 0.5 * disc.diameter;
-        Modes::of(self.failures.iter().filter(|f| f.at[1] * side > r - BAND))
-    }
-
-    /// All failures by mode.
-    pub fn modes(&self) -> Modes {
-        Modes::of(self.failures.iter())
+        let measured = Measured::read(&run.dir, disc.geometry())?;
+        Ok(Outcome { run, measured })
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+impl Deref for Outcome {
+    type Target = Measured;
 
-    #[test]
-    fn the_first_drop_is_the_maximum_before_the_first_fall_of_the_given_size() {
-        // Ripple of 2% at 2, a 10% drop after 5, the peak 7 later.
-        let load = [0.0, 1.0, 2.0, 1.96, 3.0, 5.0, 4.5, 6.0, 7.0, 1.0];
-        assert_eq!(first_drop(&load, 0.05), Some(5));
-        assert_eq!(first_drop(&load, 0.2), Some(8));
-        assert_eq!(first_drop(&load[..8], 0.2), None);
-        // Start-up ripple below a tenth of the largest load is not a drop.
-        assert_eq!(first_drop(&[0.0, 0.5, 0.2, 8.0, 9.0, 2.0], 0.05), Some(4));
+    fn deref(&self) -> &Measured {
+        &self.measured
     }
 }

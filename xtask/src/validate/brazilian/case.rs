@@ -44,6 +44,13 @@ pub struct Disc {
     pub young: f64,
 }
 
+impl Disc {
+    /// Its geometry, as `femdem_post` measures a disc.
+    pub fn geometry(self) -> femdem_post::brazilian::Disc {
+        femdem_post::brazilian::Disc { diameter: self.diameter, thickness: self.thickness }
+    }
+}
+
 /// The base case, parsed.
 #[derive(Debug, Clone)]
 pub struct Base {

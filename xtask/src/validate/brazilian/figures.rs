@@ -12,9 +12,9 @@ use super::analysis::Outcome;
 /// A triangle seen in a plane, with its colour.
 type Flat = ([(f64, f64); 3], RGBColor);
 use super::case::Disc;
-use crate::validate::failures::{mode_colour, mode_legend};
+use crate::validate::colours::{mode_colour, mode_legend};
 use crate::validate::plot;
-use crate::validate::vtu::Grid;
+use femdem_post::frames::Grid;
 
 /// Fig. 6: F (kN) against ε_yy (‰) for every rate.
 pub fn load_strain(path: &Path, runs: &[(f64, &Outcome)]) -> Result<()> {

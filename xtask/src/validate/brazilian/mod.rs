@@ -5,7 +5,6 @@
 pub(crate) mod analysis;
 pub(crate) mod case;
 mod figures;
-mod hondros;
 mod sensitivity;
 
 use std::fmt::Write as _;
@@ -18,7 +17,9 @@ use self::case::{Base, Mesh};
 use super::Profile;
 use super::report::{Kind, Report};
 use super::runner::Femdem;
-use super::vtu::{self, Grid};
+use femdem_post::failures::FailureMode;
+use femdem_post::frames::{self as vtu, Grid};
+use femdem_post::hondros;
 
 /// The paper's loading rates V_y, m/s, fastest first.
 pub const RATES: [f64; 4] = [0.1, 0.05, 0.02, 0.01];
@@ -200,18 +201,18 @@ pub fn validate(
             share >= 0.8,
             Kind::Gate,
         );
-        let central = o.central(disc);
+        let central = o.central(disc.geometry());
         report.check(
             c,
             &format!("central fracture mode, V = {v} m/s (|y| < d/4)"),
             "tensile (Fig. 7-8)".into(),
-            format!("{:.0}% tensile ({})", 100.0 * central.share(1), central.text()),
+            format!("{:.0}% tensile ({})", 100.0 * central.share(FailureMode::Tensile), central.text()),
             "> 50% tensile",
-            central.share(1) > 0.5,
+            central.share(FailureMode::Tensile) > 0.5,
             if *v == 0.01 || *v == 0.05 { gate_paper } else { Kind::Info },
         );
     }
-    let (top, bottom) = (slow.at_contact(disc, 1.0), slow.at_contact(disc, -1.0));
+    let (top, bottom) = (slow.at_contact(disc.geometry(), 1.0), slow.at_contact(disc.geometry(), -1.0));
     let crushed = top.counts[1] > 0 && bottom.counts[1] > 0;
     report.check(
         c,
@@ -228,9 +229,9 @@ pub fn validate(
             c,
             &format!("first failure at {v_slow} m/s"),
             "shear, at a platen (Fig. 7b)".into(),
-            format!("mode {} at y = {:.1} mm, F = {:.0} N", f.mode, 1e3 * f.at[1], slow.load_at(f.time)),
+            format!("mode {:?} at y = {:.1} mm, F = {:.0} N", f.mode, 1e3 * f.at[1], slow.load_at(f.time)),
             "same place and mode",
-            at_contact && f.mode == 2,
+            at_contact && f.mode == FailureMode::Shear,
             Kind::Info,
         );
     }
@@ -242,7 +243,7 @@ pub fn validate(
         frames.iter().rfind(|(t, _)| *t < first && *t > 0.0).context("no frame before the first failure")?;
     let grid = Grid::read(file)?;
     let load = slow.load_at(*t_frame);
-    let centre = hondros::centre(&grid, disc, load)?;
+    let centre = hondros::centre(&grid, disc.geometry(), load)?;
     let (ex, ey) = (centre.sx / centre.sx_exact - 1.0, centre.sy / centre.sy_exact - 1.0);
     let zone = format!(
         "{} tets within {} R of the centre, t = {:.3e} s, F = {:.0} N",
@@ -292,6 +293,7 @@ pub fn validate(
         let (z, d3) = (format!("brazilian_fractures_z_v{v}.png"), format!("brazilian_fractures_3d_v{v}.png"));
         figures::fracture_pattern(&figs.join(&z), &figs.join(&d3), &fr, disc, &format!("V = {v} m/s"))?;
         let _ = writeln!(md, "\n![fractures along z, V = {v}](figures/{z}) ![fractures 3D, V = {v}](figures/{d3})");
+        let _ = writeln!(md, "\nV = {v} m/s: {}.", super::runner::fragments_line(&o.run.fragments()?));
     }
     if sensitivity {
         md.push_str(&sensitivity::run(femdem, &base, mesh, &dir, &runs[0].1)?);

@@ -90,14 +90,14 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path, baseline: &Outc
     );
     let row = |md: &mut String, name: &str, change: &str, o: &Outcome| {
         let first =
-            o.first_failure().map_or("none".into(), |f| format!("mode {} at y = {:.1} mm", f.mode, 1e3 * f.at[1]));
+            o.first_failure().map_or("none".into(), |f| format!("mode {:?} at y = {:.1} mm", f.mode, 1e3 * f.at[1]));
         let _ = writeln!(
             md,
             "| {name} | {change} | {:.0} | {:.3} | {:+.1}% | {} | {first} | {:.0} |",
             o.peak,
             1e-6 * o.f_bt,
             100.0 * (o.f_bt / baseline.f_bt - 1.0),
-            o.central(base.disc).text(),
+            o.central(base.disc.geometry()).text(),
             o.run.wall
         );
     };

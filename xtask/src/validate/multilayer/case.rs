@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use toml::{Table, Value};
 
-use super::mechanism::FarField;
+use femdem_post::mechanism::FarField;
 
 /// The bundled case every run starts from.
 pub const BASE: &str = "cases/paper/multilayer.toml";

@@ -8,9 +8,9 @@ use std::path::Path;
 use anyhow::Result;
 use plotters::style::RGBColor;
 
-use crate::validate::failures::mode_colour;
+use crate::validate::colours::mode_colour;
 use crate::validate::plot;
-use crate::validate::vtu::Grid;
+use femdem_post::frames::Grid;
 
 /// A triangle seen in a plane, with its colour.
 type Flat = ([(f64, f64); 3], RGBColor);

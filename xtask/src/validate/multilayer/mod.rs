@@ -2,14 +2,12 @@
 //! Table 3, Fig. 14–17): a layered block holding a pre-existing fracture
 //! network under an in situ stress with gravity. The checks read the run's
 //! `failures.csv` against the map's fracture tips and junctions
-//! (`tips.rs`): where new fractures start, their modes, whether the pattern
+//! (`femdem_post::tips`): where new fractures start, their modes, whether the pattern
 //! stops growing, and the energy balance; the figures are the paper's
 //! Fig. 17, σ1 on the mid-plane and the fracture pattern along z.
 
 mod case;
 mod figures;
-mod mechanism;
-mod tips;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,13 +15,15 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use self::case::{BASE, Base};
-use self::tips::Sites;
 use super::Profile;
-use super::failures::{Failure, Modes};
-use super::history::Table;
 use super::report::{Kind, Report};
 use super::runner::{Femdem, RunOutput};
-use super::vtu::{self, Grid};
+use femdem_post::failures::FailureMode;
+use femdem_post::failures::{Failure, Modes};
+use femdem_post::frames::{self as vtu, Grid};
+use femdem_post::mechanism;
+use femdem_post::table::Table;
+use femdem_post::tips::{self, Sites};
 
 /// What a profile runs: the extrusion's target triangle edge (m), the end
 /// time (s) and the time between frames (s).
@@ -85,32 +85,6 @@ struct Outcome {
     work_by_axis: Option<[f64; 3]>,
 }
 
-/// The work of the face loads at the end of `h`, summed by the axis their
-/// group's side names (`xmin`/`xmax`, `ymin`/`ymax`, `bottom`/`top`, the
-/// extrusion's z faces); `None` when no load's work is recorded. A drive's
-/// work (a `<name>_work` whose name also has `<name>_uz`) is not a face
-/// load's and is left out.
-fn work_by_axis(h: &Table) -> Result<Option<[f64; 3]>> {
-    let mut w = [0.0; 3];
-    let mut any = false;
-    for name in h.names() {
-        let Some(group) = name.strip_suffix("_work") else { continue };
-        if h.names().iter().any(|c| c.strip_suffix("_uz") == Some(group)) {
-            continue;
-        }
-        let side = group.rsplit('.').next().unwrap_or(group);
-        let axis = match side {
-            "xmin" | "xmax" => 0,
-            "ymin" | "ymax" => 1,
-            "bottom" | "top" => 2,
-            _ => continue,
-        };
-        w[axis] += h.col(name)?.last().copied().unwrap_or(0.0);
-        any = true;
-    }
-    Ok(any.then_some(w))
-}
-
 impl Outcome {
     fn read(run: RunOutput) -> Result<Outcome> {
         let h = Table::read(&run.dir.join("history.csv"))?;
@@ -122,7 +96,7 @@ impl Outcome {
             end: last("time")?,
             kinetic: last("kinetic")?,
             work: last("external_work")?,
-            work_by_axis: work_by_axis(&h)?,
+            work_by_axis: h.face_work_by_axis()?,
             run,
         })
     }
@@ -165,7 +139,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     let mechanism = mechanism::weakest(&block.outline, &network, block.far)?;
     let lo = block.outline.iter().fold([f64::INFINITY; 2], |m, q| [m[0].min(q[0]), m[1].min(q[1])]);
     let hi = block.outline.iter().fold([f64::NEG_INFINITY; 2], |m, q| [m[0].max(q[0]), m[1].max(q[1])]);
-    let baseline = tips::uniform_points(BASELINE_POINTS, lo, hi, BASELINE_SEED);
+    let baseline = crate::map::uniform_points(BASELINE_POINTS, lo, hi, BASELINE_SEED);
 
     let c = "multilayer";
     let gate_paper = if profile == Profile::Paper { Kind::Gate } else { Kind::Info };
@@ -221,16 +195,16 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         "mostly tensile, a few shear (§3.3.2)".into(),
         format!(
             "{:.0}% tensile, {:.0}% shear, {:.0}% mixed ({}); the first {:.0}%: {:.0}% tensile, {:.0}% shear",
-            100.0 * modes.share(1),
-            100.0 * modes.share(2),
-            100.0 * modes.share(3),
+            100.0 * modes.share(FailureMode::Tensile),
+            100.0 * modes.share(FailureMode::Shear),
+            100.0 * modes.share(FailureMode::Mixed),
             modes.text(),
             100.0 * FIRST_SHARE,
-            100.0 * first_modes.share(1),
-            100.0 * first_modes.share(2)
+            100.0 * first_modes.share(FailureMode::Tensile),
+            100.0 * first_modes.share(FailureMode::Shear)
         ),
         "> 50% tensile, ≥ 1 shear",
-        modes.share(1) > 0.5 && modes.counts[1] >= 1,
+        modes.share(FailureMode::Tensile) > 0.5 && modes.counts[1] >= 1,
         gate_paper,
     );
     report.check(
@@ -334,6 +308,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
             share(w[2])
         );
     }
+    let _ = writeln!(md, "\n{}.", super::runner::fragments_line(&o.run.fragments()?));
     let _ = writeln!(md, "\nNew failures per fifth of the run:\n");
     let fifths: Vec<String> = (0..5)
         .map(|k| {
@@ -389,28 +364,4 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
     }
     report.sections.push(md);
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_face_loads_work_is_summed_by_axis_and_absent_from_an_older_history() {
-        let dir = std::env::temp_dir().join(format!("xtask-multilayer-work-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("history.csv");
-        std::fs::write(
-            &path,
-            "# case: c.toml\ntime,external_work,block.xmin_fx,block.xmin_work,block.xmax_work,block.ymin_work,block.ymax_work,\
-             block.bottom_work,block.top_work,platen_work,held.xmin_uz,held.xmin_work\n\
-             0,0,0,0,0,0,0,0,0,0,0,0\n1,21,5,1,2,3,4,5,6,100,0,50\n",
-        )
-        .unwrap();
-        let w = work_by_axis(&Table::read(&path).unwrap()).unwrap();
-        assert_eq!(w, Some([3.0, 7.0, 11.0]), "x, y, z faces; another side's column or a drive's is not counted");
-        std::fs::write(&path, "time,external_work,block.xmin_fx\n0,0,0\n").unwrap();
-        assert_eq!(work_by_axis(&Table::read(&path).unwrap()).unwrap(), None);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
 }

@@ -5,7 +5,7 @@
 use anyhow::{Context, Result, bail};
 use toml::{Table, Value};
 
-use super::mohr::Stresses;
+use femdem_post::mohr::Stresses;
 
 /// The bundled case every run starts from.
 pub const BASE: &str = "cases/paper/polyaxial.toml";

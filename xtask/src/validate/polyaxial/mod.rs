@@ -3,7 +3,6 @@
 //! three materials; the shear fractures' mode shares and orientation
 //! against Mohr–Coulomb, and the Mohr-circle figure.
 
-mod bands;
 mod case;
 mod mohr;
 
@@ -13,15 +12,18 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use plotters::style::RGBColor;
 
-use self::bands::Facet;
 use self::case::{Base, Mesh, TESTS, Test};
 use super::Profile;
-use super::failures::{Failure, Modes, mode_colour, mode_legend};
-use super::history::Table;
+use femdem_post::bands::{self, Facet};
+use femdem_post::failures::FailureMode;
+use femdem_post::failures::{Failure, Modes};
+
+use super::colours::{mode_colour, mode_legend};
 use super::plot;
 use super::report::{Kind, Report};
 use super::runner::{Femdem, RunOutput};
-use super::vtu::{self, Grid};
+use femdem_post::frames::{self as vtu, Grid};
+use femdem_post::table::Table;
 
 /// Picks the main or the conjugate band of [`bands::bands`].
 type PickBand = fn(&(bands::Band, bands::Band)) -> bands::Band;
@@ -129,19 +131,13 @@ impl Outcome {
         let last = vtu::series(&fpvd)?.pop().context("no fracture frame")?;
         let grid = Grid::read(&last.1)?;
         let (_, mode) = grid.cell("mode")?;
-        let mut shear = Vec::new();
-        let mut faces = Vec::new();
-        for (c, cell) in grid.cells.iter().enumerate() {
-            let p = [0, 1, 2].map(|k| grid.points[cell[k]]);
-            let (u, v) = ([0, 1, 2].map(|k| p[1][k] - p[0][k]), [0, 1, 2].map(|k| p[2][k] - p[0][k]));
-            let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            faces.push((p.map(|q| (q[0], q[1])), mode[c]));
-            if mode[c] == 2.0 && len > 0.0 {
-                let at = grid.centroid(c);
-                shear.push(Facet { at: (at[0], at[1]), area: 0.5 * len, normal: n.map(|x| x / len) });
-            }
-        }
+        let shear = bands::failed_facets(&grid, FailureMode::Shear)?;
+        let faces = grid
+            .cells
+            .iter()
+            .zip(mode)
+            .map(|(cell, &m)| ([0, 1, 2].map(|k| (grid.points[cell[k]][0], grid.points[cell[k]][1])), m))
+            .collect();
         Ok(Outcome {
             run,
             test,
@@ -230,12 +226,12 @@ pub fn validate(femdem: &Femdem, profile: Profile, variant: Variant, out: &Path,
             o.mesh,
             1e-6 * t.cohesion,
             t.friction_angle,
-            mohr::reach(s, t.cohesion, t.friction_angle),
+            femdem_post::mohr::reach(s, t.cohesion, t.friction_angle),
             modes.text(),
-            100.0 * modes.share(2),
+            100.0 * modes.share(FailureMode::Shear),
             band(found.map(|b| b.0)),
             band(found.map(|b| b.1)),
-            mohr::band_angle(t.friction_angle),
+            femdem_post::mohr::band_angle(t.friction_angle),
             100.0 * o.energy_error,
             o.steps,
             o.run.wall,
@@ -254,19 +250,24 @@ pub fn validate(femdem: &Femdem, profile: Profile, variant: Variant, out: &Path,
             o.energy_error < 0.02,
             Kind::Gate,
         );
-        let reach = mohr::reach(s, t.cohesion, t.friction_angle);
+        let reach = femdem_post::mohr::reach(s, t.cohesion, t.friction_angle);
         let modes = o.modes();
         if reach >= 1.0 {
             report.check(
                 c,
                 &format!("shear fractures, {name} (circle reach {reach:.3})"),
                 "shear-dominated failure (Fig. 10-11)".into(),
-                format!("{} failures, {:.0}% shear ({})", modes.total(), 100.0 * modes.share(2), modes.text()),
+                format!(
+                    "{} failures, {:.0}% shear ({})",
+                    modes.total(),
+                    100.0 * modes.share(FailureMode::Shear),
+                    modes.text()
+                ),
                 "> 50% shear",
-                modes.share(2) > 0.5,
+                modes.share(FailureMode::Shear) > 0.5,
                 gate_paper,
             );
-            let expected = mohr::band_angle(t.friction_angle);
+            let expected = femdem_post::mohr::band_angle(t.friction_angle);
             let within = |a: f64| (a - expected).abs() <= ANGLE_TOLERANCE;
             let found = bands::bands(&o.shear, width);
             let sets: [(&str, String, PickBand, Kind); 2] = [
@@ -327,8 +328,8 @@ pub fn validate(femdem: &Femdem, profile: Profile, variant: Variant, out: &Path,
             "facet angle falls with φ (Test 1 > Test 2)",
             format!(
                 "{:.1}° > {:.1}°",
-                mohr::band_angle(TESTS[0].friction_angle),
-                mohr::band_angle(TESTS[1].friction_angle)
+                femdem_post::mohr::band_angle(TESTS[0].friction_angle),
+                femdem_post::mohr::band_angle(TESTS[1].friction_angle)
             ),
             format!("{a1:.1}° vs {a2:.1}°"),
             "strict",
@@ -351,7 +352,7 @@ pub fn validate(femdem: &Femdem, profile: Profile, variant: Variant, out: &Path,
         report.check(
             c,
             &format!("mesh bias, Test {}: lattice against unstructured", t.number),
-            format!("{:.1}° on both (no preferred direction)", mohr::band_angle(t.friction_angle)),
+            format!("{:.1}° on both (no preferred direction)", femdem_post::mohr::band_angle(t.friction_angle)),
             format!("lattice: {}; unstructured: {}", describe(l), describe(u)),
             "reported",
             true,

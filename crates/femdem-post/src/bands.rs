@@ -20,6 +20,11 @@
 //!   summarised by the median weighted by area × `(n_x² + n_y²)`, so that a
 //!   face counts by how nearly it contains z as the Mohr–Coulomb planes do.
 
+use anyhow::Result;
+use femdem_fracture::FailureMode;
+
+use crate::frames::Grid;
+
 /// Smallest angle between the main band and a conjugate one, degrees.
 pub const CONJUGATE_GAP: f64 = 20.0;
 
@@ -179,9 +184,59 @@ pub fn facet_angle(facets: &[Facet]) -> Option<f64> {
     None
 }
 
+/// The faces of a fracture frame (`<case>_fractures.pvd`: triangles with
+/// cell data `mode`) that failed in `mode`, as [`Facet`]s: centroid, area
+/// and unit normal; degenerate (zero-area) triangles are left out.
+///
+/// # Errors
+/// When the frame has no `mode` cell data.
+pub fn failed_facets(grid: &Grid, mode: FailureMode) -> Result<Vec<Facet>> {
+    let (_, modes) = grid.cell("mode")?;
+    let code = f64::from(mode.code());
+    let mut out = Vec::new();
+    for (c, cell) in grid.cells.iter().enumerate().filter(|(c, _)| modes[*c] == code) {
+        let p = [0, 1, 2].map(|k| grid.points[cell[k]]);
+        let (u, v) = ([0, 1, 2].map(|k| p[1][k] - p[0][k]), [0, 1, 2].map(|k| p[2][k] - p[0][k]));
+        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if len > 0.0 {
+            let at = grid.centroid(c);
+            out.push(Facet { at: (at[0], at[1]), area: 0.5 * len, normal: n.map(|x| x / len) });
+        }
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn failed_facets_are_the_faces_of_one_mode_of_a_fracture_frame_series() {
+        let dir = std::env::temp_dir().join(format!("femdem-post-facets-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // Two shear triangles (one in the plane x = 1, one degenerate) and
+        // a tensile one, written as `femdem run` writes its fracture frames.
+        let points =
+            [[1.0, 0.0, 0.0], [1.0, 2.0, 0.0], [1.0, 0.0, 3.0], [0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]];
+        let triangles = [[0, 1, 2], [3, 4, 5], [3, 0, 1]];
+        let mode = [2.0, 2.0, 1.0];
+        let fields = [femdem_vtk::Field::scalar("mode", &mode)];
+        let frame = femdem_vtk::Frame::new(&points, &[]).with_triangles(&triangles).with_cell_fields(&fields);
+        let mut series = femdem_vtk::SeriesWriter::new(&dir, "case_fractures").unwrap();
+        series.write(1e-3, &frame).unwrap();
+        let frames = crate::frames::series(&series.pvd_path()).unwrap();
+        assert_eq!(frames.len(), 1);
+        let grid = Grid::read(&frames[0].1).unwrap();
+        let shear = failed_facets(&grid, FailureMode::Shear).unwrap();
+        assert_eq!(shear.len(), 1, "the degenerate triangle is left out");
+        let f = shear[0];
+        assert!((f.area - 3.0).abs() < 1e-12 && (f.at.0 - 1.0).abs() < 1e-12 && (f.at.1 - 2.0 / 3.0).abs() < 1e-12);
+        assert!((f.normal[0].abs() - 1.0).abs() < 1e-12, "{:?}", f.normal);
+        assert_eq!(failed_facets(&grid, FailureMode::Tensile).unwrap().len(), 1);
+        assert!(failed_facets(&grid, FailureMode::Mixed).unwrap().is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     /// Facets evenly spread along a line through `(x0, y0)` at `theta`.
     fn line(x0: f64, y0: f64, theta: f64, n: usize, area: f64) -> Vec<Facet> {

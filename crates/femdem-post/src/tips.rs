@@ -100,13 +100,6 @@ pub fn share_within(points: &[[f64; 2]], sites: &[[f64; 2]], radius: f64) -> f64
     points.iter().filter(|p| nearest(**p, sites) <= radius).count() as f64 / points.len() as f64
 }
 
-/// `n` points drawn uniformly in the rectangle `lo`–`hi` from `seed`: the
-/// baseline a placement "near the sites" has to beat.
-pub fn uniform_points(n: usize, lo: [f64; 2], hi: [f64; 2], seed: u64) -> Vec<[f64; 2]> {
-    let mut rng = crate::map::Rng::new(seed);
-    (0..n).map(|_| [rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1])]).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -157,19 +150,8 @@ mod tests {
     }
 
     #[test]
-    fn uniform_points_cover_the_rectangle_evenly_and_repeat_with_the_seed() {
-        let p = uniform_points(20_000, [0.0, 0.0], [2.0, 1.0], 7);
-        assert_eq!(p, uniform_points(20_000, [0.0, 0.0], [2.0, 1.0], 7));
-        assert!(p.iter().all(|q| (0.0..2.0).contains(&q[0]) && (0.0..1.0).contains(&q[1])));
-        // A disc of radius 0.25 around the centre holds π/32 of the area;
-        // the binomial standard error at n = 20,000 is 0.0018.
-        let share = share_within(&p, &[[1.0, 0.5]], 0.25);
-        assert!((share - std::f64::consts::PI / 32.0).abs() < 0.006, "{share}");
-    }
-
-    #[test]
     fn the_bundled_map_has_the_sites_its_generator_put_there() {
-        let path = crate::root().join("cases/paper/multilayer-map.txt");
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper/multilayer-map.txt");
         let traces = read_traces(&path).unwrap();
         let outline = [[0.0, 0.0], [1.5, 0.0], [1.5, 1.5], [0.0, 1.5]];
         let s = sites(&network(&outline, &traces).unwrap());

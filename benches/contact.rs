@@ -106,7 +106,7 @@ fn fragmented(c: &mut Criterion) {
     use femdem_solver::Want;
     let mut s = femdem_benches::polyaxial_cube_at(3400);
     let bytes = s.snapshot();
-    let tets = s.model.num_deformable_tets() as u64;
+    let tets = s.model().num_deformable_tets() as u64;
     let mut g = c.benchmark_group("contact_fragmented_cube");
     g.sample_size(10);
     g.throughput(Throughput::Elements(5 * tets));

@@ -182,12 +182,12 @@ pub fn polyaxial_cube_at(step: u64) -> femdem_solver::Solver {
     let file = dir.join(format!("cube50_{step}.snap"));
     let mut s = polyaxial_cube();
     if let Ok(bytes) = std::fs::read(&file) {
-        if s.restore(&bytes).is_ok() && s.state.step == step {
+        if s.restore(&bytes).is_ok() && s.state().step == step {
             return s;
         }
         s = polyaxial_cube();
     }
-    while s.state.step < step {
+    while s.state().step < step {
         s.step(Want::default());
     }
     std::fs::create_dir_all(&dir).expect("target/contact_profile");

@@ -16,7 +16,7 @@ fn step(c: &mut Criterion) {
         for threads in [1usize, 2] {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
             let mut s = disc_solver(1.2e-3, breakable);
-            g.throughput(Throughput::Elements(s.model.num_deformable_tets() as u64));
+            g.throughput(Throughput::Elements(s.model().num_deformable_tets() as u64));
             g.bench_function(BenchmarkId::new(label, format!("{threads}_threads")), |b| {
                 pool.install(|| b.iter(|| s.step(Want::default()).time))
             });

@@ -37,10 +37,10 @@ fn main() {
     }
     let wall = start.elapsed().as_secs_f64();
     let c = s.contact().expect("contact");
-    println!("tets            {}", s.model.num_deformable_tets());
+    println!("tets            {}", s.model().num_deformable_tets());
     println!("from step       {from} ({failed_before} joints failed)");
     println!("steps           {steps}");
-    println!("tet-steps       {}", s.model.num_deformable_tets() * steps);
+    println!("tet-steps       {}", s.model().num_deformable_tets() * steps);
     println!("failures        {failed}");
     println!(
         "detections      {} full, {} incremental",
@@ -49,10 +49,13 @@ fn main() {
     );
     println!("contactable     {}", c.contactable().len());
     println!("pairs in contact per step {:.1}", pairs as f64 / steps.max(1) as f64);
-    println!("wall            {wall:.3} s ({:.3e} tet-steps/s)", (s.model.num_deformable_tets() * steps) as f64 / wall);
+    println!(
+        "wall            {wall:.3} s ({:.3e} tet-steps/s)",
+        (s.model().num_deformable_tets() * steps) as f64 / wall
+    );
     // A checksum of the state, to compare builds bit for bit.
     let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for x in s.state.x.iter().chain(&s.state.v) {
+    for x in s.state().x.iter().chain(&s.state().v) {
         for k in 0..3 {
             h = (h ^ x[k].to_bits()).wrapping_mul(0x100_0000_01b3);
         }

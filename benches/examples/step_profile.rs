@@ -27,9 +27,9 @@ fn main() {
         let want = Want { stress: false, energy: energy && n % 5 == 0 };
         failed += s.step(want).new_failures.len();
     }
-    println!("tets            {}", s.model.num_deformable_tets());
-    println!("joints          {}", s.model.joints.len());
+    println!("tets            {}", s.model().num_deformable_tets());
+    println!("joints          {}", s.model().joints.len());
     println!("steps           {steps}");
-    println!("tet-steps       {}", s.model.num_deformable_tets() * steps);
+    println!("tet-steps       {}", s.model().num_deformable_tets() * steps);
     println!("failures        {failed}");
 }

@@ -53,7 +53,7 @@ fn main() {
     let mut s = pool.install(|| box_solver(target));
     let build = t0.elapsed().as_secs_f64();
     let (rss, peak) = (status_kib("VmRSS:"), status_kib("VmHWM:"));
-    let tets = s.model.num_deformable_tets();
+    let tets = s.model().num_deformable_tets();
     pool.install(|| {
         for _ in 0..2 {
             s.step(Want::default());
@@ -69,7 +69,7 @@ fn main() {
     let (wall, cpu1) = (t1.elapsed().as_secs_f64(), cpu_seconds());
     let rate = (tets * steps) as f64 / wall;
     println!("tets            {tets}");
-    println!("joints          {}", s.model.joints.len());
+    println!("joints          {}", s.model().joints.len());
     println!("threads         {threads}");
     println!("build           {build:.2} s");
     println!("steps           {steps} in {wall:.3} s, {failed} joints failed (0: the intact step was measured)");

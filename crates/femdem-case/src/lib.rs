@@ -12,7 +12,7 @@
 //! ```no_run
 //! let prepared = femdem_case::prepare::prepare(std::path::Path::new("cases/brazilian.toml"), None, &[])?;
 //! let run = prepared.run.expect("the case has a [solver] section");
-//! println!("{} tets, dt = {:.3e} s", run.solver.model.tets.len(), run.solver.dt());
+//! println!("{} tets, dt = {:.3e} s", run.solver.model().tets.len(), run.solver.dt());
 //! # Ok::<(), anyhow::Error>(())
 //! ```
 

@@ -186,7 +186,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     let end_time = s.end_time;
     let check_interval = s.check_interval;
     let output = crate::setup::output(&loaded, end_time, &crate::setup::FIELDS)?;
-    let probes = crate::probes::probes(&loaded, &solver.model, &solver.loads)?;
+    let probes = crate::probes::probes(&loaded, solver.model(), solver.loads())?;
     Ok(Prepared {
         case: loaded,
         mesh,
@@ -237,7 +237,7 @@ pub fn start_static(
     initial: &[(u32, u32)],
 ) -> Result<femdem_static::StaticSolution, femdem_static::StaticError> {
     let options = femdem_static::StaticOptions::default();
-    let solution = femdem_static::static_solve(&solver.model, &solver.loads, initial, &options)?;
+    let solution = femdem_static::static_solve(solver.model(), solver.loads(), initial, &options)?;
     solver.start_displaced(&solution.displacement)?;
     Ok(solution)
 }

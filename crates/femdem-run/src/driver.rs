@@ -76,7 +76,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
             "resuming from {} (step {}, t = {:.6e} s)",
             file.display(),
             saved.schedule.next_step,
-            solver.state.time
+            solver.state().time
         ));
         (output, saved.schedule)
     } else {
@@ -103,16 +103,16 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         (output, schedule)
     };
 
-    let elements = solver.model.num_deformable_tets() as u64;
+    let elements = solver.model().num_deformable_tets() as u64;
     if !prepared.case.overrides.is_empty() {
         observer.note(&format!("with --set {}", prepared.case.overrides.args().join(" --set ")));
     }
     observer.note(&format!(
         "{} tets ({} deformable), {} joints, {} nodes; dt = {:.4e} s ({:.2} of the critical {:.4e} s), {} steps",
-        solver.model.tets.len(),
+        solver.model().tets.len(),
         elements,
-        solver.model.joints.len(),
-        solver.model.num_nodes(),
+        solver.model().joints.len(),
+        solver.model().num_nodes(),
         solver.dt(),
         solver.dt() / run.stable.critical,
         run.stable.critical,
@@ -132,7 +132,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     let mut last_checkpoint: Option<PathBuf> = None;
     let mut contact_warned = false;
     for n in first..run.steps {
-        let t = solver.state.time;
+        let t = solver.state().time;
         let last = n + 1 == run.steps || ended_past_peak;
         let stopping = stop.load(Ordering::SeqCst) || stop_after_steps.is_some_and(|s| n >= s);
         if stopping {
@@ -193,7 +193,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
                 output.pvd().display()
             );
         }
-        observer.stepped(n + 1, solver.state.time, &|| Status {
+        observer.stepped(n + 1, solver.state().time, &|| Status {
             failed_joints: solver.failures().len(),
             load: run.load_strain.map(|ls| {
                 let r = solver.record();
@@ -221,12 +221,12 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     output.flush()?;
     observer.ended();
     let wall = started.elapsed().as_secs_f64();
-    let steps = solver.state.step;
+    let steps = solver.state().step;
     let history = output.history_path().to_path_buf();
     Ok(Summary {
         interrupted,
         steps,
-        time: solver.state.time,
+        time: solver.state().time,
         past_peak: past_peak.filter(|_| ended_past_peak).map(|w| PastPeak {
             last: w.last,
             fraction: w.fraction,
@@ -252,7 +252,7 @@ fn warn_initial_overlap(solver: &Solver, observer: &mut dyn Observer) {
     let Some(c) = solver.contact() else { return };
     // Deeper than round-off of the element: faces that only touch (across
     // a pre-existing fracture) are not an overlap.
-    let (pairs, depth) = c.started_overlaps(&solver.model, |n| solver.recorded_position(n as usize), 1e-9);
+    let (pairs, depth) = c.started_overlaps(solver.model(), |n| solver.recorded_position(n as usize), 1e-9);
     if pairs > 0 {
         observer.note(&format!(
             "warning: {pairs} tet pairs overlap at t = 0 (the deepest by {depth:.3} of an element's shortest \

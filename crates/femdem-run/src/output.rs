@@ -64,16 +64,16 @@ pub struct Recorded {
 fn history_columns(solver: &Solver, recorded: &Recorded) -> Vec<String> {
     let mut columns: Vec<String> =
         ["time", "step"].iter().chain(&ENERGY).chain(&BROKEN).map(|s| s.to_string()).collect();
-    if !solver.model.joints.is_empty() {
+    if !solver.model().joints.is_empty() {
         columns.push("fracture_gf_area".into());
     }
     if solver.contact().is_some() {
         columns.extend(CONTACT.map(String::from));
     }
-    for d in &solver.loads.drives {
+    for d in &solver.loads().drives {
         columns.extend(["fx", "fy", "fz", "ux", "uy", "uz", "work"].map(|c| format!("{}_{c}", d.name)));
     }
-    for s in &solver.loads.surfaces {
+    for s in &solver.loads().surfaces {
         columns.extend(["fx", "fy", "fz", "work"].map(|c| format!("{}_{c}", s.name)));
     }
     if recorded.load_strain.is_some() {
@@ -112,7 +112,7 @@ pub struct Output {
 /// (`G_ft` tensile, `G_fs` shear, their mean mixed, 0 for a collapsed
 /// joint, which released nothing) times its mid-plane area at failure, J.
 fn gf_area(solver: &Solver, f: &femdem_solver::Failure) -> f64 {
-    let p = &solver.model.joint_law[f.joint as usize].params;
+    let p = &solver.model().joint_law[f.joint as usize].params;
     let g = match f.mode {
         femdem_fracture::FailureMode::Tensile => p.gf_tension,
         femdem_fracture::FailureMode::Shear => p.gf_shear,
@@ -245,7 +245,7 @@ impl Output {
             r.failures.mixed as f64,
             r.failures.collapsed as f64,
         ];
-        if !solver.model.joints.is_empty() {
+        if !solver.model().joints.is_empty() {
             // One failure at a time, in order: the same sum however the
             // rows (or a resume, which starts from 0) cut the list.
             for f in &solver.failures()[self.gf_counted..] {
@@ -263,7 +263,7 @@ impl Output {
                 c.energy.handed(),
                 c.started_pairs() as f64,
                 // At t_n, where the pass found them in contact.
-                c.deepest_overlap(&solver.model, |n| solver.recorded_position(n as usize)),
+                c.deepest_overlap(solver.model(), |n| solver.recorded_position(n as usize)),
             ]);
         }
         for ((f, u), w) in r.drive_forces.iter().zip(&r.drive_displacements).zip(&r.drive_work) {
@@ -276,11 +276,11 @@ impl Output {
             let (load, strain) = ls.evaluate(&r.drive_forces, &r.drive_displacements);
             row.extend([load, strain]);
         }
-        let m = &solver.model;
+        let m = &solver.model();
         for p in &self.recorded.probes {
             let u = |n: usize| solver.recorded_position(n) - m.x0[n];
-            let v = |n: usize| solver.state.v[n];
-            row.extend(p.values(&m.tets, u, v, &solver.workspace.stress));
+            let v = |n: usize| solver.state().v[n];
+            row.extend(p.values(&m.tets, u, v, &solver.workspace().stress));
         }
         self.history.row(&row)?;
         Ok(())
@@ -290,14 +290,14 @@ impl Output {
     /// (`Solver::recorded_position`, the state the stresses of the last step
     /// belong to), velocities `v_{n+½}`, and the tet fields.
     pub fn frame(&mut self, solver: &Solver, t: f64) -> Result<()> {
-        let s = &solver.state;
-        let m = &solver.model;
+        let s = &solver.state();
+        let m = &solver.model();
         let points: Vec<[f64; 3]> = (0..s.x.len()).map(|i| solver.recorded_position(i).into()).collect();
         let disp: Vec<[f64; 3]> =
             points.iter().zip(&m.x0).map(|(p, x0)| [p[0] - x0.x, p[1] - x0.y, p[2] - x0.z]).collect();
         let vel: Vec<[f64; 3]> = s.v.iter().map(|v| (*v).into()).collect();
         let stress: Vec<[f64; 9]> = solver
-            .workspace
+            .workspace()
             .stress
             .iter()
             .map(|m| {
@@ -310,8 +310,8 @@ impl Output {
                 a
             })
             .collect();
-        let principal: Vec<[f64; 3]> = solver.workspace.stress.iter().map(principal_stresses).collect();
-        let vm: Vec<f64> = solver.workspace.stress.iter().map(von_mises).collect();
+        let principal: Vec<[f64; 3]> = solver.workspace().stress.iter().map(principal_stresses).collect();
+        let vm: Vec<f64> = solver.workspace().stress.iter().map(von_mises).collect();
         let region: Vec<f64> = m.tet_region.iter().map(|&r| f64::from(r)).collect();
         let want = |n: &str| self.fields.iter().any(|f| f == n);
         let mut point_fields = Vec::new();
@@ -361,7 +361,7 @@ impl Output {
             push(f, 0.0, -1.0, 1.0);
         }
         for f in solver.failures() {
-            let j = solver.model.joints[f.joint as usize];
+            let j = solver.model().joints[f.joint as usize];
             push([j[0], j[1], j[2]], f64::from(f.mode.code()), f.time, 0.0);
         }
         let cell_fields =

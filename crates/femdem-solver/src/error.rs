@@ -83,4 +83,8 @@ pub enum SolverError {
     /// [`crate::Solver::restore`]).
     #[error("snapshot: {0}")]
     Snapshot(String),
+    /// A change to the state between steps that cannot be made
+    /// ([`crate::Solver::damp`], [`crate::Solver::kick`]).
+    #[error("{0}")]
+    Intervention(String),
 }

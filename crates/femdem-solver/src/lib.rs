@@ -61,7 +61,7 @@
 //! for _ in 0..10 {
 //!     kinetic = solver.step(Want { energy: true, stress: false }).energies.kinetic;
 //! }
-//! let mass: f64 = solver.model.mass.iter().sum();
+//! let mass: f64 = solver.model().mass.iter().sum();
 //! assert!((kinetic / (0.5 * mass) - 1.0).abs() < 1e-12);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

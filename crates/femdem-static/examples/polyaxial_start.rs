@@ -142,13 +142,13 @@ fn watch(s: &mut Solver, reference: &[Mat3], end: Real, every: u64, label: &str)
     let mut last_above = [(0u64, 0.0); 2];
     let mut error = 0.0;
     let mut peak_kinetic: Real = 0.0;
-    while s.state.time < end {
-        let n = s.state.step;
+    while s.state().time < end {
+        let n = s.state().step;
         let check = n % every == 0;
         let kinetic = s.step(Want { stress: check, energy: check }).energies.kinetic;
         if check {
             peak_kinetic = peak_kinetic.max(kinetic);
-            error = stress_error(&s.model, &s.workspace.stress, reference);
+            error = stress_error(s.model(), &s.workspace().stress, reference);
             for (k, th) in thresholds.iter().enumerate() {
                 if error > *th {
                     last_above[k] = (n + every, clock.elapsed().as_secs_f64());
@@ -157,7 +157,7 @@ fn watch(s: &mut Solver, reference: &[Mat3], end: Real, every: u64, label: &str)
             if n % (every * 50) == 0 {
                 eprintln!(
                     "{label}: step {n} t = {:.4e} s error {error:.4e} kinetic {kinetic:.3e} J failures {}",
-                    s.state.time,
+                    s.state().time,
                     s.failures().len()
                 );
             }
@@ -165,8 +165,8 @@ fn watch(s: &mut Solver, reference: &[Mat3], end: Real, every: u64, label: &str)
     }
     println!(
         "{label}: {} steps to t = {:.3e} s in {:.2} s; stress within 2 % from step {} ({:.2} s), within 1 % from step {} ({:.2} s); final error {error:.3e}; largest kinetic energy {peak_kinetic:.3e} J; {} joints failed",
-        s.state.step,
-        s.state.time,
+        s.state().step,
+        s.state().time,
         clock.elapsed().as_secs_f64(),
         last_above[0].0,
         last_above[0].1,
@@ -219,7 +219,7 @@ fn main() {
     let mut statik = solver(model.clone(), held, &contact);
     statik.start_displaced(&solution.displacement).unwrap();
     statik.step(Want { stress: true, energy: true });
-    let reference = statik.workspace.stress.clone();
+    let reference = statik.workspace().stress.clone();
     let every = 10;
     watch(&mut statik, &reference, a.settle, every, "static");
     let mut dynamic = solver(model, loads, &contact);

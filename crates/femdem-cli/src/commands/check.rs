@@ -146,7 +146,7 @@ pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> 
             contact_omega: r.stable.contact_omega,
             damping_ratio: r.stable.damping_ratio,
             steps: r.steps,
-            deformable_tets: r.solver.model.num_deformable_tets(),
+            deformable_tets: r.solver.model().num_deformable_tets(),
             lanczos_iterations: r.stable.iterations,
         }),
     };

@@ -83,6 +83,7 @@
 
 mod external;
 mod failures;
+mod intervene;
 mod prescribed;
 mod record;
 mod start;
@@ -128,17 +129,16 @@ impl StepParams {
 
 /// An explicit solver: a model, its loads, its state.
 pub struct Solver {
-    /// The model.
-    pub model: Model,
-    /// The loads.
-    pub loads: Loads,
-    /// The state.
-    pub state: State,
+    /// The model ([`Solver::model`]).
+    pub(crate) model: Model,
+    /// The loads ([`Solver::loads`]).
+    pub(crate) loads: Loads,
+    /// The evolving state ([`Solver::state`]).
+    pub(crate) state: State,
     params: StepParams,
     energies: Energies,
-    /// The force workspace (holds the stresses of the last step that asked
-    /// for them).
-    pub workspace: Workspace,
+    /// The force workspace ([`Solver::workspace`]).
+    pub(crate) workspace: Workspace,
     failures: Vec<Failure>,
     contact: Option<Contact>,
     external: External,
@@ -256,6 +256,40 @@ impl Solver {
     /// first step on (as [`held_nodes`]).
     pub fn held_nodes(&self) -> Vec<bool> {
         self.external.held_nodes(&self.loads)
+    }
+
+    /// The model: mesh, materials, joints, masses. Read-only from outside
+    /// the crate: a model is fixed once the solver is built.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The loads. Read-only from outside the crate (the external forces'
+    /// caches are derived from them).
+    pub fn loads(&self) -> &Loads {
+        &self.loads
+    }
+
+    /// The evolving state: positions, velocities, joint histories, step
+    /// and time. Read-only from outside the crate: it changes by
+    /// [`Solver::step`] and by the methods that book what they change in
+    /// the energy account ([`Solver::damp`], [`Solver::kick`],
+    /// [`Solver::set_velocity`], [`Solver::start_displaced`],
+    /// [`Solver::restore`]).
+    ///
+    /// ```compile_fail
+    /// fn tamper(s: &mut femdem_solver::Solver) {
+    ///     s.state.v[0].x = 1.0; // private: use Solver::kick
+    /// }
+    /// ```
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// The force workspace: the tet stresses of the last step that asked
+    /// for them (`Want::stress`), the internal forces.
+    pub fn workspace(&self) -> &Workspace {
+        &self.workspace
     }
 
     /// Position of node `i` at the time of the last record, `t_n`:

@@ -75,28 +75,28 @@ pub(crate) fn pull(calibration: GfCalibration, zone: Option<[f64; 2]>) -> (f64, 
     let mut s = at_step(model, loads, dt);
     let mut peak: f64 = 0.0;
     // Pull until the top has moved 1.5 δc past the peak displacement.
-    let joint = s.model.joint_law[0];
+    let joint = s.model().joint_law[0];
     let target = 1.5 * joint.delta_nc + 2.0 * FT / 26e9 * len;
     let end = 5e-5 / 2.0 + target / V;
     // The residual pull is the reaction averaged over the last 20 µs: the
     // freed half rings after the release, which carries no force across
     // the crack but shows in the instantaneous reaction.
     let (mut tail_sum, mut tail_n) = (0.0, 0usize);
-    while s.state.time < end {
+    while s.state().time < end {
         let r = s.step(Want { energy: false, ..Want::default() }).drive_forces[0].z;
         peak = peak.max(r);
-        if s.state.time > end - 2e-5 {
+        if s.state().time > end - 2e-5 {
             tail_sum += r;
             tail_n += 1;
         }
     }
     s.step(Want { energy: true, ..Want::default() });
     let zs: Vec<f64> = s.failures().iter().map(|f| f.centroid.z).collect();
-    let work: f64 = s.state.joints.iter().filter(|h| h.failed).map(|h| h.work).sum();
-    let crack: f64 = s.state.joints.iter().filter(|h| h.failed).map(|h| h.dissipated).sum();
+    let work: f64 = s.state().joints.iter().filter(|h| h.failed).map(|h| h.work).sum();
+    let crack: f64 = s.state().joints.iter().filter(|h| h.failed).map(|h| h.dissipated).sum();
     eprintln!("work done on the crack's joints {:.3} J/m²", work / (w * w));
-    let released: f64 = s.state.joints.iter().map(|h| h.released).sum();
-    let damaged = s.state.joints.iter().filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0)).count();
+    let released: f64 = s.state().joints.iter().map(|h| h.released).sum();
+    let damaged = s.state().joints.iter().filter(|h| !h.failed && h.damage.iter().any(|&d| d > 0.0)).count();
     let residual = tail_sum / tail_n.max(1) as f64;
     let a = w * w;
     eprintln!(

@@ -255,14 +255,14 @@ fn brazilian(breakable: bool, h: f64, layers: Option<usize>, loading: Loading) -
         let load = 0.5 * (-f[0].y + f[1].y);
         let (mut vol, mut measured, mut exact) = (0.0, Mat3::zeros(), Mat3::zeros());
         for (&t, c) in centre.iter().zip(&centroids) {
-            let w = s.model.tet_ref[t].volume;
+            let w = s.model().tet_ref[t].volume;
             vol += w;
-            measured += s.workspace.stress[t] * w;
+            measured += s.workspace().stress[t] * w;
             exact += point_load_stress(load, c.x, c.y) * w;
         }
         let mean = |tets: &[usize]| {
-            let v: f64 = tets.iter().map(|&t| s.model.tet_ref[t].volume).sum();
-            tets.iter().map(|&t| s.workspace.stress[t] * s.model.tet_ref[t].volume).sum::<Mat3>() / v
+            let v: f64 = tets.iter().map(|&t| s.model().tet_ref[t].volume).sum();
+            tets.iter().map(|&t| s.workspace().stress[t] * s.model().tet_ref[t].volume).sum::<Mat3>() / v
         };
         Centre {
             load,
@@ -275,12 +275,12 @@ fn brazilian(breakable: bool, h: f64, layers: Option<usize>, loading: Loading) -
     };
     let want = Want { stress: true, ..Default::default() };
     let mut earlier = None;
-    while s.state.time < end {
+    while s.state().time < end {
         s.step(want);
-        if s.state.time > stop {
-            s.state.v.iter_mut().for_each(|v| *v *= keep);
+        if s.state().time > stop {
+            s.damp(keep).unwrap();
         }
-        if earlier.is_none() && s.state.time >= 0.8 * end {
+        if earlier.is_none() && s.state().time >= 0.8 * end {
             earlier = Some(measure(&s));
         }
     }

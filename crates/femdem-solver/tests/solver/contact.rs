@@ -28,11 +28,11 @@ use femdem_solver::select::{NodeSelection, select_nodes};
 use femdem_solver::{ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want};
 
 fn momentum(s: &Solver) -> Vec3 {
-    (0..s.model.num_nodes()).map(|i| s.state.v[i] * s.model.mass[i]).sum()
+    (0..s.model().num_nodes()).map(|i| s.state().v[i] * s.model().mass[i]).sum()
 }
 
 fn kinetic(s: &Solver) -> f64 {
-    (0..s.model.num_nodes()).map(|i| 0.5 * s.model.mass[i] * s.state.v[i].norm_squared()).sum()
+    (0..s.model().num_nodes()).map(|i| 0.5 * s.model().mass[i] * s.state().v[i].norm_squared()).sum()
 }
 
 #[test]
@@ -48,7 +48,7 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     s.set_velocity(|x| if x.x < 0.0205 { Vec3::new(1.0, 0.0, 0.0) } else { Vec3::new(-1.0, 0.0, 0.0) });
     let p0 = momentum(&s);
     let k0 = kinetic(&s);
-    let scale = s.model.mass.iter().sum::<f64>() * 1.0;
+    let scale = s.model().mass.iter().sum::<f64>() * 1.0;
     let mut touched = false;
     let mut apart = 0;
     for _ in 0..20_000 {
@@ -66,10 +66,10 @@ fn colliding_cubes_conserve_momentum_and_energy() {
     // Rigid-body kinetic energy of each cube after the bounce.
     let mut pv = [Vec3::zeros(); 2];
     let mut ms = [0.0; 2];
-    for i in 0..s.model.num_nodes() {
-        let k = usize::from(s.model.x0[i].x > 0.0205);
-        pv[k] += s.state.v[i] * s.model.mass[i];
-        ms[k] += s.model.mass[i];
+    for i in 0..s.model().num_nodes() {
+        let k = usize::from(s.model().x0[i].x > 0.0205);
+        pv[k] += s.state().v[i] * s.model().mass[i];
+        ms[k] += s.model().mass[i];
     }
     let rigid: f64 = (0..2).map(|k| 0.5 * pv[k].norm_squared() / ms[k]).sum();
     s.step(Want { energy: true, ..Want::default() });
@@ -116,7 +116,7 @@ fn block_on_a_rigid_plate_carries_its_weight() {
     let mut s = at_step(m, loads, dt);
     let p = 10.0 * 26e9;
     s.enable_contact(ContactSettings::new(p), &[]);
-    let weight = s.model.mass.iter().sum::<f64>() * g;
+    let weight = s.model().mass.iter().sum::<f64>() * g;
     let mut reaction = 0.0;
     for _ in 0..3_000 {
         s.step(Want::default());
@@ -124,13 +124,13 @@ fn block_on_a_rigid_plate_carries_its_weight() {
     }
     // The plate pushes the block up: the force the plate's drive applies is
     // minus the contact force on the plate, i.e. −(−weight).
-    let lowest = (0..s.model.num_nodes())
-        .filter(|&i| s.model.mass[i] > 0.0)
-        .map(|i| s.state.x[i].z)
+    let lowest = (0..s.model().num_nodes())
+        .filter(|&i| s.model().mass[i] > 0.0)
+        .map(|i| s.state().x[i].z)
         .fold(f64::INFINITY, f64::min);
     let base: Vec<usize> =
-        (0..s.model.num_nodes()).filter(|&i| s.model.mass[i] > 0.0 && s.model.x0[i].z == 0.0).collect();
-    let mean = -base.iter().map(|&i| s.state.x[i].z).sum::<f64>() / base.len() as f64;
+        (0..s.model().num_nodes()).filter(|&i| s.model().mass[i] > 0.0 && s.model().x0[i].z == 0.0).collect();
+    let mean = -base.iter().map(|&i| s.state().x[i].z).sum::<f64>() / base.len() as f64;
     let predicted = weight * h / (8.0 * p * 0.02 * 0.02);
     eprintln!(
         "weight {weight:.4e} N, plate reaction {reaction:.4e} N, penetration {:.3e} m, mean {mean:.3e} vs {predicted:.3e}",
@@ -172,10 +172,10 @@ fn broken_bar_halves_separate_without_contact_force() {
     // The reaction at the end, averaged over the last 20 µs (several periods
     // of the freed half's ringing, which carries no force across the crack).
     let (mut tail_sum, mut tail_n, mut tail_max) = (0.0, 0usize, 0.0f64);
-    while s.state.time < 4e-4 {
+    while s.state().time < 4e-4 {
         let r = s.step(Want::default()).drive_forces[0].z;
         peak = peak.max(r.abs());
-        if s.state.time > 3.8e-4 {
+        if s.state().time > 3.8e-4 {
             tail_sum += r;
             tail_n += 1;
             tail_max = tail_max.max(r.abs());
@@ -244,26 +244,26 @@ fn block_on_an_incline_sticks_below_and_slides_above_the_friction_angle() {
         s.enable_contact(ContactSettings { friction: mu, ..ContactSettings::new(26e9) }, &[]);
         let block_v = |s: &Solver| -> f64 {
             let (mut p, mut m) = (0.0, 0.0);
-            for i in 0..s.model.num_nodes() {
-                p += s.model.mass[i] * s.state.v[i].x;
-                m += s.model.mass[i];
+            for i in 0..s.model().num_nodes() {
+                p += s.model().mass[i] * s.state().v[i].x;
+                m += s.model().mass[i];
             }
             p / m
         };
         let (t1, t2) = (2e-4, 4e-4);
         let mut v1 = 0.0;
-        while s.state.time < t2 {
+        while s.state().time < t2 {
             s.step(Want::default());
-            if v1 == 0.0 && s.state.time >= t1 {
+            if v1 == 0.0 && s.state().time >= t1 {
                 v1 = block_v(&s);
             }
         }
-        let a = (block_v(&s) - v1) / (s.state.time - t1);
-        let slide = (0..s.model.num_nodes())
-            .filter(|&i| s.model.mass[i] > 0.0)
-            .map(|i| s.state.x[i].x - s.model.x0[i].x)
+        let a = (block_v(&s) - v1) / (s.state().time - t1);
+        let slide = (0..s.model().num_nodes())
+            .filter(|&i| s.model().mass[i] > 0.0)
+            .map(|i| s.state().x[i].x - s.model().x0[i].x)
             .sum::<f64>()
-            / s.model.mass.iter().filter(|&&m| m > 0.0).count() as f64;
+            / s.model().mass.iter().filter(|&&m| m > 0.0).count() as f64;
         (a, slide)
     };
     let g = 9.81 * 1000.0;

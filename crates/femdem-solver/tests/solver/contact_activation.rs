@@ -117,30 +117,30 @@ fn block(kink: bool) -> (Solver, Vec<u32>) {
 /// Tet `t`'s quadrant: (centroid right of `x = C`, above `z = C`), at the
 /// reference positions.
 fn quadrant(s: &Solver, t: u32) -> (bool, bool) {
-    let c = s.model.tets[t as usize].iter().map(|&n| s.model.x0[n as usize]).sum::<Vec3>() / 4.0;
+    let c = s.model().tets[t as usize].iter().map(|&n| s.model().x0[n as usize]).sum::<Vec3>() / 4.0;
     (c.x > C, c.z > C)
 }
 
 /// Whether tet `t` touches the line `x = z = C` (reference positions).
 fn on_line(s: &Solver, t: u32) -> bool {
-    s.model.tets[t as usize].iter().any(|&n| {
-        let p = s.model.x0[n as usize];
+    s.model().tets[t as usize].iter().any(|&n| {
+        let p = s.model().x0[n as usize];
         (p.x - C).abs() < 1e-9 && (p.z - C).abs() < 1e-9
     })
 }
 
 /// Whether tet `t` has a face on a failed joint.
 fn on_crack(s: &Solver, t: u32) -> bool {
-    (0..s.model.joints.len()).any(|j| s.state.joints[j].failed && s.model.joint_tets[j].contains(&t))
+    (0..s.model().joints.len()).any(|j| s.state().joints[j].failed && s.model().joint_tets[j].contains(&t))
 }
 
 /// The interpenetration of the pairs `(a, b)` with `a` in `from` and `b` in
 /// `to` that share an original vertex and no active joint: the summed
 /// overlap volume (m³) and the deepest node (m).
 fn overlap(s: &Solver, from: &[u32], to: &[u32]) -> (f64, f64) {
-    let m = &s.model;
+    let m = &s.model();
     let bonded: HashSet<(u32, u32)> = (0..m.joints.len())
-        .filter(|&j| !s.state.joints[j].failed)
+        .filter(|&j| !s.state().joints[j].failed)
         .map(|j| {
             let [a, b] = m.joint_tets[j];
             (a.min(b), a.max(b))
@@ -156,7 +156,7 @@ fn overlap(s: &Solver, from: &[u32], to: &[u32]) -> (f64, f64) {
             {
                 continue;
             }
-            let p = |t: u32| m.tets[t as usize].map(|n| s.state.x[n as usize]);
+            let p = |t: u32| m.tets[t as usize].map(|n| s.state().x[n as usize]);
             let (v, d) = tet_overlap(&p(a), &p(b));
             volume += v;
             depth = depth.max(d);
@@ -169,14 +169,14 @@ fn overlap(s: &Solver, from: &[u32], to: &[u32]) -> (f64, f64) {
 fn force_on(s: &Solver, tets: &[u32]) -> Vec3 {
     let c = s.contact().unwrap();
     tets.iter()
-        .flat_map(|&t| s.model.tets[t as usize])
+        .flat_map(|&t| s.model().tets[t as usize])
         .map(|n| c.force[n as usize] + c.friction_force[n as usize])
         .sum()
 }
 
 /// The tets touching the line `x = z = C` in quadrant `q`.
 fn at_line(s: &Solver, q: (bool, bool)) -> Vec<u32> {
-    (0..s.model.tets.len() as u32).filter(|&t| on_line(s, t) && quadrant(s, t) == q).collect()
+    (0..s.model().tets.len() as u32).filter(|&t| on_line(s, t) && quadrant(s, t) == q).collect()
 }
 
 /// Runs `block(kink)` with contact on (detection buffer `buffer`, m): the
@@ -190,7 +190,7 @@ fn run(kink: bool, buffer: f64) -> (Solver, [Vec<u32>; 3]) {
         s.step(Want::default());
     }
     s.break_joints(&cut);
-    while s.state.time < 6e-5 {
+    while s.state().time < 6e-5 {
         s.step(Want::default());
     }
     let quads = [(false, true), (true, true), (true, false)].map(|q| at_line(&s, q));
@@ -221,7 +221,7 @@ fn tets_across_a_kink_push_back_on_the_fragment() {
     let detections = buffered.contact().unwrap().detections;
     eprintln!("kink: {detections} detections with a 0.2 mm buffer, {} without", s.contact().unwrap().detections);
     assert!(detections <= 3, "{detections} detections");
-    assert_eq!(s.state, buffered.state, "the buffer or the thread count changed the result");
+    assert_eq!(s.state(), buffered.state(), "the buffer or the thread count changed the result");
 }
 
 /// The fragment ∩ lower-right overlap at 60 µs before the tets around a

@@ -170,12 +170,12 @@ fn bounce(impact: &Impact) -> Cycle {
     s.enable_contact(ContactSettings { model: impact.model, ..ContactSettings::new(penalty) }, &[]);
     let (v, w) = (Vec3::from(impact.velocity), Vec3::from(impact.spin));
     // The cube's nodes are those above the ground; c its centre.
-    let cube_nodes: Vec<Vec3> = s.model.x0.iter().copied().filter(|p| p.z > 0.0).collect();
+    let cube_nodes: Vec<Vec3> = s.model().x0.iter().copied().filter(|p| p.z > 0.0).collect();
     let c = cube_nodes.iter().sum::<Vec3>() / cube_nodes.len() as f64;
     s.set_velocity(|x| if x.z > 0.0 { v + w.cross(&(x - c)) } else { Vec3::zeros() });
     s.step(Want { energy: true, ..Want::default() });
     let brought = s.energies().kinetic;
-    let on_cube: Vec<bool> = s.model.x0.iter().map(|p| p.z > 0.0).collect();
+    let on_cube: Vec<bool> = s.model().x0.iter().map(|p| p.z > 0.0).collect();
     let (mut touched, mut apart, mut steps) = (false, 0, 0u64);
     while apart < 200 {
         s.step(Want::default());

@@ -51,9 +51,9 @@ fn the_buffer_and_the_thread_count_do_not_change_the_bits() {
     );
     assert!(every_step.contact().unwrap().detections > 0);
     assert!(every_step.energies().friction > 0.0, "friction must dissipate: {:?}", every_step.energies());
-    assert_eq!(every_step.state, buffered.state);
+    assert_eq!(every_step.state(), buffered.state());
     assert_eq!(every_step.energies(), buffered.energies());
-    assert_eq!(buffered.state, one_thread.state);
+    assert_eq!(buffered.state(), one_thread.state());
     assert_eq!(buffered.energies(), one_thread.energies());
     assert!(c(&every_step) as usize >= STEPS - 1);
     assert!(c(&buffered) * 10 < c(&every_step), "the buffer must cut detections tenfold");

@@ -92,22 +92,22 @@ fn on_plate(body: TetMesh, lo: [f64; 2], hi: [f64; 2], hp: f64, gravity: Vec3, m
 
 /// The body's nodes (those with mass).
 fn body(s: &Solver) -> Vec<usize> {
-    (0..s.model.num_nodes()).filter(|&i| s.model.mass[i] > 0.0).collect()
+    (0..s.model().num_nodes()).filter(|&i| s.model().mass[i] > 0.0).collect()
 }
 
 /// Mass, centre of mass at `t_n` and rigid-body angular velocity (`I⁻¹ L`
 /// about the centre of mass) of the nodes `nodes`, with the velocities
 /// `v_{n+½}` of the last step.
 fn rigid(s: &Solver, nodes: &[usize]) -> (f64, Vec3, Vec3) {
-    let m = &s.model.mass;
+    let m = &s.model().mass;
     let total: f64 = nodes.iter().map(|&i| m[i]).sum();
     let x = |i: usize| s.recorded_position(i);
     let cm = nodes.iter().map(|&i| x(i) * m[i]).sum::<Vec3>() / total;
-    let vcm = nodes.iter().map(|&i| s.state.v[i] * m[i]).sum::<Vec3>() / total;
+    let vcm = nodes.iter().map(|&i| s.state().v[i] * m[i]).sum::<Vec3>() / total;
     let (mut l, mut inertia) = (Vec3::zeros(), Mat3::zeros());
     for &i in nodes {
         let r = x(i) - cm;
-        l += r.cross(&(s.state.v[i] - vcm)) * m[i];
+        l += r.cross(&(s.state().v[i] - vcm)) * m[i];
         inertia += (Mat3::identity() * r.norm_squared() - r * r.transpose()) * m[i];
     }
     (total, cm, inertia.try_inverse().unwrap() * l)
@@ -152,24 +152,24 @@ fn mean_radius_of_unit_triangle(n: usize) -> f64 {
 /// and the body's mass and `I_zz`.
 fn spin_down(s: &mut Solver, settle: f64, omega: f64, t1: f64, t2: f64) -> (f64, f64, f64, f64, f64) {
     let nodes = body(s);
-    while s.state.time < settle {
+    while s.state().time < settle {
         s.step(Want::default());
     }
     let (mass, cm, _) = rigid(s, &nodes);
     for &i in &nodes {
-        let r = s.state.x[i] - cm;
-        s.state.v[i] += Vec3::new(-r.y, r.x, 0.0) * omega;
+        let r = s.state().x[i] - cm;
+        s.kick(i, Vec3::new(-r.y, r.x, 0.0) * omega).unwrap();
     }
-    let start = s.state.time;
-    let izz: f64 = nodes.iter().map(|&i| s.model.mass[i] * ((s.state.x[i] - cm).xy().norm_squared())).sum();
+    let start = s.state().time;
+    let izz: f64 = nodes.iter().map(|&i| s.model().mass[i] * ((s.state().x[i] - cm).xy().norm_squared())).sum();
     let mut w1 = 0.0;
     let e0 = {
         s.step(Want { energy: true, ..Want::default() });
         s.energies().balance()
     };
-    while s.state.time < start + t2 {
-        s.step(Want { energy: s.state.time >= start + t2 - 1.5 * s.dt(), ..Want::default() });
-        if w1 == 0.0 && s.state.time >= start + t1 {
+    while s.state().time < start + t2 {
+        s.step(Want { energy: s.state().time >= start + t2 - 1.5 * s.dt(), ..Want::default() });
+        if w1 == 0.0 && s.state().time >= start + t1 {
             w1 = rigid(s, &nodes).2.z;
         }
     }
@@ -192,12 +192,12 @@ fn spin_down(s: &mut Solver, settle: f64, omega: f64, t1: f64, t2: f64) -> (f64,
 /// `Σ A_j |c_j| / Σ A_j` over the plate's top faces clipped by the base.
 fn mean_radius_by_plate_faces(s: &Solver, base: [Vec3; 3]) -> f64 {
     let (mut area, mut moment) = (0.0, 0.0);
-    for (t, tet) in s.model.tets.iter().enumerate() {
-        if s.model.mass[tet[0] as usize] > 0.0 || !s.model.tet_material[t].is_rigid() {
+    for (t, tet) in s.model().tets.iter().enumerate() {
+        if s.model().mass[tet[0] as usize] > 0.0 || !s.model().tet_material[t].is_rigid() {
             continue;
         }
         for face in femdem_core::tet::FACES {
-            let p = face.map(|k| s.model.x0[tet[k] as usize]);
+            let p = face.map(|k| s.model().x0[tet[k] as usize]);
             if p.iter().any(|q| q.z != 0.0) {
                 continue;
             }
@@ -237,7 +237,7 @@ fn mean_radius_by_plate_faces(s: &Solver, base: [Vec3; 3]) -> f64 {
 fn spinning_tet_is_slowed_by_the_friction_torque() {
     let (side, height, mu, omega) = (0.02, 0.012, 0.5, 100.0);
     let mut s = on_plate(tet(side, height), [-0.016, -0.016], [0.016, 0.016], 0.002, Vec3::new(0.0, 0.0, -G), mu);
-    let base = [0, 1, 2].map(|i| s.model.x0[i]);
+    let base = [0, 1, 2].map(|i| s.model().x0[i]);
     let (t1, t2) = (2e-5, 1.2e-4);
     let (w1, w2, mass, izz, drift) = spin_down(&mut s, 5e-5, omega, t1, t2);
     let alpha = (w1 - w2) / (t2 - t1);
@@ -267,9 +267,9 @@ fn sliding_block_feels_friction_at_its_base() {
     let nodes = body(&s);
     let (mut w_max, mut w_sum, mut n) = (0.0f64, 0.0, 0);
     let end = 4e-4;
-    while s.state.time < end {
-        s.step(Want { energy: s.state.time > end - 1.5 * s.dt(), ..Want::default() });
-        if s.state.time > 1e-4 {
+    while s.state().time < end {
+        s.step(Want { energy: s.state().time > end - 1.5 * s.dt(), ..Want::default() });
+        if s.state().time > 1e-4 {
             let w = rigid(&s, &nodes).2.y;
             w_max = w_max.max(w.abs());
             w_sum += w;

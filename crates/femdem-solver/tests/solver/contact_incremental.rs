@@ -52,7 +52,7 @@ fn incremental_detection_gives_the_bits_of_full_detection_at_every_failure() {
         if buffer < 1e-4 {
             assert!(i.detections > 3, "the small buffer must detect in full between additions: {}", i.detections);
         }
-        assert!(full.state == incremental.state, "positions, velocities or joint histories differ");
+        assert!(full.state() == incremental.state(), "positions, velocities or joint histories differ");
         assert_eq!(full.energies(), incremental.energies());
         assert_eq!(full.imbalance(), incremental.imbalance());
         assert_eq!(full.failures(), incremental.failures());

@@ -87,7 +87,7 @@ fn cubes_pressed_face_to_face_transmit_the_load() {
     let model = Model::new(&jointed, &behaviour, 1.0).unwrap();
     let area = 0.014 * 0.012;
     let mut s = start(model, loads(&jointed, 2e-5), ContactSettings::new(26e9));
-    let mut lower_nodes: Vec<usize> = s.model.tets[..n_lower].iter().flatten().map(|&n| n as usize).collect();
+    let mut lower_nodes: Vec<usize> = s.model().tets[..n_lower].iter().flatten().map(|&n| n as usize).collect();
     lower_nodes.sort_unstable();
     lower_nodes.dedup();
     let steps = (1.5e-4 / s.dt()) as usize;
@@ -149,8 +149,8 @@ fn load_passes_from_joints_to_contact_when_the_mid_plane_breaks() {
     let contact = s.contact().unwrap();
     // The nodes of the lower half's tets (those at the cut included).
     let lower: Vec<usize> = {
-        let mut v: Vec<usize> = (s.model.tets.iter())
-            .filter(|t| t.iter().map(|&n| s.model.x0[n as usize].z).sum::<f64>() < 0.04)
+        let mut v: Vec<usize> = (s.model().tets.iter())
+            .filter(|t| t.iter().map(|&n| s.model().x0[n as usize].z).sum::<f64>() < 0.04)
             .flatten()
             .map(|&n| n as usize)
             .collect();
@@ -166,7 +166,7 @@ fn load_passes_from_joints_to_contact_when_the_mid_plane_breaks() {
         contact.active_pairs,
         s.energies().contact
     );
-    assert!(s.state.joints.iter().filter(|h| h.failed).count() == mid.len(), "only the mid-plane is broken");
+    assert!(s.state().joints.iter().filter(|h| h.failed).count() == mid.len(), "only the mid-plane is broken");
     assert!((before / f - 1.0).abs() < 0.01, "before: {before} vs {f}");
     assert!(lo > 0.9 * f && hi < 1.1 * f, "reaction left [{lo}, {hi}] around {f}");
     assert!((after / f - 1.0).abs() < 0.01, "after: {after} vs {f}");
@@ -189,15 +189,15 @@ fn pairs_skipped_by_their_certificates_are_negligible_where_skipped() {
     let (mut checked, mut steps_with, mut worst) = (0_usize, 0, 0.0_f64);
     let steps = (1.0e-4 / s.dt()) as usize;
     for _ in 0..steps {
-        let x = s.state.x.clone();
+        let x = s.state().x.clone();
         s.step(Want::default());
         let contact = s.contact().unwrap();
         let mut any = false;
         for (a, b) in contact.certified_skips() {
-            let at = |t: u32| s.model.tets[t as usize].map(|n| x[n as usize]);
+            let at = |t: u32| s.model().tets[t as usize].map(|n| x[n as usize]);
             let c = femdem_contact::tet_tet_contact(&at(a), &at(b), penalty);
             let largest = c.on_a.iter().chain(&c.on_b).map(|f| f.norm()).fold(0.0, f64::max);
-            let volume = s.model.tet_ref[a as usize].volume.min(s.model.tet_ref[b as usize].volume);
+            let volume = s.model().tet_ref[a as usize].volume.min(s.model().tet_ref[b as usize].volume);
             let threshold = femdem_solver::NEGLIGIBLE * penalty * volume.powf(2.0 / 3.0);
             assert!(largest <= threshold, "pair ({a}, {b}): force {largest} N above {threshold} N");
             worst = worst.max(largest / threshold);
@@ -232,7 +232,7 @@ fn a_restored_column_continues_bit_for_bit_with_its_certificates() {
         a.step(Want::default());
         b.step(Want::default());
     }
-    assert_eq!(a.state, b.state, "positions, velocities, joint histories");
+    assert_eq!(a.state(), b.state(), "positions, velocities, joint histories");
     assert_eq!(a.record(), b.record());
     assert!(a.snapshot() == b.snapshot(), "the whole state, certificates included, differs");
 }
@@ -265,12 +265,12 @@ fn skipping_negligible_pairs_moves_the_broken_column_by_less_than_their_bound() 
     };
     let (every, active_every, _) = run(0.0);
     let (skipping, active_skipping, candidates_not_in_contact) = run(femdem_solver::NEGLIGIBLE);
-    let volume = every.model.tet_ref.iter().map(|t| t.volume).fold(0.0, f64::max);
+    let volume = every.model().tet_ref.iter().map(|t| t.volume).fold(0.0, f64::max);
     let per_pair = femdem_solver::NEGLIGIBLE * 26e9 * volume.powf(2.0 / 3.0);
     let force = 2.0 * candidates_not_in_contact as f64 * per_pair;
     let reaction = (skipping.record().drive_forces[0] - every.record().drive_forces[0]).norm();
     let moved =
-        (0..every.model.num_nodes()).map(|i| (skipping.state.x[i] - every.state.x[i]).norm()).fold(0.0, f64::max);
+        (0..every.model().num_nodes()).map(|i| (skipping.state().x[i] - every.state().x[i]).norm()).fold(0.0, f64::max);
     let stiffness = 26e9 * 1e-4 / 0.02;
     eprintln!(
         "pairs in contact {active_every} evaluating all, {active_skipping} skipping; skipped forces below {force:.3e} N; \

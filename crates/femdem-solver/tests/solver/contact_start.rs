@@ -183,7 +183,7 @@ fn a_joint_failed_closed_hands_its_compression_to_contact() {
         // `n` points from side a to side b: b moved into a (a joint opened
         // instead would hold no compression).
         let expected = area * p0 * delta * delta / (2.0 * h);
-        let held = s.state.joints[0].compression_energy(area);
+        let held = s.state().joints[0].compression_energy(area);
         assert!((held - expected).abs() <= 1e-9 * expected, "{activation:?}: held {held:e} vs A p0 δ²/2h {expected:e}");
         s.break_joints(&[0]);
         for _ in 0..400 {
@@ -212,7 +212,7 @@ fn a_joint_failed_closed_hands_its_compression_to_contact() {
         assert_eq!(e.contact, en.contact + en.handed());
         // Fracture is the work done on the joints less what the intact ones
         // store, less what was handed over.
-        let work: f64 = s.state.joints.iter().map(|h| h.work).sum();
+        let work: f64 = s.state().joints.iter().map(|h| h.work).sum();
         let fracture = work - e.joint_elastic - en.handed();
         assert!((e.fracture - fracture).abs() <= 1e-9 * work.abs(), "{activation:?}: {} vs {fracture}", e.fracture);
         assert_eq!(s.check_energy(ENERGY_TOLERANCE), Ok(()), "{activation:?}");

@@ -26,7 +26,7 @@ fn collide(penalty: f64, factor: f64) -> (f64, f64) {
     let mut s = at_step(m, Loads::default(), factor * stable.critical);
     s.enable_contact(ContactSettings::new(penalty), &[]);
     s.set_velocity(|x| if x.x < 0.02005 { Vec3::new(1.0, 0.0, 0.0) } else { Vec3::new(-1.0, 0.0, 0.0) });
-    let e0: f64 = (0..s.model.num_nodes()).map(|i| 0.5 * s.model.mass[i] * s.state.v[i].norm_squared()).sum();
+    let e0: f64 = (0..s.model().num_nodes()).map(|i| 0.5 * s.model().mass[i] * s.state().v[i].norm_squared()).sum();
     // 1e-4 s: the cubes meet after 5e-5 s and part about 1.5e-5 s later.
     let steps = (1e-4 / s.dt()) as usize;
     for _ in 0..steps {

@@ -40,7 +40,7 @@ fn guarded(
             }
         }
     }
-    assert!(s.state.x.iter().chain(&s.state.v).all(|p| p.iter().all(|c| c.is_finite())), "a silent NaN");
+    assert!(s.state().x.iter().chain(&s.state().v).all(|p| p.iter().all(|c| c.is_finite())), "a silent NaN");
     None
 }
 
@@ -66,7 +66,7 @@ fn model_with(mesh: &TetMesh, material: Material, params: Option<JointParams>) -
 fn vibrates_boundedly(model: Model, steps: usize) -> (Real, Option<Trouble>) {
     let st = stable(&model, &Loads::default(), 2000);
     let mut s = at_step(model, Loads::default(), 0.9 * st.critical);
-    let scale = s.model.x0.iter().map(|p| p.norm()).fold(0.0, f64::max);
+    let scale = s.model().x0.iter().map(|p| p.norm()).fold(0.0, f64::max);
     s.set_velocity(|x| {
         let k = (x.x / scale * 31.0).sin() * (x.y / scale * 23.0).cos() + (x.z / scale * 29.0).sin();
         Vec3::new(k, -k, 0.5 * k) * 1e-3
@@ -88,7 +88,7 @@ fn vibrates_boundedly(model: Model, steps: usize) -> (Real, Option<Trouble>) {
             }
         }
     }
-    assert!(s.state.x.iter().chain(&s.state.v).all(|p| p.iter().all(|c| c.is_finite())), "a silent NaN");
+    assert!(s.state().x.iter().chain(&s.state().v).all(|p| p.iter().all(|c| c.is_finite())), "a silent NaN");
     let trouble = None;
     (worst, trouble)
 }
@@ -219,7 +219,7 @@ fn a_one_tet_mesh_has_the_exact_top_frequency_and_stays_stable() {
     let (mut early, mut late): (Real, Real) = (0.0, 0.0);
     let steps = 10_000;
     let trouble = guarded(&mut s, st.critical, steps, true, |s| {
-        let n = s.state.step as usize;
+        let n = s.state().step as usize;
         if n <= 1000 {
             early = early.max(energy(s));
         } else if n > steps - 1000 {
@@ -325,7 +325,9 @@ fn a_tiny_fracture_energy_breaks_at_the_peak_without_trouble() {
     let (p, s) = pull(10.0 * E, 1e-3, 0.05, 1.5e-4, false);
     eprintln!(
         "Gf = 1e-3: peak {:.4e} Pa, {} failures, δc {:.3e} m",
-        p.peak_stress, p.failures, s.model.joint_law[0].delta_nc
+        p.peak_stress,
+        p.failures,
+        s.model().joint_law[0].delta_nc
     );
     assert_eq!(p.trouble, None);
     assert!(p.failures > 0, "the bar must break");
@@ -365,8 +367,8 @@ fn loads_that_break_nothing_cost_no_contact_search() {
     let contact = s_with.contact().unwrap();
     assert!(contact.contactable().is_empty());
     assert!(contact.detections <= 1 && contact.active_pairs == 0, "{} detections", contact.detections);
-    assert_eq!(s_with.state.x, s_without.state.x);
-    assert_eq!(s_with.state.v, s_without.state.v);
+    assert_eq!(s_with.state().x, s_without.state().x);
+    assert_eq!(s_with.state().v, s_without.state().v);
     assert_eq!(with.peak_stress.to_bits(), without.peak_stress.to_bits());
 }
 
@@ -394,7 +396,8 @@ fn a_100_m_per_s_impact_shatters_with_momentum_and_energy_kept() {
     let mut s = at_step(model, Loads::default(), 0.9 * st.critical);
     s.enable_contact(settings, &[]);
     s.set_velocity(|x| if x.x < 0.02025 { Vec3::new(100.0, 0.0, 0.0) } else { Vec3::zeros() });
-    let momentum = |s: &Solver| -> Vec3 { (0..s.model.num_nodes()).map(|i| s.state.v[i] * s.model.mass[i]).sum() };
+    let momentum =
+        |s: &Solver| -> Vec3 { (0..s.model().num_nodes()).map(|i| s.state().v[i] * s.model().mass[i]).sum() };
     let p0 = momentum(&s);
     s.step(Want { energy: true, ..Want::default() });
     let (k0, b0) = (s.energies().kinetic, s.energies().balance());
@@ -444,8 +447,9 @@ fn a_fast_spin_stays_rigid_under_the_neo_hookean_law() {
         let mut s = at_step(model, Loads::default(), 0.9 * st.critical);
         let w = Vec3::new(0.0, 0.0, omega);
         s.set_velocity(|x| w.cross(x));
-        let corner =
-            (0..s.model.num_nodes()).max_by(|&a, &b| s.model.x0[a].norm().total_cmp(&s.model.x0[b].norm())).unwrap();
+        let corner = (0..s.model().num_nodes())
+            .max_by(|&a, &b| s.model().x0[a].norm().total_cmp(&s.model().x0[b].norm()))
+            .unwrap();
         s.step(Want { energy: true, ..Want::default() });
         let kinetic = s.energies().kinetic;
         let mut stored: f64 = 0.0;
@@ -454,10 +458,10 @@ fn a_fast_spin_stays_rigid_under_the_neo_hookean_law() {
         assert_eq!(trouble, None, "{law:?}");
         s.step(Want { energy: true, ..Want::default() });
         stored = stored.max(s.energies().tet_elastic);
-        let (p, p0) = (s.state.x[corner], s.model.x0[corner]);
+        let (p, p0) = (s.state().x[corner], s.model().x0[corner]);
         let turned = p.y.atan2(p.x) - p0.y.atan2(p0.x);
         let turned = (turned + std::f64::consts::TAU) % std::f64::consts::TAU;
-        (stored, kinetic, turned, omega * s.state.time)
+        (stored, kinetic, turned, omega * s.state().time)
     };
     let (stored, kinetic, turned, expected) = spin(Law::NeoHookean);
     let r: f64 = (0.03f64 * 0.03 + 0.025 * 0.025 + 0.02 * 0.02).sqrt();

@@ -63,9 +63,9 @@ fn a_face_held_from_the_end_of_a_pressure_ramp_stays_put_and_carries_the_pressur
     assert!(top.iter().all(|&i| !s.held_nodes()[i as usize]));
 
     let mean_top_z =
-        |s: &femdem_solver::Solver| top.iter().map(|&i| s.state.x[i as usize].z).sum::<f64>() / top.len() as f64;
+        |s: &femdem_solver::Solver| top.iter().map(|&i| s.state().x[i as usize].z).sum::<f64>() / top.len() as f64;
     let mut pressure_force = 0.0;
-    while s.state.time < t_s {
+    while s.state().time < t_s {
         let dt = s.dt();
         let r = s.step(Want::default());
         // The step from t_n prescribes v_{n+½}: held once t_n + Δt/2 ≥ t_s.
@@ -82,16 +82,16 @@ fn a_face_held_from_the_end_of_a_pressure_ramp_stays_put_and_carries_the_pressur
     assert!((0.89 * (1.0 - 0.008)..=1.008).contains(&moved), "top moved {moved} × P L / E");
     assert!(pressure_force < 0.0 && (pressure_force / (-p * w * w) - 1.0).abs() < 1e-3, "{pressure_force}");
 
-    let held: Vec<f64> = top.iter().map(|&i| s.state.x[i as usize].z).collect();
+    let held: Vec<f64> = top.iter().map(|&i| s.state().x[i as usize].z).collect();
     let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0);
-    while s.state.time < t_s + 5.0 * t1 {
+    while s.state().time < t_s + 5.0 * t1 {
         let r = s.step(Want { energy: true, ..Want::default() }).clone();
         assert_eq!(r.surface_forces[0], Vec3::zeros(), "the pressure is removed after t_s");
         let ratio = r.drive_forces[0].z / pressure_force;
         worst = worst.max((ratio - 1.0).abs());
         sum += ratio;
         count += 1;
-        let now: Vec<f64> = top.iter().map(|&i| s.state.x[i as usize].z).collect();
+        let now: Vec<f64> = top.iter().map(|&i| s.state().x[i as usize].z).collect();
         assert_eq!(now, held, "the held face moved at t = {}", r.time);
     }
     println!("reaction / pressure force: mean {}, worst deviation {worst} over {count} steps", sum / count as f64);

@@ -102,9 +102,9 @@ impl Stretch {
 fn mean_uz(s: &Solver, faces: &[[u32; 3]]) -> f64 {
     let (mut area, mut sum) = (0.0, 0.0);
     for f in faces {
-        let [a, b, c] = f.map(|i| s.model.x0[i as usize]);
+        let [a, b, c] = f.map(|i| s.model().x0[i as usize]);
         let w = 0.5 * (b - a).cross(&(c - a)).norm();
-        let u: f64 = f.iter().map(|&i| s.state.x[i as usize].z - s.model.x0[i as usize].z).sum();
+        let u: f64 = f.iter().map(|&i| s.state().x[i as usize].z - s.model().x0[i as usize].z).sum();
         area += w;
         sum += w * u / 3.0;
     }
@@ -150,10 +150,10 @@ pub(crate) fn relax(mesh: &TetMesh, zone: &[bool], p0: f64) -> (Stretch, Solver)
     let strain = |s: &Solver| (mean_uz(s, &faces[0]) - mean_uz(s, &faces[1])) / size[2];
     let t_end = 40.0 / omega;
     let mut at_four_fifths = None;
-    while s.state.time < t_end {
+    while s.state().time < t_end {
         s.step(Want::default());
-        s.state.v.iter_mut().for_each(|v| *v *= keep);
-        if at_four_fifths.is_none() && s.state.time >= 0.8 * t_end {
+        s.damp(keep).unwrap();
+        if at_four_fifths.is_none() && s.state().time >= 0.8 * t_end {
             at_four_fifths = Some(strain(&s));
         }
     }

@@ -100,9 +100,9 @@ fn zone_edge_passes_the_patch_test() {
 /// Mean z-displacement of the nodes on the lattice plane `z` (no jitter:
 /// they lie on it exactly).
 fn plane_uz(s: &Solver, z: f64) -> f64 {
-    let on: Vec<usize> = (0..s.model.x0.len()).filter(|&i| (s.model.x0[i].z - z).abs() < 1e-12).collect();
+    let on: Vec<usize> = (0..s.model().x0.len()).filter(|&i| (s.model().x0[i].z - z).abs() < 1e-12).collect();
     assert!(!on.is_empty());
-    on.iter().map(|&i| s.state.x[i].z - s.model.x0[i].z).sum::<f64>() / on.len() as f64
+    on.iter().map(|&i| s.state().x[i].z - s.model().x0[i].z).sum::<f64>() / on.len() as f64
 }
 
 #[test]

@@ -21,6 +21,7 @@ mod extremes;
 mod gravity;
 mod guard;
 mod hold_after;
+mod intervene;
 mod joint_compliance;
 mod joint_zone;
 mod objectivity;

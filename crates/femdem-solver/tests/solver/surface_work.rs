@@ -79,7 +79,7 @@ fn column_ramped(p: f64, p_side: f64, periods: f64, step: bool) -> (Solver, Vec<
 fn the_loads_work_adds_up_to_the_external_work() {
     let (mut s, _, t_ramp) = column(10e6, 3e6, 2.0);
     let mut work = [0.0; 2];
-    while s.state.time < t_ramp {
+    while s.state().time < t_ramp {
         let r = s.step(Want { energy: true, stress: false });
         let sum: f64 = r.surface_work.iter().sum();
         let external = r.energies.external_work;
@@ -101,16 +101,16 @@ fn a_slowly_pressed_column_takes_half_f_delta_from_its_load() {
     // faces (a third of each face's area to each of its nodes), so that
     // F δ is the load's `Σ f_i · u_i`.
     let area = |f: &[u32; 3], s: &Solver| {
-        let x = f.map(|i| s.model.x0[i as usize]);
+        let x = f.map(|i| s.model().x0[i as usize]);
         0.5 * (x[1] - x[0]).cross(&(x[2] - x[0])).norm()
     };
     let mean_top_z = |s: &Solver| {
-        let uz = |i: u32| s.recorded_position(i as usize).z - s.model.x0[i as usize].z;
+        let uz = |i: u32| s.recorded_position(i as usize).z - s.model().x0[i as usize].z;
         let weighted: f64 = top.iter().map(|f| area(f, s) * f.iter().map(|&i| uz(i)).sum::<f64>() / 3.0).sum();
         weighted / top.iter().map(|f| area(f, s)).sum::<f64>()
     };
     let (mut work, mut force, mut delta) = (0.0, 0.0, 0.0);
-    while s.state.time < t_ramp {
+    while s.state().time < t_ramp {
         let r = s.step(Want::default());
         (work, force) = (r.surface_work[0], r.surface_forces[0].z);
         delta = mean_top_z(&s);
@@ -157,10 +157,10 @@ fn a_restored_solver_continues_the_loads_work_bit_for_bit() {
 fn a_static_start_gives_each_load_its_share_of_the_stored_energy() {
     let (p, periods) = (10e6, 20.0);
     let (mut a, _, t_ramp) = column_ramped(p, 0.3 * p, periods, false);
-    while a.state.time < t_ramp {
+    while a.state().time < t_ramp {
         a.step(Want::default());
     }
-    let u: Vec<Vec3> = (0..a.state.x.len()).map(|i| a.recorded_position(i) - a.model.x0[i]).collect();
+    let u: Vec<Vec3> = (0..a.state().x.len()).map(|i| a.recorded_position(i) - a.model().x0[i]).collect();
     let (mut b, _, _) = column_ramped(p, 0.3 * p, periods, true);
     let stored = b.start_displaced(&u).unwrap();
     let shares = b.record().surface_work.clone();
@@ -213,7 +213,7 @@ fn driven_column(speed: f64, p_side: f64, periods: f64) -> (Solver, f64) {
 fn a_drive_and_a_load_add_up_to_the_external_work() {
     let (mut s, t_ramp) = driven_column(0.5, 3e6, 2.0);
     let mut work = (0.0, 0.0);
-    while s.state.time < 2.0 * t_ramp {
+    while s.state().time < 2.0 * t_ramp {
         let r = s.step(Want { energy: true, stress: false });
         let sum = r.drive_work[0] + r.surface_work[0];
         let external = r.energies.external_work;
@@ -236,7 +236,7 @@ fn a_slowly_driven_column_takes_half_f_delta_from_its_drive() {
     let periods = 20.0;
     let (mut s, t_ramp) = driven_column(0.05, 0.0, periods);
     let (mut work, mut force, mut delta) = (0.0, 0.0, 0.0);
-    while s.state.time < t_ramp {
+    while s.state().time < t_ramp {
         let r = s.step(Want::default());
         (work, force, delta) = (r.drive_work[0], r.drive_forces[0].z, r.drive_displacements[0].z);
     }

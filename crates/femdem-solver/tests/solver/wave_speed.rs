@@ -168,13 +168,13 @@ fn wave_speed(breakable: bool, p0: f64) -> Speeds {
     let mut crossing = [None; 2];
     let mut previous = [0.0; 2];
     let t_max = 2.0 * (STATIONS[1] + FRONT_CELLS) * H / expected;
-    while crossing[1].is_none() && solver.state.time < t_max {
+    while crossing[1].is_none() && solver.state().time < t_max {
         solver.step(Want::default());
         let dt = solver.dt();
         // The velocities just computed are v_{n+½}.
-        let t_half = solver.state.time - 0.5 * dt;
+        let t_half = solver.state().time - 0.5 * dt;
         for k in 0..2 {
-            let v = mass_mean(&solver.model, &slabs[k], |i| solver.state.v[i].z);
+            let v = mass_mean(solver.model(), &slabs[k], |i| solver.state().v[i].z);
             if crossing[k].is_none() && v >= 0.5 * V0 {
                 let f = (0.5 * V0 - previous[k]) / (v - previous[k]);
                 crossing[k] = Some(t_half - dt + f * dt);

@@ -73,7 +73,7 @@ pub fn solver(model: Model, loads: Loads, safety: Real) -> Solver {
 
 /// Displacement of every node, `x − x0`.
 pub fn displacement(s: &Solver) -> Vec<Vec3> {
-    s.state.x.iter().zip(&s.model.x0).map(|(x, x0)| x - x0).collect()
+    s.state().x.iter().zip(&s.model().x0).map(|(x, x0)| x - x0).collect()
 }
 
 /// `√(Σ |a − b|²) / √(Σ |b|²)`.

@@ -40,7 +40,7 @@ fn the_hand_over_checks_its_displacement() {
     let loads = Loads { fixed: vec![fixed(&mesh, "zmin")], ..Default::default() };
     let held = loads.fixed[0].nodes[0] as usize;
     let mut s = solver(model(&mesh, limestone(0.0)), loads, 0.9);
-    let n = s.model.num_nodes();
+    let n = s.model().num_nodes();
     let bad = |r: Result<f64, SolverError>| matches!(r, Err(SolverError::InitialDisplacement(_)));
     assert!(bad(s.start_displaced(&vec![Vec3::zeros(); n - 1])));
     let mut u = vec![Vec3::zeros(); n];

@@ -53,7 +53,7 @@ fn a_pushed_free_body_accelerates_rigidly_from_the_static_start() {
 
     let mut statik = solver(m.clone(), loads.clone(), 0.9);
     let stored = statik.start_displaced(&solution.displacement).unwrap();
-    let x = &statik.state.x;
+    let x = &statik.state().x;
     let area: Real = loads.surfaces[0]
         .faces
         .iter()

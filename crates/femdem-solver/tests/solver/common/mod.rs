@@ -75,13 +75,6 @@ pub fn at_step(model: Model, loads: Loads, dt: f64) -> Solver {
     Solver::new(model, loads, StepParams::new(dt).unwrap()).unwrap()
 }
 
-/// Sets every node's position to `x0 + u(x0)`.
-pub fn displace(s: &mut Solver, u: impl Fn(&Vec3) -> Vec3) {
-    for (x, x0) in s.state.x.iter_mut().zip(&s.model.x0) {
-        *x = x0 + u(x0);
-    }
-}
-
 // ---------------------------------------------------------------------------
 // Effective compliance of a joint-meshed solid (average-strain theorem).
 // Voigt order xx, yy, zz, yz, xz, xy; strains with engineering shears

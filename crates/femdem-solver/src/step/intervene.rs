@@ -1,0 +1,120 @@
+//! Changes to the state between steps that a test, a driver or a user's
+//! program may make, each booked in the energy account so that the
+//! balance still holds: damping the motion ([`Solver::damp`]) and
+//! changing a node's velocity ([`Solver::kick`]).
+//!
+//! # The booking
+//!
+//! Between step `n` and step `n + 1` the state holds `v_{n+½}` and
+//! `x_{n+1} = x_n + Δt v_{n+½}`. An intervention replaces a free
+//! component's `v_{n+½}` by `v'` and moves `x_{n+1}` with it, to `x_n +
+//! Δt v'`, so that the node's path over `[t_n, t_{n+1}]` is the one its
+//! velocity says (as if an impulse had acted at `t_n`). Step `n` recorded
+//! `K_n = ½ m v_{n−½} · v_{n+½}` and held over the work of the loads,
+//! reactions and contact `½ Δt G_n · v_{n+½}`; step `n + 1` records
+//! `K_{n+1} = ½ m |v'|² + ½ Δt F_{n+1} · v'` and closes the interval with
+//! `½ Δt G_{n+1} · v'` (`F = f_int + G` the total force). With the
+//! internal forces' trapezoid `−ΔU = ½ Δt (f_int,n + f_int,n+1) · v'`
+//! (exact for a linear elastic body, as for every step), the account of
+//! `[t_n, t_{n+1}]` is then out by exactly
+//!
+//! ```text
+//! R = ½ m (|v'|² − |v_{n+½}|²) + ½ Δt f_int,n · (v_{n+½} − v'),
+//! ```
+//!
+//! known at the intervention (`f_int,n` is the step's internal force,
+//! [`crate::forces::Workspace::internal`]). A damping books `−R` as
+//! dissipated (`damping`), a kick books `R` as external work; the balance
+//! then holds to the account's own accuracy. Both are booked at once:
+//! [`Solver::energies`] read before the next step shows the booking
+//! without the kinetic change; the next step's record balances. With
+//! viscous materials the internal force holds the viscous one, whose work
+//! the account books as dissipation by its own trapezoid: there the
+//! booking is approximate to the same order as that trapezoid.
+//!
+//! Prescribed components (fixed, or driven by an active drive) are left
+//! as they are: the next step imposes them again.
+
+use femdem_core::{Real, Vec3};
+
+use crate::SolverError;
+use crate::step::Solver;
+use crate::step::prescribed::Claim;
+
+impl Solver {
+    /// Whether component `c` of node `i` moves freely now (not fixed, not
+    /// driven by an active drive).
+    fn free(&self, i: usize, c: usize) -> bool {
+        match self.external.prescribed[i][c] {
+            Claim::Free => true,
+            Claim::Fixed => false,
+            Claim::Drive(d) => !self.external.active[d as usize],
+        }
+    }
+
+    /// Sets the free components of node `i`'s velocity to those of `v`,
+    /// moving `x_{n+1}` with them; returns `R` of the module documentation.
+    fn replace_velocity(&mut self, i: usize, v: Vec3) -> Real {
+        let dt = self.params.dt;
+        let (m, f) = (self.model.mass[i], self.workspace.internal.get(i).copied().unwrap_or_else(Vec3::zeros));
+        let mut r = 0.0;
+        for c in 0..3 {
+            if !self.free(i, c) {
+                continue;
+            }
+            let (old, new) = (self.state.v[i][c], v[c]);
+            r += 0.5 * m * (new * new - old * old) + 0.5 * dt * f[c] * (old - new);
+            self.state.v[i][c] = new;
+            self.state.x[i][c] += dt * (new - old);
+        }
+        r
+    }
+
+    /// Scales the free velocity components `v_{n+½}` of every node by
+    /// `keep` (in `[0, 1]`) and books the energy removed as dissipated in
+    /// [`crate::Energies::damping`] (exactly, by the module documentation:
+    /// `½ Σ m |v|² (1 − keep²)` up to a term of the step's internal
+    /// forces). Returns that energy, J.
+    ///
+    /// Damping every step by a `keep` just below one drives a dynamic run
+    /// to its static state (dynamic relaxation).
+    ///
+    /// # Errors
+    /// [`SolverError::Intervention`] for a `keep` outside `[0, 1]` or not
+    /// a number; nothing is changed then.
+    pub fn damp(&mut self, keep: Real) -> Result<Real, SolverError> {
+        if !(0.0..=1.0).contains(&keep) {
+            return Err(SolverError::Intervention(format!("damp: keep must lie in [0, 1], got {keep}")));
+        }
+        let mut removed = 0.0;
+        for i in 0..self.state.v.len() {
+            let v = self.state.v[i] * keep;
+            removed -= self.replace_velocity(i, v);
+        }
+        self.energies.damping += removed;
+        Ok(removed)
+    }
+
+    /// Adds `dv` to the free components of node `node`'s velocity
+    /// `v_{n+½}` and books the work that takes, `½ m (|v + dv|² − |v|²)`
+    /// up to a term of the step's internal forces (module documentation),
+    /// as external work: an impulse from outside the model. Returns that
+    /// work, J.
+    ///
+    /// # Errors
+    /// [`SolverError::Intervention`] for a node out of range or a `dv`
+    /// that is not finite; nothing is changed then.
+    pub fn kick(&mut self, node: usize, dv: Vec3) -> Result<Real, SolverError> {
+        let n = self.state.v.len();
+        if node >= n {
+            return Err(SolverError::Intervention(format!("kick: node {node} of {n}")));
+        }
+        if !dv.iter().all(|c| c.is_finite()) {
+            return Err(SolverError::Intervention(format!("kick: the velocity change {dv:?} is not finite")));
+        }
+        let v = self.state.v[node] + dv;
+        let work = self.replace_velocity(node, v);
+        self.energies.external_work += work;
+        Ok(work)
+    }
+}

@@ -118,6 +118,6 @@ impl Solver {
     /// step that evaluated the energies ([`crate::Want::energy`]; step 0
     /// always does); `None` before the first step.
     pub fn imbalance(&self) -> Option<Imbalance> {
-        self.account.last
+        self.evolving.account.last
     }
 }

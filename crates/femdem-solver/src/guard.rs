@@ -187,16 +187,16 @@ impl Solver {
     /// # Errors
     /// The first [`Trouble`] found, naming the node or tet and where it is.
     pub fn check(&self, critical: Real) -> Result<(), Trouble> {
-        let (step, time) = (self.state.step, self.state.time);
-        let s = &self.state;
+        let (step, time) = (self.evolving.state.step, self.evolving.state.time);
+        let s = &self.evolving.state;
         if let Some(node) = (0..s.x.len())
             .into_par_iter()
             .find_first(|&i| !(s.x[i].iter().all(|c| c.is_finite()) && s.v[i].iter().all(|c| c.is_finite())))
         {
-            let x0 = self.model.x0[node];
+            let x0 = self.scene.model.x0[node];
             return Err(Trouble::NonFinite { step, time, node, x0: [x0.x, x0.y, x0.z] });
         }
-        let model = &self.model;
+        let model = &self.scene.model;
         let worst = (0..model.tets.len())
             .into_par_iter()
             .filter_map(|t| model.tet_material[t].index().map(|i| (t, i)))

@@ -433,16 +433,16 @@ impl Solver {
         let mut e = Encoder::new();
         e.u32(SNAPSHOT_VERSION);
         e.f64(self.dt());
-        let s = &self.state;
+        let s = &self.evolving.state;
         e.vec3s(&s.x);
         e.vec3s(&s.v);
-        e.vec3s(&self.v_before);
+        e.vec3s(&self.evolving.v_before);
         e.f64(s.time);
         e.u64(s.step);
         e.count(s.joints.len());
         s.joints.iter().for_each(|h| put_joint(&mut e, h));
         put_energies(&mut e, self.energies());
-        put_account(&mut e, &self.account);
+        put_account(&mut e, &self.evolving.account);
         e.count(self.failures().len());
         for f in self.failures() {
             e.u32(f.joint);
@@ -484,22 +484,26 @@ impl Solver {
                 self.dt()
             )));
         }
-        let n = self.model.num_nodes();
+        let n = self.scene.model.num_nodes();
         let x = d.vec3s()?;
         expect_count("nodes", x.len(), n)?;
         let v = d.vec3s()?;
         expect_count("velocities", v.len(), n)?;
         let v_before = d.vec3s()?;
-        expect_count("velocities of the step before", v_before.len(), self.v_before.len())?;
+        expect_count("velocities of the step before", v_before.len(), self.evolving.v_before.len())?;
         let time = d.f64()?;
         let step = d.u64()?;
         let n_joints = d.count()?;
-        expect_count("joints", n_joints, self.model.joints.len())?;
+        expect_count("joints", n_joints, self.scene.model.joints.len())?;
         let joints = (0..n_joints).map(|_| get_joint(&mut d)).collect::<Result<Vec<_>, _>>()?;
         let energies = get_energies(&mut d)?;
         let account = get_account(&mut d)?;
-        expect_count("surface loads (work held over)", account.surface_ahead.len(), self.account.surface_ahead.len())?;
-        expect_count("drives (work held over)", account.drive_ahead.len(), self.account.drive_ahead.len())?;
+        expect_count(
+            "surface loads (work held over)",
+            account.surface_ahead.len(),
+            self.evolving.account.surface_ahead.len(),
+        )?;
+        expect_count("drives (work held over)", account.drive_ahead.len(), self.evolving.account.drive_ahead.len())?;
         let n_failures = d.count()?;
         let mut failures = Vec::with_capacity(n_failures);
         for _ in 0..n_failures {
@@ -518,19 +522,22 @@ impl Solver {
         let record = get_record(&mut d, self.record())?;
         let has_contact = d.bool()?;
         let contact = match (has_contact, self.contact()) {
-            (true, Some(c)) => Some(c.decoded(&self.model, &mut d)?),
+            (true, Some(c)) => Some(c.decoded(&self.scene.model, &mut d)?),
             (false, None) => None,
             (true, None) => return Err(snapshot_error("the snapshot has contact, this solver has none")),
             (false, Some(_)) => return Err(snapshot_error("the snapshot has no contact, this solver has")),
         };
         d.finish()?;
-        self.state.x = x;
-        self.state.v = v;
-        self.v_before = v_before;
-        self.state.time = time;
-        self.state.step = step;
-        self.state.joints = joints;
+        self.evolving.state.x = x;
+        self.evolving.state.v = v;
+        self.evolving.v_before = v_before;
+        self.evolving.state.time = time;
+        self.evolving.state.step = step;
+        self.evolving.state.joints = joints;
         self.put_back(energies, failures, record, contact, account);
+        // The pipeline is not in the snapshot: what an earlier step of this
+        // solver left there belongs to another state.
+        self.pipeline.workspace.internal.fill(Vec3::zeros());
         Ok(())
     }
 }

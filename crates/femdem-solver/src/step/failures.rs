@@ -13,15 +13,15 @@ impl Solver {
     /// Appends the joints that failed in the last force evaluation to the
     /// failure record, in joint order, and unbonds their tets.
     pub(super) fn record_failures(&mut self, time: Real) {
-        for j in 0..self.workspace.failed_now.len() {
-            let Some(mode) = self.workspace.failed_now[j] else {
+        for j in 0..self.pipeline.workspace.failed_now.len() {
+            let Some(mode) = self.pipeline.workspace.failed_now[j] else {
                 continue;
             };
-            let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
+            let xp = self.scene.model.joints[j].map(|n| self.evolving.state.x[n as usize]);
             let centroid = xp.iter().sum::<Vec3>() / 6.0;
             let k = joint_kinematics(&xp);
             let area = k.as_ref().map_or(0.0, |k| k.frame.area);
-            self.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
+            self.evolving.failures.push(Failure { joint: j as u32, time, centroid, area, mode });
             self.unbond(j, closed(k.as_ref()), area);
         }
     }
@@ -35,10 +35,10 @@ impl Solver {
     /// `fracture` energy from then on.
     pub fn break_joints(&mut self, joints: &[u32]) {
         for &j in joints {
-            let history = &mut self.state.joints[j as usize];
+            let history = &mut self.evolving.state.joints[j as usize];
             if !history.failed {
                 history.failed = true;
-                let xp = self.model.joints[j as usize].map(|n| self.state.x[n as usize]);
+                let xp = self.scene.model.joints[j as usize].map(|n| self.evolving.state.x[n as usize]);
                 let k = joint_kinematics(&xp);
                 let area = k.as_ref().map_or(0.0, |k| k.frame.area);
                 self.unbond(j as usize, closed(k.as_ref()), area);
@@ -55,9 +55,9 @@ impl Solver {
     /// its last evaluation), which contact may give back as handed over
     /// ([`crate::ContactEnergy::handed`]).
     pub(super) fn unbond(&mut self, j: usize, compressed: bool, area: Real) {
-        if let Some(contact) = &mut self.contact {
-            let held = self.state.joints[j].compression_energy(area);
-            contact.joint_failed(&self.model, j, compressed, held);
+        if let Some(contact) = &mut self.evolving.contact {
+            let held = self.evolving.state.joints[j].compression_energy(area);
+            contact.joint_failed(&self.scene.model, j, compressed, held);
         }
     }
 }

@@ -34,6 +34,12 @@
 //!
 //! Prescribed components (fixed, or driven by an active drive) are left
 //! as they are: the next step imposes them again.
+//!
+//! `f_int,n` is read from the pipeline's workspace, where the last step
+//! left it. The workspace is not checkpointed: right after
+//! [`Solver::restore`], before a step, it holds zeros and the term is
+//! taken as zero (an intervention there is booked as `½ m (|v'|² −
+//! |v|²)` alone).
 
 use femdem_core::{Real, Vec3};
 
@@ -45,27 +51,28 @@ impl Solver {
     /// Whether component `c` of node `i` moves freely now (not fixed, not
     /// driven by an active drive).
     fn free(&self, i: usize, c: usize) -> bool {
-        match self.external.prescribed[i][c] {
+        match self.pipeline.external.prescribed[i][c] {
             Claim::Free => true,
             Claim::Fixed => false,
-            Claim::Drive(d) => !self.external.active[d as usize],
+            Claim::Drive(d) => !self.pipeline.external.active[d as usize],
         }
     }
 
     /// Sets the free components of node `i`'s velocity to those of `v`,
     /// moving `x_{n+1}` with them; returns `R` of the module documentation.
     fn replace_velocity(&mut self, i: usize, v: Vec3) -> Real {
-        let dt = self.params.dt;
-        let (m, f) = (self.model.mass[i], self.workspace.internal.get(i).copied().unwrap_or_else(Vec3::zeros));
+        let dt = self.scene.params.dt;
+        let (m, f) =
+            (self.scene.model.mass[i], self.pipeline.workspace.internal.get(i).copied().unwrap_or_else(Vec3::zeros));
         let mut r = 0.0;
         for c in 0..3 {
             if !self.free(i, c) {
                 continue;
             }
-            let (old, new) = (self.state.v[i][c], v[c]);
+            let (old, new) = (self.evolving.state.v[i][c], v[c]);
             r += 0.5 * m * (new * new - old * old) + 0.5 * dt * f[c] * (old - new);
-            self.state.v[i][c] = new;
-            self.state.x[i][c] += dt * (new - old);
+            self.evolving.state.v[i][c] = new;
+            self.evolving.state.x[i][c] += dt * (new - old);
         }
         r
     }
@@ -87,11 +94,11 @@ impl Solver {
             return Err(SolverError::Intervention(format!("damp: keep must lie in [0, 1], got {keep}")));
         }
         let mut removed = 0.0;
-        for i in 0..self.state.v.len() {
-            let v = self.state.v[i] * keep;
+        for i in 0..self.evolving.state.v.len() {
+            let v = self.evolving.state.v[i] * keep;
             removed -= self.replace_velocity(i, v);
         }
-        self.energies.damping += removed;
+        self.evolving.energies.damping += removed;
         Ok(removed)
     }
 
@@ -105,16 +112,16 @@ impl Solver {
     /// [`SolverError::Intervention`] for a node out of range or a `dv`
     /// that is not finite; nothing is changed then.
     pub fn kick(&mut self, node: usize, dv: Vec3) -> Result<Real, SolverError> {
-        let n = self.state.v.len();
+        let n = self.evolving.state.v.len();
         if node >= n {
             return Err(SolverError::Intervention(format!("kick: node {node} of {n}")));
         }
         if !dv.iter().all(|c| c.is_finite()) {
             return Err(SolverError::Intervention(format!("kick: the velocity change {dv:?} is not finite")));
         }
-        let v = self.state.v[node] + dv;
+        let v = self.evolving.state.v[node] + dv;
         let work = self.replace_velocity(node, v);
-        self.energies.external_work += work;
+        self.evolving.energies.external_work += work;
         Ok(work)
     }
 }

@@ -127,31 +127,62 @@ impl StepParams {
     }
 }
 
-/// An explicit solver: a model, its loads, its state.
-pub struct Solver {
+/// What a run is about, fixed once the solver is built: the model, the
+/// loads and the step parameters (the time step changes only by
+/// [`Solver::set_params`]), and what is derived from them alone.
+pub(crate) struct Scene {
     /// The model ([`Solver::model`]).
     pub(crate) model: Model,
     /// The loads ([`Solver::loads`]).
     pub(crate) loads: Loads,
-    /// The evolving state ([`Solver::state`]).
+    /// The step parameters.
+    pub(crate) params: StepParams,
+    /// Whether any material is viscous.
+    pub(crate) viscous: bool,
+    /// The energy scale's floor ([`crate::account`]), J.
+    pub(crate) floor: f64,
+}
+
+/// What changes step by step: everything a checkpoint holds
+/// ([`Solver::snapshot`]) to continue bit for bit.
+pub(crate) struct Evolving {
+    /// Positions, velocities, joint histories, step and time
+    /// ([`Solver::state`]).
     pub(crate) state: State,
-    params: StepParams,
-    energies: Energies,
-    /// The force workspace ([`Solver::workspace`]).
-    pub(crate) workspace: Workspace,
-    failures: Vec<Failure>,
-    contact: Option<Contact>,
-    external: External,
-    update: Update,
-    viscous: bool,
+    /// The energy account's running terms.
+    pub(crate) energies: Energies,
+    /// Every joint failure so far.
+    pub(crate) failures: Vec<Failure>,
+    /// Contact: its pairs, springs, ramps, detection and certificates.
+    pub(crate) contact: Option<Contact>,
     /// With viscous materials, the velocities of the step before,
     /// `v_{n−3/2}` at step `n` (the dissipation's trapezoid,
     /// [`Dissipation`]); empty otherwise.
     pub(crate) v_before: Vec<Vec3>,
-    record: StepRecord,
+    /// The record of the last step.
+    pub(crate) record: StepRecord,
+    /// The energy account's held-over half steps and its watch.
     pub(crate) account: Account,
-    /// The energy scale's floor ([`crate::account`]), J.
-    floor: f64,
+}
+
+/// Buffers and caches a step fills and then reads: they are not
+/// checkpointed, and a GPU pipeline would sit beside them.
+pub(crate) struct Pipeline {
+    /// The force workspace ([`Solver::workspace`]).
+    pub(crate) workspace: Workspace,
+    /// External forces, prescribed components and drive targets.
+    external: External,
+    /// The update's per-chunk sums.
+    update: Update,
+}
+
+/// An explicit solver: the scene it runs (model, loads, step
+/// parameters), the state that evolves, and the pipeline of buffers a step
+/// works in.
+pub struct Solver {
+    pub(crate) scene: Scene,
+    pub(crate) evolving: Evolving,
+    pub(crate) pipeline: Pipeline,
 }
 
 impl Solver {
@@ -181,51 +212,47 @@ impl Solver {
             ..StepRecord::default()
         };
         Ok(Solver {
-            v_before: if viscous { vec![Vec3::zeros(); n] } else { Vec::new() },
-            floor: energy_floor(&model),
-            account: Account {
-                surface_ahead: vec![0.0; loads.surfaces.len()],
-                drive_ahead: vec![0.0; loads.drives.len()],
-                ..Account::default()
+            evolving: Evolving {
+                v_before: if viscous { vec![Vec3::zeros(); n] } else { Vec::new() },
+                account: Account {
+                    surface_ahead: vec![0.0; loads.surfaces.len()],
+                    drive_ahead: vec![0.0; loads.drives.len()],
+                    ..Account::default()
+                },
+                state,
+                energies: Energies::default(),
+                failures: Vec::new(),
+                contact: None,
+                record,
             },
-            workspace: Workspace::new(&model),
-            update: Update::new(n),
-            model,
-            loads,
-            state,
-            params,
-            energies: Energies::default(),
-            failures: Vec::new(),
-            contact: None,
-            external,
-            viscous,
-            record,
+            pipeline: Pipeline { workspace: Workspace::new(&model), update: Update::new(n), external },
+            scene: Scene { floor: energy_floor(&model), model, loads, params, viscous },
         })
     }
 
     /// The time step, s.
     pub fn dt(&self) -> Real {
-        self.params.dt
+        self.scene.params.dt
     }
 
     /// Changes the time step from the next step on.
     pub fn set_params(&mut self, params: StepParams) {
-        self.params = params;
+        self.scene.params = params;
     }
 
     /// The energy account after the last step.
     pub fn energies(&self) -> &Energies {
-        &self.energies
+        &self.evolving.energies
     }
 
     /// Every joint failure so far, in order.
     pub fn failures(&self) -> &[Failure] {
-        &self.failures
+        &self.evolving.failures
     }
 
     /// The contact pass, when enabled ([`Solver::enable_contact`]).
     pub fn contact(&self) -> Option<&Contact> {
-        self.contact.as_ref()
+        self.evolving.contact.as_ref()
     }
 
     /// Chooses the normal contact force ([`ContactModel`]) before the first
@@ -236,38 +263,38 @@ impl Solver {
     /// # Errors
     /// Without contact, or after the first step.
     pub fn set_contact_model(&mut self, model: ContactModel) -> Result<(), String> {
-        if self.state.step != 0 {
+        if self.evolving.state.step != 0 {
             return Err(format!(
                 "the run is at step {}: the contact model is chosen before the first",
-                self.state.step
+                self.evolving.state.step
             ));
         }
-        let contact = self.contact.as_mut().ok_or("the case has no contact")?;
+        let contact = self.evolving.contact.as_mut().ok_or("the case has no contact")?;
         contact.settings.model = model;
         Ok(())
     }
 
     /// The record of the last step (all zero before the first).
     pub fn record(&self) -> &StepRecord {
-        &self.record
+        &self.evolving.record
     }
 
     /// Which nodes have all three velocity components prescribed from the
     /// first step on (as [`held_nodes`]).
     pub fn held_nodes(&self) -> Vec<bool> {
-        self.external.held_nodes(&self.loads)
+        self.pipeline.external.held_nodes(&self.scene.loads)
     }
 
     /// The model: mesh, materials, joints, masses. Read-only from outside
     /// the crate: a model is fixed once the solver is built.
     pub fn model(&self) -> &Model {
-        &self.model
+        &self.scene.model
     }
 
     /// The loads. Read-only from outside the crate (the external forces'
     /// caches are derived from them).
     pub fn loads(&self) -> &Loads {
-        &self.loads
+        &self.scene.loads
     }
 
     /// The evolving state: positions, velocities, joint histories, step
@@ -283,19 +310,19 @@ impl Solver {
     /// }
     /// ```
     pub fn state(&self) -> &State {
-        &self.state
+        &self.evolving.state
     }
 
     /// The force workspace: the tet stresses of the last step that asked
     /// for them (`Want::stress`), the internal forces.
     pub fn workspace(&self) -> &Workspace {
-        &self.workspace
+        &self.pipeline.workspace
     }
 
     /// Position of node `i` at the time of the last record, `t_n`:
     /// `x_{n+1} − Δt v_{n+½}` (the step has already moved the nodes on).
     pub fn recorded_position(&self, i: usize) -> Vec3 {
-        self.state.x[i] - self.state.v[i] * self.params.dt
+        self.evolving.state.x[i] - self.evolving.state.v[i] * self.scene.params.dt
     }
 
     /// Sets an initial velocity field (as `v_{−½}`, and as the `v_{−3/2}`
@@ -305,11 +332,11 @@ impl Solver {
     /// kinetic energy as energy no force accounts for, and
     /// [`Solver::check_energy`] stops a run on it.
     pub fn set_velocity(&mut self, v: impl Fn(&Vec3) -> Vec3) {
-        for (vi, x) in self.state.v.iter_mut().zip(&self.model.x0) {
+        for (vi, x) in self.evolving.state.v.iter_mut().zip(&self.scene.model.x0) {
             *vi = v(x);
         }
-        if self.viscous {
-            self.v_before.copy_from_slice(&self.state.v);
+        if self.scene.viscous {
+            self.evolving.v_before.copy_from_slice(&self.evolving.state.v);
         }
     }
 
@@ -328,73 +355,73 @@ impl Solver {
     /// results do not depend on it.
     pub fn step(&mut self, want: Want) -> &StepRecord {
         rayon::scope(|_| self.advance(want));
-        &self.record
+        &self.evolving.record
     }
 
     /// [`Solver::step`]'s work.
     fn advance(&mut self, want: Want) {
-        let dt = self.params.dt;
-        let t = self.state.time;
-        let want = Want { energy: want.energy || self.state.step == 0, ..want };
+        let dt = self.scene.params.dt;
+        let t = self.evolving.state.time;
+        let want = Want { energy: want.energy || self.evolving.state.step == 0, ..want };
         // 1. Internal forces at x_n.
         let sums = internal_forces(
-            &self.model,
-            &self.state.x,
-            &self.state.v,
-            &mut self.state.joints,
-            &mut self.workspace,
+            &self.scene.model,
+            &self.evolving.state.x,
+            &self.evolving.state.v,
+            &mut self.evolving.state.joints,
+            &mut self.pipeline.workspace,
             want,
-            if self.viscous { Dissipation::Since(&self.v_before) } else { Dissipation::None },
+            if self.scene.viscous { Dissipation::Since(&self.evolving.v_before) } else { Dissipation::None },
         );
         // 2. Failures, handed to contact.
-        let first_new = self.failures.len();
+        let first_new = self.evolving.failures.len();
         if sums.newly_failed > 0 {
             self.record_failures(t);
         }
         // 3. Contact.
-        if let Some(contact) = &mut self.contact {
-            contact.pass(&self.model, &self.state.x, &self.state.v, dt);
+        if let Some(contact) = &mut self.evolving.contact {
+            contact.pass(&self.scene.model, &self.evolving.state.x, &self.evolving.state.v, dt);
         }
-        let contact_forces = self.contact.as_ref().map(Contact::total_force);
+        let contact_forces = self.evolving.contact.as_ref().map(Contact::total_force);
         // 4. External forces and reactions.
-        self.external.evaluate(
-            &self.model,
-            &self.loads,
-            &self.state,
-            &self.workspace.internal,
+        self.pipeline.external.evaluate(
+            &self.scene.model,
+            &self.scene.loads,
+            &self.evolving.state,
+            &self.pipeline.workspace.internal,
             contact_forces,
             dt,
-            &mut self.record,
+            &mut self.evolving.record,
         );
         // 5. The update.
-        let powers = self.update.advance(
-            &self.model,
-            &self.loads,
-            &self.external,
-            &self.workspace.internal,
+        let powers = self.pipeline.update.advance(
+            &self.scene.model,
+            &self.scene.loads,
+            &self.pipeline.external,
+            &self.pipeline.workspace.internal,
             contact_forces,
-            &mut self.state,
-            &mut self.v_before,
+            &mut self.evolving.state,
+            &mut self.evolving.v_before,
             dt,
             want.energy,
         );
         // 6. The energy account (centred on t_n: module documentation) and
         // the record.
-        let e = &mut self.energies;
-        let (reaction_back, reaction_ahead) = self.external.reaction_halves();
-        e.external_work += self.account.ahead + 0.5 * dt * powers.back + reaction_back;
-        self.account.ahead = 0.5 * dt * powers.ahead + reaction_ahead;
-        let surface = self.external.surface_powers(&self.state.v);
+        let e = &mut self.evolving.energies;
+        let (reaction_back, reaction_ahead) = self.pipeline.external.reaction_halves();
+        e.external_work += self.evolving.account.ahead + 0.5 * dt * powers.back + reaction_back;
+        self.evolving.account.ahead = 0.5 * dt * powers.ahead + reaction_ahead;
+        let surface = self.pipeline.external.surface_powers(&self.evolving.state.v);
         for (k, (back, ahead)) in surface.enumerate() {
-            self.record.surface_work[k] += self.account.surface_ahead[k] + 0.5 * dt * back;
-            self.account.surface_ahead[k] = 0.5 * dt * ahead;
+            self.evolving.record.surface_work[k] += self.evolving.account.surface_ahead[k] + 0.5 * dt * back;
+            self.evolving.account.surface_ahead[k] = 0.5 * dt * ahead;
         }
-        for (d, &(back, ahead)) in self.external.drive_halves.iter().enumerate() {
-            self.record.drive_work[d] += self.account.drive_ahead[d] + back;
-            self.account.drive_ahead[d] = ahead;
+        for (d, &(back, ahead)) in self.pipeline.external.drive_halves.iter().enumerate() {
+            self.evolving.record.drive_work[d] += self.evolving.account.drive_ahead[d] + back;
+            self.evolving.account.drive_ahead[d] = ahead;
         }
-        if let Some(contact) = &mut self.contact {
-            contact.book_work(&self.state.v, dt);
+        if let Some(contact) = &mut self.evolving.contact {
+            contact.book_work(&self.evolving.state.v, dt);
             e.contact = contact.energy.contact + contact.energy.handed();
             e.friction = contact.energy.friction;
         }
@@ -405,21 +432,21 @@ impl Solver {
             e.joint_elastic = sums.joint_energy;
             // What the failed joints handed over to contact is not fracture
             // energy (`ContactEnergy::handed`): moved to the contact term.
-            e.fracture = sums.fracture - self.contact.as_ref().map_or(0.0, |c| c.energy.handed());
-            self.account.observe(self.state.step, t, e, self.floor);
+            e.fracture = sums.fracture - self.evolving.contact.as_ref().map_or(0.0, |c| c.energy.handed());
+            self.evolving.account.observe(self.evolving.state.step, t, e, self.scene.floor);
         }
-        let r = &mut self.record;
-        r.step = self.state.step;
+        let r = &mut self.evolving.record;
+        r.step = self.evolving.state.step;
         r.time = t;
-        r.new_failures = first_new..self.failures.len();
-        for f in &self.failures[first_new..] {
+        r.new_failures = first_new..self.evolving.failures.len();
+        for f in &self.evolving.failures[first_new..] {
             r.failures.add(f.mode);
         }
-        r.energies = self.energies;
+        r.energies = self.evolving.energies;
         r.energies_current = want.energy;
-        r.contact_pairs = self.contact.as_ref().map_or(0, |c| c.active_pairs);
-        self.state.time += dt;
-        self.state.step += 1;
+        r.contact_pairs = self.evolving.contact.as_ref().map_or(0, |c| c.active_pairs);
+        self.evolving.state.time += dt;
+        self.evolving.state.step += 1;
     }
 
     /// Replaces the evolving state that [`Solver::restore`] decoded (the
@@ -432,11 +459,11 @@ impl Solver {
         contact: Option<Contact>,
         account: Account,
     ) {
-        self.account = account;
-        self.energies = energies;
-        self.failures = failures;
-        self.record = record;
-        self.contact = contact;
+        self.evolving.account = account;
+        self.evolving.energies = energies;
+        self.evolving.failures = failures;
+        self.evolving.record = record;
+        self.evolving.contact = contact;
     }
 
     /// Turns on contact (§2.3): `initial` are tet pairs in contact from the
@@ -446,10 +473,10 @@ impl Solver {
     /// [`Solver::break_joints`]) unbond their tets as if failing now,
     /// without the Eq. 18 ramp.
     pub fn enable_contact(&mut self, settings: ContactSettings, initial: &[(u32, u32)]) {
-        self.contact = Some(Contact::new(&self.model, settings, initial));
-        for j in 0..self.state.joints.len() {
-            if self.state.joints[j].failed {
-                let xp = self.model.joints[j].map(|n| self.state.x[n as usize]);
+        self.evolving.contact = Some(Contact::new(&self.scene.model, settings, initial));
+        for j in 0..self.evolving.state.joints.len() {
+            if self.evolving.state.joints[j].failed {
+                let xp = self.scene.model.joints[j].map(|n| self.evolving.state.x[n as usize]);
                 let area = femdem_fracture::joint_kinematics(&xp).map_or(0.0, |k| k.frame.area);
                 self.unbond(j, false, area);
             }

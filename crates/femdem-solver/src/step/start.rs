@@ -35,29 +35,30 @@ impl Solver {
     /// drive starts later is free at the start and may be displaced.
     pub fn start_displaced(&mut self, u: &[Vec3]) -> Result<f64, SolverError> {
         let bad = |why: String| Err(SolverError::InitialDisplacement(why));
-        if self.state.step != 0 {
-            return bad(format!("the run is at step {}, not at its start", self.state.step));
+        if self.evolving.state.step != 0 {
+            return bad(format!("the run is at step {}, not at its start", self.evolving.state.step));
         }
-        if u.len() != self.model.num_nodes() {
-            return bad(format!("{} displacements for {} nodes", u.len(), self.model.num_nodes()));
+        if u.len() != self.scene.model.num_nodes() {
+            return bad(format!("{} displacements for {} nodes", u.len(), self.scene.model.num_nodes()));
         }
         if let Some(i) = u.iter().position(|d| !d.iter().all(|c| c.is_finite())) {
             return bad(format!("node {i}: not finite"));
         }
-        let (table, drives) = (&self.external.prescribed, &self.loads.drives);
+        let (table, drives) = (&self.pipeline.external.prescribed, &self.scene.loads.drives);
         if let Some((i, c)) = (0..u.len())
             .flat_map(|i| (0..3).map(move |c| (i, c)))
             .find(|&(i, c)| held_from_start(table[i][c], drives) && u[i][c] != 0.0)
         {
             return bad(format!("node {i} component {} is prescribed but displaced", ["x", "y", "z"][c]));
         }
-        for ((x, x0), d) in self.state.x.iter_mut().zip(&self.model.x0).zip(u) {
+        for ((x, x0), d) in self.evolving.state.x.iter_mut().zip(&self.scene.model.x0).zip(u) {
             *x = x0 + d;
         }
-        self.state.v.iter_mut().chain(self.v_before.iter_mut()).for_each(|v| *v = Vec3::zeros());
-        let x = &self.state.x;
+        self.evolving.state.v.iter_mut().chain(self.evolving.v_before.iter_mut()).for_each(|v| *v = Vec3::zeros());
+        let x = &self.evolving.state.x;
         let mut joint_work = 0.0;
-        for ((history, nodes), joint) in self.state.joints.iter_mut().zip(&self.model.joints).zip(&self.model.joint_law)
+        for ((history, nodes), joint) in
+            self.evolving.state.joints.iter_mut().zip(&self.scene.model.joints).zip(&self.scene.model.joint_law)
         {
             let mut h = JointHistory::default();
             let out = joint_update(joint, &mut h, &nodes.map(|n| x[n as usize]), true);
@@ -67,26 +68,36 @@ impl Solver {
                 *history = h;
             }
         }
-        let mut scratch = Workspace::new(&self.model);
-        let mut history = self.state.joints.clone();
+        let mut scratch = Workspace::new(&self.scene.model);
+        let mut history = self.evolving.state.joints.clone();
         let want = Want { energy: true, stress: false };
-        let sums = internal_forces(&self.model, x, &self.state.v, &mut history, &mut scratch, want, Dissipation::None);
+        let sums = internal_forces(
+            &self.scene.model,
+            x,
+            &self.evolving.state.v,
+            &mut history,
+            &mut scratch,
+            want,
+            Dissipation::None,
+        );
         let stored = sums.tet_energy + sums.joint_energy;
         // Before the first step nothing else is booked: set, not added, so
         // that a second call replaces the first.
-        self.energies.external_work = sums.tet_energy + joint_work;
-        self.energies.tet_elastic = sums.tet_energy;
-        self.energies.joint_elastic = sums.joint_energy;
-        self.energies.fracture = sums.fracture;
+        self.evolving.energies.external_work = sums.tet_energy + joint_work;
+        self.evolving.energies.tet_elastic = sums.tet_energy;
+        self.evolving.energies.joint_elastic = sums.joint_energy;
+        self.evolving.energies.fracture = sums.fracture;
         // Each surface load's share of that work: Clapeyron's `½ f_k · u`,
         // the work of loads applied together in proportion on a linear
         // body (its loads at t = 0 on the reference faces). The shares and
         // gravity's add up to the stored energy as far as the state is
         // linear elastic.
-        for (k, load) in self.loads.surfaces.iter().enumerate() {
+        for (k, load) in self.scene.loads.surfaces.iter().enumerate() {
             let mut share = 0.0;
-            surface_forces(load, &self.model.x0, load.ramp.factor(0.0), |n, f| share += 0.5 * f.dot(&u[n as usize]));
-            self.record.surface_work[k] = share;
+            surface_forces(load, &self.scene.model.x0, load.ramp.factor(0.0), |n, f| {
+                share += 0.5 * f.dot(&u[n as usize])
+            });
+            self.evolving.record.surface_work[k] = share;
         }
         Ok(stored)
     }

@@ -298,7 +298,7 @@ fn assert_energy_bounded(p: &Pulled, what: &str) {
 /// bar's at p0 = 10 E but not bounded: the peak depends on p0 in this
 /// model (measured 3.24 MPa at 100 E against 3.07 MPa at 10 E, +5.3%; the
 /// Brazilian peak is 24.5% higher at p0 = E than at 10 E,
-/// `docs/validation.md`), and no closed form gives that dependence, so a
+/// `docs/notes/2026-11-23-brazilian-fbt-about-ft.md`, item 2), and no closed form gives that dependence, so a
 /// tolerance on it would be a number chosen to pass.
 #[test]
 fn a_stiff_penalty_bar_breaks_with_the_automatic_step() {

@@ -44,7 +44,7 @@ fn plan(profile: Profile) -> Plan {
         Profile::Quick => Plan { element_size: 0.15, end_time: END_TIME, interval: 2.0e-4 },
         // The paper's mean element size, about 2.4 cm (486,425 tets in the
         // paper; here 603,099, mean edge 28 mm, about 20,400 steps):
-        // hours to more than a day on 2 cores (docs/validation.md).
+        // hours to more than a day on 2 cores (docs/notes/2026-11-25-multilayer-paper-profile.md).
         Profile::Paper => Plan { element_size: 0.024, end_time: END_TIME, interval: 2.5e-4 },
     }
 }

@@ -124,7 +124,7 @@ pub struct ContactSpec {
     pub activation: Option<String>,
     /// What the run guard does when the normal contact forces have given
     /// back more than `energy_tolerance` of the run's energy scale beyond
-    /// what they absorbed: `"warn"` (default: once, on the terminal),
+    /// what they absorbed: `"warn"` (default: a warning of the run, once),
     /// `"stop"` or `"off"`.
     pub energy_check: Option<String>,
     /// That tolerance, a fraction of the run's energy scale in (0, 1]

@@ -10,7 +10,7 @@
 //! writes nothing to the terminal: what it finds is returned.
 //!
 //! ```no_run
-//! let prepared = femdem_case::prepare::prepare(std::path::Path::new("cases/brazilian.toml"), None, &[])?;
+//! let prepared = femdem_case::prepare::prepare(std::path::Path::new("cases/brazilian-split.toml"), None, &[])?;
 //! let run = prepared.run.expect("the case has a [solver] section");
 //! println!("{} tets, dt = {:.3e} s", run.solver.model().tets.len(), run.solver.dt());
 //! # Ok::<(), anyhow::Error>(())

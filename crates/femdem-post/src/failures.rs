@@ -42,7 +42,10 @@ impl Failure {
                 let mode = FailureMode::from_code(r[m] as u8)
                     .filter(|_| r[m].fract() == 0.0)
                     .with_context(|| format!("{}: row {}: mode {} is not 1-4", f.path.display(), i + 1, r[m]))?;
-                Ok(Failure { time: r[t], joint: r[j] as u32, at: [r[x], r[y], r[z]], area: r[a], mode })
+                let joint = Some(r[j])
+                    .filter(|v| v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(v))
+                    .with_context(|| format!("{}: row {}: joint {} is not an index", f.path.display(), i + 1, r[j]))?;
+                Ok(Failure { time: r[t], joint: joint as u32, at: [r[x], r[y], r[z]], area: r[a], mode })
             })
             .collect()
     }

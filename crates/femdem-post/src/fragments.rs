@@ -66,13 +66,14 @@ impl Sets {
 /// not a fragment of the specimen). Sorted by volume, largest first (ties
 /// by first tet).
 ///
-/// # Panics
-/// When a failed joint index is out of range.
+/// # Errors
+/// When a failed joint index is not a joint of `mesh` (results of another
+/// mesh: another case, or the case run with other `--set` overrides).
 pub fn fragments(
     mesh: &JointedMesh,
     failed: impl IntoIterator<Item = u32>,
     keep: impl Fn(u32) -> bool,
-) -> Vec<Fragment> {
+) -> anyhow::Result<Vec<Fragment>> {
     let m = &mesh.mesh;
     let mut sets = Sets::new(m.tets.len());
     // Tets sharing a node are one body (no joint between them).
@@ -87,7 +88,10 @@ pub fn fragments(
     }
     let mut broken = vec![false; mesh.joint_faces.len()];
     for j in failed {
-        broken[j as usize] = true;
+        let n = broken.len();
+        *broken.get_mut(j as usize).ok_or_else(|| {
+            anyhow::anyhow!("failed joint {j} is not a joint of this mesh ({n} joints): results of another mesh?")
+        })? = true;
     }
     for ((a, b), _) in mesh.joint_faces.iter().zip(&broken).filter(|(_, b)| !**b) {
         sets.join(a.tet, b.tet);
@@ -102,7 +106,7 @@ pub fn fragments(
     }
     let mut out: Vec<Fragment> = by_root.into_values().collect();
     out.sort_by(|a, b| b.volume.total_cmp(&a.volume).then(a.tets[0].cmp(&b.tets[0])));
-    out
+    Ok(out)
 }
 
 /// The sieve curve of `fragments`: for each distinct equivalent diameter
@@ -151,7 +155,7 @@ mod tests {
     #[test]
     fn an_intact_body_is_one_fragment_of_its_whole_volume() {
         for jointed in [insert_joints(&cube(true)).unwrap(), insert_joints(&cube(false)).unwrap()] {
-            let f = fragments(&jointed, [], |_| true);
+            let f = fragments(&jointed, [], |_| true).unwrap();
             assert_eq!(f.len(), 1);
             assert_eq!(f[0].tets.len(), jointed.mesh.tets.len());
             assert!((f[0].volume - 1.0).abs() < 1e-12, "{}", f[0].volume);
@@ -164,7 +168,7 @@ mod tests {
         let mesh = cube(true);
         let jointed = insert_joints(&mesh).unwrap();
         let n = jointed.joints.len() as u32;
-        let all = fragments(&jointed, 0..n, |_| true);
+        let all = fragments(&jointed, 0..n, |_| true).unwrap();
         assert_eq!(all.len(), jointed.mesh.tets.len());
         let total: f64 = all.iter().map(|f| f.volume).sum();
         assert!((total - 1.0).abs() < 1e-12);
@@ -182,14 +186,14 @@ mod tests {
             .filter(|(_, (a, b))| (centroid_x(a.tet) < 0.5) != (centroid_x(b.tet) < 0.5))
             .map(|(j, _)| j as u32)
             .collect();
-        let two = fragments(&jointed, cut.iter().copied(), |_| true);
+        let two = fragments(&jointed, cut.iter().copied(), |_| true).unwrap();
         assert_eq!(two.len(), 2, "{:?}", two.iter().map(|f| f.tets.len()).collect::<Vec<_>>());
         let below: f64 =
             (0..jointed.mesh.tets.len() as u32).filter(|&t| centroid_x(t) < 0.5).map(|t| tet_volume(&jointed, t)).sum();
         let small = two[1].volume;
         assert!((small - below.min(1.0 - below)).abs() < 1e-12, "{small} vs {below}");
         // Keeping only one side counts only its pieces.
-        let left = fragments(&jointed, cut.iter().copied(), |t| centroid_x(t) < 0.5);
+        let left = fragments(&jointed, cut.iter().copied(), |t| centroid_x(t) < 0.5).unwrap();
         assert_eq!(left.len(), 1);
         assert!((left[0].volume - below).abs() < 1e-12);
     }
@@ -202,9 +206,12 @@ mod tests {
         let cx = |t: usize| mesh.tet_points(t).iter().map(|p| p.x).sum::<f64>() / 4.0;
         let zone: Vec<bool> = (0..mesh.tets.len()).map(|t| cx(t) < 0.5).collect();
         let jointed = insert_joints_within(&mesh, &zone).unwrap();
-        let f = fragments(&jointed, 0..jointed.joints.len() as u32, |_| true);
+        let f = fragments(&jointed, 0..jointed.joints.len() as u32, |_| true).unwrap();
         let lower = zone.iter().filter(|z| **z).count();
         assert_eq!(f.len(), lower + 1, "every zoned tet alone, the rest one piece");
         assert_eq!(f[0].tets.len(), mesh.tets.len() - lower);
+        let n = jointed.joints.len() as u32;
+        let err = fragments(&jointed, [n], |_| true).unwrap_err().to_string();
+        assert!(err.contains(&format!("failed joint {n} is not a joint of this mesh")), "{err}");
     }
 }

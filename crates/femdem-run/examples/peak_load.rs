@@ -52,6 +52,7 @@ fn main() -> Result<()> {
 
     let history = Table::history(&summary.dir)?;
     let (time, load) = (history.col("time")?, history.col("load").context("the case records no load")?);
+    anyhow::ensure!(!load.is_empty(), "{} has no rows", history.path.display());
     let (at, peak) =
         load.iter().enumerate().fold((0, f64::NEG_INFINITY), |a, (i, &f)| if f > a.1 { (i, f) } else { a });
     let failures = Failure::read_all(&summary.dir)?;
@@ -66,7 +67,7 @@ fn main() -> Result<()> {
     let (_, _, jointed) = femdem_case::prepare::jointed(&loaded)?;
     let m = &jointed.mesh;
     let breakable = |t: u32| m.regions[usize::from(m.tet_region[t as usize])].breakable;
-    let pieces = femdem_post::fragments::fragments(&jointed, failures.iter().map(|f| f.joint), breakable);
+    let pieces = femdem_post::fragments::fragments(&jointed, failures.iter().map(|f| f.joint), breakable)?;
     let total: f64 = pieces.iter().map(|f| f.volume).sum();
     let largest = pieces.first().map_or(0.0, |f| 100.0 * f.volume / total);
     println!("fragments   {} (the largest {largest:.1}% of the breakable volume)", pieces.len());

@@ -63,6 +63,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
     let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
+    refuse_if_stopped(stop, "while preparing the case")?;
     let (mut output, schedule) = if resume.is_some() {
         let (file, saved) = checkpoint::latest(&dir, &mut |line| observer.note(line))?;
         saved.identity.check(&identity, &file)?;
@@ -91,9 +92,12 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
                 )
             })?;
             report_static(&solved, observer);
+            refuse_if_stopped(stop, "during the static start")?;
         }
         if overwrite {
-            outdir::clear(&dir, &stem)?;
+            if let Some(line) = outdir::clear(&dir, &stem)? {
+                observer.note(&line);
+            }
         }
         let comments = history_comments(&prepared.case);
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
@@ -243,6 +247,17 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         checkpoint: last_checkpoint,
         overrides: prepared.case.overrides.args(),
     })
+}
+
+/// Ends the run before it writes anything when `stop` was set during
+/// `what` (a signal while the case meshes or the static start solves):
+/// nothing of an earlier run has been removed, and there is no state to
+/// keep.
+fn refuse_if_stopped(stop: &AtomicBool, what: &str) -> Result<()> {
+    if stop.load(Ordering::SeqCst) {
+        bail!("stopped {what}, before the first step: nothing was written");
+    }
+    Ok(())
 }
 
 /// Warns when tets already overlap at the first step (a platen or part

@@ -14,7 +14,7 @@
 //! use std::sync::atomic::AtomicBool;
 //! let options = femdem_run::RunOptions { out: Some("out/my-disc".into()), overwrite: true, ..Default::default() };
 //! let summary = femdem_run::run(
-//!     std::path::Path::new("cases/brazilian.toml"),
+//!     std::path::Path::new("cases/brazilian-split.toml"),
 //!     options,
 //!     &AtomicBool::new(false),
 //!     &mut femdem_run::Quiet,

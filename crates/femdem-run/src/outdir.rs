@@ -263,9 +263,9 @@ pub fn refuse_earlier_results(dir: &Path, stem: &str, case_name: &str, overwrite
     )
 }
 
-/// Removes femdem's files from `dir` (see the module doc) and says on
-/// stderr what was removed and what was kept.
-pub fn clear(dir: &Path, stem: &str) -> Result<()> {
+/// Removes femdem's files from `dir` (see the module doc); returns a line
+/// saying what was removed and what was kept, when anything was removed.
+pub fn clear(dir: &Path, stem: &str) -> Result<Option<String>> {
     let s = survey(dir, stem)?;
     for name in &s.ours {
         let path = dir.join(name);
@@ -277,13 +277,13 @@ pub fn clear(dir: &Path, stem: &str) -> Result<()> {
         } else {
             format!("; kept {} femdem did not write: {}", count(s.kept.len(), "entry", "entries"), some_of(&s.kept, 5))
         };
-        eprintln!(
-            "femdem: --overwrite: removed the results of an earlier run from {} ({}){kept}",
+        return Ok(Some(format!(
+            "--overwrite: removed the results of an earlier run from {} ({}){kept}",
             dir.display(),
             summary(&s.ours)
-        );
+        )));
     }
-    Ok(())
+    Ok(None)
 }
 
 #[cfg(test)]

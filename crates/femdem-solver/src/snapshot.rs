@@ -538,6 +538,7 @@ impl Solver {
         // The pipeline is not in the snapshot: what an earlier step of this
         // solver left there belongs to another state.
         self.pipeline.workspace.internal.fill(Vec3::zeros());
+        self.pipeline.forces_current = false;
         Ok(())
     }
 }

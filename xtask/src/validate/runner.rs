@@ -91,13 +91,15 @@ impl RunOutput {
     /// The pieces the run's breakable regions had broken into at its end
     /// (`femdem_post::fragments` on the case's jointed mesh, rebuilt by
     /// the case library, and the joints of `failures.csv`), largest first.
+    /// Validate runs its cases without `--set`, so the case file alone
+    /// rebuilds the run's mesh.
     pub fn fragments(&self) -> Result<Vec<femdem_post::fragments::Fragment>> {
         let loaded = femdem_case::load(&self.case, &[])?;
         let (_, _, jointed) = femdem_case::prepare::jointed(&loaded)?;
         let failed = femdem_post::failures::Failure::read_all(&self.dir)?;
         let m = &jointed.mesh;
         let breakable = |t: u32| m.regions[usize::from(m.tet_region[t as usize])].breakable;
-        Ok(femdem_post::fragments::fragments(&jointed, failed.iter().map(|f| f.joint), breakable))
+        femdem_post::fragments::fragments(&jointed, failed.iter().map(|f| f.joint), breakable)
     }
 }
 

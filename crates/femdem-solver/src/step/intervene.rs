@@ -35,11 +35,18 @@
 //! Prescribed components (fixed, or driven by an active drive) are left
 //! as they are: the next step imposes them again.
 //!
-//! `f_int,n` is read from the pipeline's workspace, where the last step
-//! left it. The workspace is not checkpointed: right after
-//! [`Solver::restore`], before a step, it holds zeros and the term is
-//! taken as zero (an intervention there is booked as `½ m (|v'|² −
-//! |v|²)` alone).
+//! The loads', reactions' and contact's held-over half steps are numbers
+//! step `n` computed with the old `v_{n+½}` (`Powers::ahead`,
+//! `External::reaction_halves`, contact's held-over work): that is why
+//! `G_n` drops out of `R`.
+//!
+//! Before the first step there is nothing to book against: the state
+//! holds `x_0` and `v_{−½}`, and an intervention changes `v_{−½}` alone
+//! (with `v_{−3/2}` for viscous materials, as [`Solver::set_velocity`]),
+//! booking `½ m (|v'|² − |v|²)` into the terms the balance of step 0 then
+//! starts from. After [`Solver::restore`], before a step, the internal
+//! forces of step `n` are not known (the pipeline is not checkpointed):
+//! an intervention is refused until a step has been taken.
 
 use femdem_core::{Real, Vec3};
 
@@ -59,22 +66,40 @@ impl Solver {
     }
 
     /// Sets the free components of node `i`'s velocity to those of `v`,
-    /// moving `x_{n+1}` with them; returns `R` of the module documentation.
+    /// moving `x_{n+1}` with them after the first step; returns `R` of the
+    /// module documentation.
     fn replace_velocity(&mut self, i: usize, v: Vec3) -> Real {
         let dt = self.scene.params.dt;
-        let (m, f) =
-            (self.scene.model.mass[i], self.pipeline.workspace.internal.get(i).copied().unwrap_or_else(Vec3::zeros));
+        let started = self.evolving.state.step > 0;
+        let (m, f) = (self.scene.model.mass[i], self.pipeline.workspace.internal[i]);
         let mut r = 0.0;
         for c in 0..3 {
             if !self.free(i, c) {
                 continue;
             }
             let (old, new) = (self.evolving.state.v[i][c], v[c]);
-            r += 0.5 * m * (new * new - old * old) + 0.5 * dt * f[c] * (old - new);
+            r += 0.5 * m * (new * new - old * old);
             self.evolving.state.v[i][c] = new;
-            self.evolving.state.x[i][c] += dt * (new - old);
+            if started {
+                r += 0.5 * dt * f[c] * (old - new);
+                self.evolving.state.x[i][c] += dt * (new - old);
+            } else if let Some(before) = self.evolving.v_before.get_mut(i) {
+                before[c] = new;
+            }
         }
         r
+    }
+
+    /// Refuses an intervention after a restore, before a step (the
+    /// module documentation says why).
+    fn check_forces(&self, what: &str) -> Result<(), SolverError> {
+        if self.evolving.state.step > 0 && !self.pipeline.forces_current {
+            return Err(SolverError::Intervention(format!(
+                "{what}: the internal forces of step {} are not known after a restore; take a step first",
+                self.evolving.state.step
+            )));
+        }
+        Ok(())
     }
 
     /// Scales the free velocity components `v_{n+½}` of every node by
@@ -88,11 +113,13 @@ impl Solver {
     ///
     /// # Errors
     /// [`SolverError::Intervention`] for a `keep` outside `[0, 1]` or not
-    /// a number; nothing is changed then.
+    /// a number, or after a restore before a step; nothing is changed
+    /// then.
     pub fn damp(&mut self, keep: Real) -> Result<Real, SolverError> {
         if !(0.0..=1.0).contains(&keep) {
             return Err(SolverError::Intervention(format!("damp: keep must lie in [0, 1], got {keep}")));
         }
+        self.check_forces("damp")?;
         let mut removed = 0.0;
         for i in 0..self.evolving.state.v.len() {
             let v = self.evolving.state.v[i] * keep;
@@ -109,8 +136,9 @@ impl Solver {
     /// work, J.
     ///
     /// # Errors
-    /// [`SolverError::Intervention`] for a node out of range or a `dv`
-    /// that is not finite; nothing is changed then.
+    /// [`SolverError::Intervention`] for a node out of range, a `dv` that
+    /// is not finite, or after a restore before a step; nothing is changed
+    /// then.
     pub fn kick(&mut self, node: usize, dv: Vec3) -> Result<Real, SolverError> {
         let n = self.evolving.state.v.len();
         if node >= n {
@@ -119,6 +147,7 @@ impl Solver {
         if !dv.iter().all(|c| c.is_finite()) {
             return Err(SolverError::Intervention(format!("kick: the velocity change {dv:?} is not finite")));
         }
+        self.check_forces("kick")?;
         let v = self.evolving.state.v[node] + dv;
         let work = self.replace_velocity(node, v);
         self.evolving.energies.external_work += work;

@@ -174,6 +174,10 @@ pub(crate) struct Pipeline {
     external: External,
     /// The update's per-chunk sums.
     update: Update,
+    /// Whether `workspace.internal` holds the internal forces of the last
+    /// step of this state: false before the first step and after
+    /// [`Solver::restore`] (the pipeline is not checkpointed).
+    pub(crate) forces_current: bool,
 }
 
 /// An explicit solver: the scene it runs (model, loads, step
@@ -225,7 +229,12 @@ impl Solver {
                 contact: None,
                 record,
             },
-            pipeline: Pipeline { workspace: Workspace::new(&model), update: Update::new(n), external },
+            pipeline: Pipeline {
+                workspace: Workspace::new(&model),
+                update: Update::new(n),
+                external,
+                forces_current: false,
+            },
             scene: Scene { floor: energy_floor(&model), model, loads, params, viscous },
         })
     }
@@ -373,6 +382,7 @@ impl Solver {
             want,
             if self.scene.viscous { Dissipation::Since(&self.evolving.v_before) } else { Dissipation::None },
         );
+        self.pipeline.forces_current = true;
         // 2. Failures, handed to contact.
         let first_new = self.evolving.failures.len();
         if sums.newly_failed > 0 {

@@ -50,11 +50,12 @@
 //! Dynamic relaxation: the pressures are applied at once on the free block
 //! (no supports: they balance, and a rigid motion changes both faces' mean
 //! z-displacement alike, so it does not enter ε), and a mass-proportional
-//! damping `v ← (1 − c Δt) v` after each step, with `c = ω_a = π c_R / L_z`
+//! damping `v ← (1 − c Δt) v` after each step (`Solver::damp`, which moves
+//! `x_{n+1}` with `v` and books what it removes), with `c = ω_a = π c_R / L_z`
 //! (`c_R = √(E_R/ρ)`, ω_a the first free–free axial mode; every underdamped
 //! mode decays at `c/2`), brings it to rest; we run to `t = 40/ω_a`
 //! (`e^{−20}`) and check that ε changed by < 10⁻⁶ relative over the last
-//! fifth (measured: < 10⁻⁷). The static state does not depend on the damping. The tets use the
+//! fifth (measured < 10⁻⁷ when the damping scaled `v` alone). The static state does not depend on the damping. The tets use the
 //! small-strain linear law (the bounds are theorems of linear elasticity).
 //!
 //! # Tolerances

@@ -38,7 +38,8 @@
 //! 0.96 %), within the 1 % at these loads and no better. The
 //! corrected static start (modified Newton on the explicit model's own
 //! forces, to `10⁻⁷` of the load) is that equilibrium: it must agree with
-//! the damped run to its convergence, `10⁻⁶` (measured: a few 10⁻¹⁰).
+//! the damped run to its convergence, `10⁻⁶` (measured a few 10⁻¹⁰ when
+//! the damping scaled `v` alone; `Solver::damp` now moves `x_{n+1}` with it).
 
 use femdem_core::{Real, Vec3};
 use femdem_solver::{Loads, Ramp, SurfaceKind, Want};

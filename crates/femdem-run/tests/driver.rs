@@ -91,3 +91,21 @@ fn a_run_stopped_by_its_flag_and_resumed_ends_as_an_uninterrupted_one() {
     let _ = std::fs::remove_dir_all(&whole_dir);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_run_stopped_before_its_first_step_writes_and_removes_nothing() {
+    // An earlier run's results, which `overwrite` would remove.
+    let dir = fresh("stopped-early");
+    let options = RunOptions { out: Some(dir.clone()), stop_after_steps: Some(5), ..Default::default() };
+    let first = femdem_run::run(&case(), options, &AtomicBool::new(false), &mut Recorder::default()).unwrap();
+    assert!(first.interrupted);
+    let history = std::fs::read(dir.join("history.csv")).unwrap();
+
+    // The stop flag is already set when the next run starts (a signal
+    // while the case meshes): it ends with an error and touches nothing.
+    let options = RunOptions { out: Some(dir.clone()), overwrite: true, ..Default::default() };
+    let err = femdem_run::run(&case(), options, &AtomicBool::new(true), &mut Recorder::default()).unwrap_err();
+    assert!(err.to_string().contains("stopped while preparing the case, before the first step"), "{err:#}");
+    assert_eq!(std::fs::read(dir.join("history.csv")).unwrap(), history, "the earlier results are kept");
+    let _ = std::fs::remove_dir_all(&dir);
+}

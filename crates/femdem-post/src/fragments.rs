@@ -99,14 +99,25 @@ pub fn fragments(
     let mut by_root: std::collections::BTreeMap<u32, Fragment> = std::collections::BTreeMap::new();
     for t in (0..m.tets.len() as u32).filter(|&t| keep(t)) {
         let root = sets.root(t);
-        let p = m.tet_points(t as usize);
         let f = by_root.entry(root).or_insert_with(|| Fragment { tets: Vec::new(), volume: 0.0 });
         f.tets.push(t);
-        f.volume += signed_volume(&p).abs();
+        f.volume += tet_volume(mesh, t);
     }
     let mut out: Vec<Fragment> = by_root.into_values().collect();
     out.sort_by(|a, b| b.volume.total_cmp(&a.volume).then(a.tets[0].cmp(&b.tets[0])));
     Ok(out)
+}
+
+/// The fragments of the breakable regions of `mesh` once the joints of
+/// `failures` (a run's `failures.csv`, [`crate::failures::Failure::read_all`])
+/// have failed: [`fragments`] without the unbreakable regions (platens,
+/// supports), which are not pieces of the specimen.
+///
+/// # Errors
+/// As [`fragments`].
+pub fn breakable_fragments(mesh: &JointedMesh, failures: &[crate::failures::Failure]) -> anyhow::Result<Vec<Fragment>> {
+    let m = &mesh.mesh;
+    fragments(mesh, failures.iter().map(|f| f.joint), |t| m.regions[usize::from(m.tet_region[t as usize])].breakable)
 }
 
 /// The sieve curve of `fragments`: for each distinct equivalent diameter

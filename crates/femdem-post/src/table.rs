@@ -132,12 +132,11 @@ impl Table {
     /// Only if a column listed cannot be read back, which [`Table::read`]
     /// rules out.
     pub fn face_work_by_axis(&self) -> Result<Option<[f64; 3]>> {
-        let h = self;
         let mut w = [0.0; 3];
         let mut any = false;
-        for name in &h.columns {
+        for name in &self.columns {
             let Some(group) = name.strip_suffix("_work") else { continue };
-            if h.columns.iter().any(|c| c.strip_suffix("_uz") == Some(group)) {
+            if self.columns.iter().any(|c| c.strip_suffix("_uz") == Some(group)) {
                 continue;
             }
             let side = group.rsplit('.').next().unwrap_or(group);
@@ -147,7 +146,7 @@ impl Table {
                 "bottom" | "top" => 2,
                 _ => continue,
             };
-            w[axis] += h.col(name)?.last().copied().unwrap_or(0.0);
+            w[axis] += self.col(name)?.last().copied().unwrap_or(0.0);
             any = true;
         }
         Ok(any.then_some(w))

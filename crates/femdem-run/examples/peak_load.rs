@@ -65,9 +65,7 @@ fn main() -> Result<()> {
     // less the joints that failed.
     let loaded = femdem_case::load(&case, &[])?;
     let (_, _, jointed) = femdem_case::prepare::jointed(&loaded)?;
-    let m = &jointed.mesh;
-    let breakable = |t: u32| m.regions[usize::from(m.tet_region[t as usize])].breakable;
-    let pieces = femdem_post::fragments::fragments(&jointed, failures.iter().map(|f| f.joint), breakable)?;
+    let pieces = femdem_post::fragments::breakable_fragments(&jointed, &failures)?;
     let total: f64 = pieces.iter().map(|f| f.volume).sum();
     let largest = pieces.first().map_or(0.0, |f| 100.0 * f.volume / total);
     println!("fragments   {} (the largest {largest:.1}% of the breakable volume)", pieces.len());

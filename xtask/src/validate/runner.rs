@@ -97,9 +97,7 @@ impl RunOutput {
         let loaded = femdem_case::load(&self.case, &[])?;
         let (_, _, jointed) = femdem_case::prepare::jointed(&loaded)?;
         let failed = femdem_post::failures::Failure::read_all(&self.dir)?;
-        let m = &jointed.mesh;
-        let breakable = |t: u32| m.regions[usize::from(m.tet_region[t as usize])].breakable;
-        femdem_post::fragments::fragments(&jointed, failed.iter().map(|f| f.joint), breakable)
+        femdem_post::fragments::breakable_fragments(&jointed, &failed)
     }
 }
 

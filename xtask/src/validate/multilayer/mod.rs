@@ -87,7 +87,7 @@ struct Outcome {
 
 impl Outcome {
     fn read(run: RunOutput) -> Result<Outcome> {
-        let h = Table::read(&run.dir.join("history.csv"))?;
+        let h = Table::history(&run.dir)?;
         let last = |c: &str| -> Result<f64> { Ok(h.col(c)?.last().copied().unwrap_or(0.0)) };
         Ok(Outcome {
             failures: Failure::read_all(&run.dir)?,

@@ -124,7 +124,7 @@ struct Outcome {
 
 impl Outcome {
     fn read(run: RunOutput, test: Test, mesh: String) -> Result<Outcome> {
-        let h = Table::read(&run.dir.join("history.csv"))?;
+        let h = Table::history(&run.dir)?;
         let energy_error = h.energy_error()?;
         let failures = Failure::read_all(&run.dir)?;
         let fpvd = run.dir.join(format!("{}_fractures.pvd", run.stem));

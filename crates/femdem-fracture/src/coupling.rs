@@ -87,7 +87,7 @@ pub enum Coupling {
 /// left and its tensile strength `c / tan φ ≤ f_t` is exhausted (see
 /// [`crate::JointParams::effective_tensile_strength`]). Only
 /// [`Coupling::Printed`] reads it; it is recorded for every option.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub struct Softened {
     /// The opening has been past `δnp`, or the apex was reached.
     pub normal: bool,

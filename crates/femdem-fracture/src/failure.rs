@@ -26,7 +26,7 @@ pub const DOMINANT_SHARE: Real = 0.75;
 /// the label of the point that broke last (the last in point order when
 /// several break in the same evaluation) — or [`FailureMode::Collapsed`]
 /// when its mid-plane degenerates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum FailureMode {
     /// The normal part dominates: `Dn² ≥ ¾ D²` (pure opening gives
     /// `Dn = 1`, `Ds = 0`), or the Mohr–Coulomb apex was reached (`f_s ≤ 0`).

@@ -93,7 +93,7 @@ impl Joint {
 }
 
 /// What a joint remembers between steps.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JointHistory {
     /// The largest damage `D` reached at each integration point.
     pub damage: [Real; 3],

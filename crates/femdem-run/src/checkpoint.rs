@@ -17,11 +17,15 @@
 //! version  u32      FORMAT_VERSION
 //! length   u64      bytes of the payload
 //! checksum u64      FNV-1a 64 of the payload
-//! payload           identity, schedule, marks, solver snapshot
+//! payload           identity, schedule, marks, solver snapshot (postcard)
 //! ```
 //!
-//! Version 2 added the `--set` overrides to the identity; a version 1 file
-//! (from before `--set`) is read as one written without overrides.
+//! The payload is serialised with serde in postcard's format: the
+//! [`Checkpoint`] struct, its solver snapshot the serialised evolving
+//! state ([`femdem_solver::Solver::snapshot`]). Version 2 added the `--set`
+//! overrides to the identity; version 3 is the serde payload with the
+//! solver's ledger. Older files are refused, naming both versions
+//! ([`MIGRATION`] says why they are not migrated).
 //!
 //! It is written atomically: to `.checkpoint.tmp` in the same directory,
 //! flushed to disk (`fsync`), then renamed over its name, and the directory
@@ -43,15 +47,19 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use femdem_mesh::TetMesh;
-use femdem_solver::snapshot::{Decoder, Encoder};
+use serde::{Deserialize, Serialize};
 
 use femdem_case::LoadedCase;
 
 /// The first bytes of every checkpoint file.
 pub const MAGIC: &[u8; 8] = b"FEMDEMCK";
-/// The layout version written; others but 1 (read as written without
-/// `--set` overrides) are refused.
-pub const FORMAT_VERSION: u32 = 2;
+/// The layout version written; others are refused, naming both (see
+/// [`MIGRATION`]).
+pub const FORMAT_VERSION: u32 = 3;
+/// Why an older checkpoint is refused rather than migrated.
+pub const MIGRATION: &str = "a checkpoint of format 1 or 2 holds a solver snapshot of layout 8 or older, whose \
+     energy account this femdem books differently (one ledger, the external work summed from its terms), so a \
+     resume from it would not continue bit for bit as an uninterrupted run; run the case again without --resume";
 /// Checkpoints kept in the output directory (the newest ones).
 pub const KEEP: usize = 2;
 const PREFIX: &str = "checkpoint_";
@@ -89,7 +97,7 @@ impl Fnv {
 }
 
 /// Which case a checkpoint belongs to.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Identity {
     /// The case file, as the run that wrote it named it (for messages).
     pub case_path: String,
@@ -165,7 +173,7 @@ impl Identity {
 }
 
 /// The run loop's own state at the start of a step.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Schedule {
     /// The step the loop continues with (steps `0..next_step` are done).
     pub next_step: u64,
@@ -180,7 +188,7 @@ pub struct Schedule {
 }
 
 /// How far the output had got.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Marks {
     /// Bytes of `history.csv`.
     pub history_len: u64,
@@ -193,7 +201,7 @@ pub struct Marks {
 }
 
 /// One checkpoint.
-#[derive(Debug, PartialEq)]
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
 pub struct Checkpoint {
     /// The case it belongs to.
     pub identity: Identity,
@@ -208,31 +216,7 @@ pub struct Checkpoint {
 impl Checkpoint {
     /// The whole file's bytes.
     fn to_bytes(&self) -> Vec<u8> {
-        let mut e = Encoder::new();
-        let id = &self.identity;
-        e.bytes(id.case_path.as_bytes());
-        e.u64(id.case_hash);
-        e.u64(id.mesh_hash);
-        e.u64(id.overrides.len() as u64);
-        for o in &id.overrides {
-            e.bytes(o.as_bytes());
-        }
-        let s = &self.schedule;
-        e.u64(s.next_step);
-        e.f64(s.next_frame);
-        e.f64(s.next_row);
-        e.bool(s.ended_past_peak);
-        e.bool(s.peak.is_some());
-        let (peak, last) = s.peak.unwrap_or_default();
-        e.f64(peak);
-        e.f64(last);
-        let m = &self.marks;
-        e.u64(m.history_len);
-        e.u64(m.failures_len);
-        e.f64s(&m.frames);
-        e.f64s(&m.fracture_frames);
-        e.bytes(&self.solver);
-        let payload = e.into_bytes();
+        let payload = postcard::to_stdvec(self).expect("a checkpoint serialises");
         let mut out = Vec::with_capacity(HEADER + payload.len());
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
@@ -248,8 +232,11 @@ impl Checkpoint {
             return Err("not a femdem checkpoint (no magic number)".into());
         }
         let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
-        if version != FORMAT_VERSION && version != 1 {
-            return Err(format!("format version {version}; this femdem reads versions 1 and {FORMAT_VERSION}"));
+        if version != FORMAT_VERSION {
+            return Err(format!(
+                "format version {version}; this femdem reads version {FORMAT_VERSION} only (no migration: {})",
+                MIGRATION
+            ));
         }
         let length = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
         let checksum = u64::from_le_bytes(bytes[20..28].try_into().expect("8 bytes"));
@@ -260,28 +247,11 @@ impl Checkpoint {
         if fnv1a(payload) != checksum {
             return Err("damaged: its checksum does not match".into());
         }
-        let read = |d: &mut Decoder<'_>| -> Result<Checkpoint, femdem_solver::SolverError> {
-            let case_path = String::from_utf8_lossy(d.bytes()?).into_owned();
-            let (case_hash, mesh_hash) = (d.u64()?, d.u64()?);
-            let mut overrides = Vec::new();
-            if version >= 2 {
-                for _ in 0..d.count()? {
-                    overrides.push(String::from_utf8_lossy(d.bytes()?).into_owned());
-                }
-            }
-            let identity = Identity { case_path, case_hash, mesh_hash, overrides };
-            let (next_step, next_frame, next_row, ended_past_peak) = (d.u64()?, d.f64()?, d.f64()?, d.bool()?);
-            let has_peak = d.bool()?;
-            let peak = (d.f64()?, d.f64()?);
-            let schedule =
-                Schedule { next_step, next_frame, next_row, ended_past_peak, peak: has_peak.then_some(peak) };
-            let marks =
-                Marks { history_len: d.u64()?, failures_len: d.u64()?, frames: d.f64s()?, fracture_frames: d.f64s()? };
-            let solver = d.bytes()?.to_vec();
-            d.finish()?;
-            Ok(Checkpoint { identity, schedule, marks, solver })
-        };
-        read(&mut Decoder::new(payload)).map_err(|e| format!("malformed: {e}"))
+        match postcard::take_from_bytes::<Checkpoint>(payload) {
+            Ok((c, [])) => Ok(c),
+            Ok((_, rest)) => Err(format!("malformed: {} bytes left over at the end", rest.len())),
+            Err(e) => Err(format!("malformed: {e}")),
+        }
     }
 }
 
@@ -430,27 +400,29 @@ mod tests {
         }
     }
 
-    /// A checkpoint from before `--set` (format version 1: no overrides
-    /// in the identity) is read as one written without overrides.
+    /// A checkpoint of an older format (1 and 2: the hand-written layout
+    /// with a solver snapshot of layout 8 or older) or a newer one is
+    /// refused, naming both versions, as is a file of this format whose
+    /// payload does not read.
     #[test]
-    fn a_version_1_checkpoint_reads_as_one_without_overrides() {
-        let mut c = sample();
-        c.identity.overrides.clear();
-        let v2 = c.to_bytes();
-        // Version 1's payload lacks the overrides' count (a u64 0) after
-        // the case path (u64 length and bytes) and the two hashes.
-        let count_at = HEADER + 8 + c.identity.case_path.len() + 16;
-        let mut payload = v2[HEADER..].to_vec();
-        assert_eq!(payload.drain(count_at - HEADER..count_at - HEADER + 8).collect::<Vec<_>>(), [0; 8]);
-        let mut v1 = MAGIC.to_vec();
-        v1.extend_from_slice(&1u32.to_le_bytes());
-        v1.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-        v1.extend_from_slice(&fnv1a(&payload).to_le_bytes());
-        v1.extend_from_slice(&payload);
-        assert_eq!(Checkpoint::from_bytes(&v1).unwrap(), c);
-        let mut v3 = v2.clone();
-        v3[8..12].copy_from_slice(&3u32.to_le_bytes());
-        assert!(Checkpoint::from_bytes(&v3).unwrap_err().contains("format version 3"));
+    fn a_checkpoint_of_another_format_is_refused_naming_both_versions() {
+        let bytes = sample().to_bytes();
+        for version in [1u32, 2, FORMAT_VERSION + 1] {
+            let mut other = bytes.clone();
+            other[8..12].copy_from_slice(&version.to_le_bytes());
+            let err = Checkpoint::from_bytes(&other).unwrap_err();
+            assert!(
+                err.contains(&format!("format version {version}; this femdem reads version {FORMAT_VERSION}")),
+                "{err}"
+            );
+        }
+        let payload = [0xff_u8; 4];
+        let mut garbled = MAGIC.to_vec();
+        garbled.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        garbled.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        garbled.extend_from_slice(&fnv1a(&payload).to_le_bytes());
+        garbled.extend_from_slice(&payload);
+        assert!(Checkpoint::from_bytes(&garbled).unwrap_err().starts_with("malformed"));
     }
 
     #[test]

@@ -254,13 +254,13 @@ impl Output {
             self.gf_counted = solver.failures().len();
             row.push(self.gf_area);
         }
-        if let Some(c) = solver.contact() {
+        if let (Some(c), Some(energy)) = (solver.contact(), solver.contact_energy()) {
             row.extend([
-                c.normal_work(),
+                c.normal_work(energy),
                 c.spring_energy,
                 r.contact_pairs as f64,
-                c.energy.released,
-                c.energy.handed(),
+                energy.released,
+                energy.handed(),
                 c.started_pairs() as f64,
                 // At t_n, where the pass found them in contact.
                 c.deepest_overlap(solver.model(), |n| solver.recorded_position(n as usize)),

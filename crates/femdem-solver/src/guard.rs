@@ -27,7 +27,7 @@
 //! And one of the energy account, in [`Solver::check_energy`]: the balance
 //! `B = kinetic + elastic + dissipated − external work` has moved since
 //! step 0 by more than a tolerance times the run's energy scale
-//! (`|B_n − B_0| > tol · scale_n`, both defined in `crate::account`; the
+//! (`|B_n − B_0| > tol · scale_n`, both defined in `crate::ledger`; the
 //! account is centred so that an honest run keeps it near round-off,
 //! `crate::step`). It reads the last step that evaluated the energies and
 //! costs nothing more.
@@ -37,7 +37,7 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 use thiserror::Error;
 
-use crate::account::Imbalance;
+use crate::ledger::Imbalance;
 use crate::model::Model;
 use crate::step::Solver;
 
@@ -241,7 +241,7 @@ impl Solver {
 
     /// Checks contact's own account: the work the normal contact forces
     /// have absorbed, with what the failed joints' compression held counted
-    /// as absorbed ([`crate::Contact::normal_work`]), must not fall below
+    /// as absorbed ([`Solver::contact_normal_work`]), must not fall below
     /// `−tolerance · scale_n`, the scale of [`Solver::check_energy`] at the
     /// last evaluation. The energy balance cannot see energy that contact
     /// puts in (the contact term is the work of its forces, so the account
@@ -256,12 +256,13 @@ impl Solver {
     /// evaluation, the work, what the pairs that started overlapped gave
     /// back and how much of it the joints held, and the scale.
     pub fn check_contact_energy(&self, tolerance: Real) -> Result<(), Trouble> {
-        let (Some(contact), Some(Imbalance { step, time, scale, .. })) = (self.contact(), self.imbalance()) else {
+        let (Some(energy), Some(work), Some(Imbalance { step, time, scale, .. })) =
+            (self.contact_energy(), self.contact_normal_work(), self.imbalance())
+        else {
             return Ok(());
         };
-        let work = contact.normal_work();
         if work < -tolerance * scale || work.is_nan() {
-            let (released, handed) = (contact.energy.released, contact.energy.handed());
+            let (released, handed) = (energy.released, energy.handed());
             return Err(Trouble::ContactEnergy { step, time, work, released, handed, scale, tolerance });
         }
         Ok(())

@@ -16,7 +16,8 @@
 //!   which runs the stages of one step — internal forces (`forces.rs`),
 //!   failures, contact (`contact/`), external forces, update, energy — and
 //!   returns a [`StepRecord`] of step `n`.
-//! - `account.rs`: the half step of work held over between steps, and
+//! - `ledger.rs`: every work and energy term with the half step it holds
+//!   over between steps, the external work as the sum of its terms, and
 //!   the watch on the balance ([`Solver::imbalance`], [`Imbalance`]).
 //! - [`Solver::snapshot`] / [`Solver::restore`] (`snapshot.rs`): the
 //!   evolving state as bytes, for checkpoints; a restored solver continues
@@ -66,11 +67,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod account;
 pub mod contact;
 mod error;
 pub mod forces;
 mod guard;
+mod ledger;
 pub mod loads;
 mod model;
 pub mod select;
@@ -79,11 +80,11 @@ mod state;
 mod step;
 mod timestep;
 
-pub use account::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
 pub use error::SolverError;
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};
+pub use ledger::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance, Trapezoid};
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RegionBehaviour, TetMaterial};
 pub use state::{Energies, Failure, State};

@@ -5,7 +5,7 @@ use femdem_core::{Real, Vec3};
 use femdem_fracture::{FailureMode, JointHistory};
 
 /// Node positions and half-step velocities.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct State {
     /// Positions `x_n`, m.
     pub x: Vec<Vec3>,
@@ -28,7 +28,7 @@ pub struct State {
 /// the state terms (`kinetic`, `tet_elastic`, `joint_elastic`,
 /// `fracture`) are evaluated only at steps that ask for them
 /// ([`crate::Want::energy`]) and keep their last value otherwise.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Energies {
     /// Kinetic energy, the leapfrog's `½ Σ m v_{n−½} · v_{n+½}` (the
     /// mid-step `½ Σ m |v_n|²` less `⅛ Σ m |v_{n+½} − v_{n−½}|²`).
@@ -76,7 +76,7 @@ impl Energies {
 }
 
 /// A joint failure.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Failure {
     /// Joint index.
     pub joint: u32,

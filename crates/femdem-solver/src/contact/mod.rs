@@ -66,8 +66,8 @@ mod depth;
 mod detection;
 mod incremental;
 mod pair;
+mod saved;
 mod settings;
-mod snapshot;
 mod stars;
 mod start;
 
@@ -79,6 +79,7 @@ use crate::model::Model;
 use certify::{Certificates, Verdict};
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
+pub(crate) use saved::SavedContact;
 use settings::FrictionTable;
 pub use settings::{Activation, ContactModel, ContactSettings, NEGLIGIBLE};
 use stars::Stars;
@@ -89,8 +90,9 @@ use start::NewlyAllowed;
 /// (the default of [`ContactSettings::ramp_steps`]).
 pub const RAMP_STEPS: u32 = 10;
 
-/// The contact terms of the energy account, J.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// The contact terms of the energy account, J: kept in the solver's ledger
+/// (`crate::ledger`), booked by [`Contact::book_work`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactEnergy {
     /// Work absorbed by the normal forces up to `t_n` of the last pass,
     /// plus the elastic energy of the friction springs now.
@@ -98,7 +100,9 @@ pub struct ContactEnergy {
     /// Energy dissipated by friction up to `t_n`: the work absorbed by the
     /// friction forces less what the springs still hold.
     pub friction: Real,
+    /// The work the friction forces absorbed up to `t_n`.
     friction_absorbed: Real,
+    /// The springs' energy booked into `contact` so far.
     spring_booked: Real,
     /// Work of the last pass's normal forces over the half step after
     /// `t_n`, `½ Δt Σ f_N · v_{n+½}`: booked with the next pass.
@@ -187,8 +191,6 @@ pub struct Contact {
     total: Vec<Vec3>,
     /// Velocities `v_{n−½}` of the touched nodes at the last pass.
     v_before: Vec<Vec3>,
-    /// The contact terms of the energy account.
-    pub energy: ContactEnergy,
     touched: Vec<u32>,
     is_touched: Vec<bool>,
     /// Pairs in contact at the last pass.
@@ -264,7 +266,6 @@ impl Contact {
             friction_force: vec![Vec3::zeros(); model.num_nodes()],
             total: vec![Vec3::zeros(); model.num_nodes()],
             v_before: Vec::new(),
-            energy: ContactEnergy::default(),
             touched: Vec::new(),
             is_touched: vec![false; model.num_nodes()],
             active_pairs: 0,
@@ -306,7 +307,16 @@ impl Contact {
     /// (`JointHistory::compression_energy`), J: it bounds what the couple's
     /// overlap may give back ([`ContactEnergy::handed`]) unless the couple
     /// starts from an offset (then its overlap gives nothing back).
-    pub fn joint_failed(&mut self, model: &Model, joint: usize, compressed: bool, held: Real) {
+    ///
+    /// `energy` is the ledger's contact account.
+    pub fn joint_failed(
+        &mut self,
+        model: &Model,
+        joint: usize,
+        compressed: bool,
+        held: Real,
+        energy: &mut ContactEnergy,
+    ) {
         let tets = model.joint_tets[joint];
         let key = spring_key(tets[0], tets[1]);
         let offset = match self.settings.activation {
@@ -315,7 +325,7 @@ impl Contact {
             Activation::Paper | Activation::Ramp => false,
         };
         if !offset {
-            self.energy.held += held;
+            energy.held += held;
         }
         if compressed && self.settings.ramp_steps > 0 && self.settings.activation != Activation::Offset {
             self.ramp.insert(key, 0);
@@ -407,7 +417,7 @@ impl Contact {
     /// `t_n`. The normal forces absorb `−W_N` (the potential's energy plus
     /// what the Eq. 18 ramp does not give back), the friction forces
     /// `−W_T`, of which the sticking springs still hold `spring_energy`.
-    pub fn book_work(&mut self, v_new: &[Vec3], dt: Real) {
+    pub fn book_work(&self, energy: &mut ContactEnergy, v_new: &[Vec3], dt: Real) {
         let half = 0.5 * dt;
         let (mut normal, mut friction, mut normal_ahead, mut friction_ahead) = (0.0, 0.0, 0.0, 0.0);
         let (mut released, mut released_ahead) = (0.0, 0.0);
@@ -422,7 +432,7 @@ impl Contact {
             released += half * f_s.dot(&before);
             released_ahead += half * f_s.dot(&after);
         }
-        let e = &mut self.energy;
+        let e = energy;
         e.released += e.released_ahead + released;
         e.released_ahead = released_ahead;
         e.friction_absorbed -= e.friction_ahead + friction;
@@ -655,7 +665,10 @@ impl Contact {
     /// absorbed ([`ContactEnergy::handed`]): [`ContactEnergy::contact`] less
     /// the friction springs' energy plus the handed energy. Negative when
     /// contact has given back more than it took and the joints held.
-    pub fn normal_work(&self) -> Real {
-        self.energy.contact - self.spring_energy + self.energy.handed()
+    ///
+    /// `energy` is the ledger's contact account
+    /// ([`crate::Solver::contact_energy`]).
+    pub fn normal_work(&self, energy: &ContactEnergy) -> Real {
+        energy.contact - self.spring_energy + energy.handed()
     }
 }

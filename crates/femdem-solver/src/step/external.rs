@@ -83,7 +83,7 @@ impl External {
     /// reactions (given the internal and contact forces of this step; zero
     /// for a drive not yet started) and their mean displacements, and keeps
     /// each drive's reaction work over the step's two halves
-    /// ([`External::drive_halves`]; their sums: [`External::reaction_halves`]).
+    /// ([`External::drive_halves`]).
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate(
         &mut self,
@@ -148,13 +148,5 @@ impl External {
             record.drive_forces[d] = total;
             record.drive_displacements[d] = u / drive.nodes.len().max(1) as Real;
         }
-    }
-
-    /// The work all the drives' reactions do over the step in its two
-    /// halves, J: `½ Δt Σ r · v_{n−½}` (the half that belongs to `t_n`) and
-    /// `½ Δt Σ r · v_{n+½}` (the half that belongs to `t_{n+1}`; `v_{n+½}`
-    /// of a driven component is its target), summed in drive order.
-    pub fn reaction_halves(&self) -> (Real, Real) {
-        self.drive_halves.iter().fold((0.0, 0.0), |(b, a), &(back, ahead)| (b + back, a + ahead))
     }
 }

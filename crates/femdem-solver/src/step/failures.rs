@@ -57,7 +57,7 @@ impl Solver {
     pub(super) fn unbond(&mut self, j: usize, compressed: bool, area: Real) {
         if let Some(contact) = &mut self.evolving.contact {
             let held = self.evolving.state.joints[j].compression_energy(area);
-            contact.joint_failed(&self.scene.model, j, compressed, held);
+            contact.joint_failed(&self.scene.model, j, compressed, held, &mut self.evolving.ledger.contact);
         }
     }
 }

@@ -37,7 +37,7 @@
 //!
 //! The loads', reactions' and contact's held-over half steps are numbers
 //! step `n` computed with the old `v_{n+½}` (`Powers::ahead`,
-//! `External::reaction_halves`, contact's held-over work): that is why
+//! `External::drive_halves`, contact's held-over work): that is why
 //! `G_n` drops out of `R`.
 //!
 //! Before the first step there is nothing to book against: the state
@@ -125,7 +125,7 @@ impl Solver {
             let v = self.evolving.state.v[i] * keep;
             removed -= self.replace_velocity(i, v);
         }
-        self.evolving.energies.damping += removed;
+        self.evolving.ledger.energies.damping += removed;
         Ok(removed)
     }
 
@@ -150,7 +150,8 @@ impl Solver {
         self.check_forces("kick")?;
         let v = self.evolving.state.v[node] + dv;
         let work = self.replace_velocity(node, v);
-        self.evolving.energies.external_work += work;
+        self.evolving.ledger.kicks += work;
+        self.evolving.ledger.close();
         Ok(work)
     }
 }

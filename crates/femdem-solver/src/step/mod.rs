@@ -72,11 +72,11 @@
 //! `x_n` for the whole interval. The account's constant is `B_0`, the
 //! balance of step 0: the initial kinetic and elastic energy
 //! `½ Σ m |v_{−½}|² + U_0` up to terms of that first step's forces. The
-//! watch on it is in `crate::account`.
+//! watch on it is in `crate::ledger`.
 //!
 //! Measured on the bundled cases with the energies evaluated at every
 //! step, the largest `|B_n − B_0|` over the run's energy scale
-//! (`crate::account`): elastic bar 4·10⁻⁷ (was 0.53 when the work was
+//! (`crate::ledger`): elastic bar 4·10⁻⁷ (was 0.53 when the work was
 //! booked through `t_{n+½}` against the kinetic energy of `v_n`), pulled
 //! bar 1.8·10⁻⁴ (0.018), Brazilian split 5·10⁻⁵ (4.6·10⁻³), with joints
 //! in a band 1.2·10⁻⁴ (5.2·10⁻³) (`docs/reliability.md`).
@@ -96,9 +96,9 @@ pub use prescribed::held_nodes;
 pub use record::{FailureCounts, StepRecord};
 
 use crate::SolverError;
-use crate::account::{Account, energy_floor};
-use crate::contact::{Contact, ContactModel, ContactSettings};
+use crate::contact::{Contact, ContactEnergy, ContactModel, ContactSettings};
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
+use crate::ledger::{Ledger, energy_floor};
 use crate::loads::Loads;
 use crate::model::Model;
 use crate::state::{Energies, Failure, State};
@@ -139,7 +139,7 @@ pub(crate) struct Scene {
     pub(crate) params: StepParams,
     /// Whether any material is viscous.
     pub(crate) viscous: bool,
-    /// The energy scale's floor ([`crate::account`]), J.
+    /// The energy scale's floor ([`crate::ledger`]), J.
     pub(crate) floor: f64,
 }
 
@@ -149,8 +149,9 @@ pub(crate) struct Evolving {
     /// Positions, velocities, joint histories, step and time
     /// ([`Solver::state`]).
     pub(crate) state: State,
-    /// The energy account's running terms.
-    pub(crate) energies: Energies,
+    /// Every work and energy term, with the half steps held over and the
+    /// watch on the balance (`crate::ledger`).
+    pub(crate) ledger: Ledger,
     /// Every joint failure so far.
     pub(crate) failures: Vec<Failure>,
     /// Contact: its pairs, springs, ramps, detection and certificates.
@@ -161,8 +162,6 @@ pub(crate) struct Evolving {
     pub(crate) v_before: Vec<Vec3>,
     /// The record of the last step.
     pub(crate) record: StepRecord,
-    /// The energy account's held-over half steps and its watch.
-    pub(crate) account: Account,
 }
 
 /// Buffers and caches a step fills and then reads: they are not
@@ -218,13 +217,8 @@ impl Solver {
         Ok(Solver {
             evolving: Evolving {
                 v_before: if viscous { vec![Vec3::zeros(); n] } else { Vec::new() },
-                account: Account {
-                    surface_ahead: vec![0.0; loads.surfaces.len()],
-                    drive_ahead: vec![0.0; loads.drives.len()],
-                    ..Account::default()
-                },
+                ledger: Ledger::new(loads.surfaces.len(), loads.drives.len()),
                 state,
-                energies: Energies::default(),
                 failures: Vec::new(),
                 contact: None,
                 record,
@@ -251,7 +245,20 @@ impl Solver {
 
     /// The energy account after the last step.
     pub fn energies(&self) -> &Energies {
-        &self.evolving.energies
+        &self.evolving.ledger.energies
+    }
+
+    /// Contact's terms of the energy account, when contact is enabled
+    /// ([`Solver::enable_contact`]).
+    pub fn contact_energy(&self) -> Option<&ContactEnergy> {
+        self.evolving.contact.as_ref().map(|_| &self.evolving.ledger.contact)
+    }
+
+    /// The work the normal contact forces have absorbed up to `t_n`, with
+    /// what the failed joints handed over counted as absorbed
+    /// ([`Contact::normal_work`]), J; `None` without contact.
+    pub fn contact_normal_work(&self) -> Option<Real> {
+        self.evolving.contact.as_ref().map(|c| c.normal_work(&self.evolving.ledger.contact))
     }
 
     /// Every joint failure so far, in order.
@@ -417,24 +424,22 @@ impl Solver {
         );
         // 6. The energy account (centred on t_n: module documentation) and
         // the record.
-        let e = &mut self.evolving.energies;
-        let (reaction_back, reaction_ahead) = self.pipeline.external.reaction_halves();
-        e.external_work += self.evolving.account.ahead + 0.5 * dt * powers.back + reaction_back;
-        self.evolving.account.ahead = 0.5 * dt * powers.ahead + reaction_ahead;
+        let ledger = &mut self.evolving.ledger;
+        ledger.gravity.book(0.5 * dt * powers.back, 0.5 * dt * powers.ahead);
         let surface = self.pipeline.external.surface_powers(&self.evolving.state.v);
-        for (k, (back, ahead)) in surface.enumerate() {
-            self.evolving.record.surface_work[k] += self.evolving.account.surface_ahead[k] + 0.5 * dt * back;
-            self.evolving.account.surface_ahead[k] = 0.5 * dt * ahead;
+        for (term, (back, ahead)) in ledger.surfaces.iter_mut().zip(surface) {
+            term.book(0.5 * dt * back, 0.5 * dt * ahead);
         }
-        for (d, &(back, ahead)) in self.pipeline.external.drive_halves.iter().enumerate() {
-            self.evolving.record.drive_work[d] += self.evolving.account.drive_ahead[d] + back;
-            self.evolving.account.drive_ahead[d] = ahead;
+        for (term, &(back, ahead)) in ledger.drives.iter_mut().zip(&self.pipeline.external.drive_halves) {
+            term.book(back, ahead);
         }
-        if let Some(contact) = &mut self.evolving.contact {
-            contact.book_work(&self.evolving.state.v, dt);
-            e.contact = contact.energy.contact + contact.energy.handed();
-            e.friction = contact.energy.friction;
+        ledger.close();
+        if let Some(contact) = &self.evolving.contact {
+            contact.book_work(&mut ledger.contact, &self.evolving.state.v, dt);
+            ledger.energies.contact = ledger.contact.contact + ledger.contact.handed();
+            ledger.energies.friction = ledger.contact.friction;
         }
+        let e = &mut ledger.energies;
         e.damping += dt * sums.dissipation_rate;
         if want.energy {
             e.kinetic = powers.kinetic;
@@ -442,8 +447,8 @@ impl Solver {
             e.joint_elastic = sums.joint_energy;
             // What the failed joints handed over to contact is not fracture
             // energy (`ContactEnergy::handed`): moved to the contact term.
-            e.fracture = sums.fracture - self.evolving.contact.as_ref().map_or(0.0, |c| c.energy.handed());
-            self.evolving.account.observe(self.evolving.state.step, t, e, self.scene.floor);
+            e.fracture = sums.fracture - ledger.contact.handed();
+            ledger.observe(self.evolving.state.step, t, self.scene.floor);
         }
         let r = &mut self.evolving.record;
         r.step = self.evolving.state.step;
@@ -452,28 +457,17 @@ impl Solver {
         for f in &self.evolving.failures[first_new..] {
             r.failures.add(f.mode);
         }
-        r.energies = self.evolving.energies;
+        r.energies = ledger.energies;
+        for (w, term) in r.surface_work.iter_mut().zip(&ledger.surfaces) {
+            *w = term.total;
+        }
+        for (w, term) in r.drive_work.iter_mut().zip(&ledger.drives) {
+            *w = term.total;
+        }
         r.energies_current = want.energy;
         r.contact_pairs = self.evolving.contact.as_ref().map_or(0, |c| c.active_pairs);
         self.evolving.state.time += dt;
         self.evolving.state.step += 1;
-    }
-
-    /// Replaces the evolving state that [`Solver::restore`] decoded (the
-    /// node state is set by the caller).
-    pub(crate) fn put_back(
-        &mut self,
-        energies: Energies,
-        failures: Vec<Failure>,
-        record: StepRecord,
-        contact: Option<Contact>,
-        account: Account,
-    ) {
-        self.evolving.account = account;
-        self.evolving.energies = energies;
-        self.evolving.failures = failures;
-        self.evolving.record = record;
-        self.evolving.contact = contact;
     }
 
     /// Turns on contact (§2.3): `initial` are tet pairs in contact from the

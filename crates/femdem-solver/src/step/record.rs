@@ -8,7 +8,7 @@ use femdem_fracture::FailureMode;
 use crate::state::Energies;
 
 /// Joint failures so far, by mode.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct FailureCounts {
     /// Failed by opening (see `femdem_fracture::FailureMode`).
     pub tensile: usize,
@@ -40,7 +40,7 @@ impl FailureCounts {
 /// The record of step `n`, everything at time `t_n` (the step evaluates
 /// forces at `x_n` and then moves the nodes to `x_{n+1}`; what it reports
 /// belongs to `t_n`).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StepRecord {
     /// Step number `n`.
     pub step: u64,

@@ -8,6 +8,7 @@ use super::Solver;
 use super::prescribed::held_from_start;
 use crate::SolverError;
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
+use crate::ledger::Trapezoid;
 use crate::loads::surface_forces;
 
 impl Solver {
@@ -83,22 +84,27 @@ impl Solver {
         let stored = sums.tet_energy + sums.joint_energy;
         // Before the first step nothing else is booked: set, not added, so
         // that a second call replaces the first.
-        self.evolving.energies.external_work = sums.tet_energy + joint_work;
-        self.evolving.energies.tet_elastic = sums.tet_energy;
-        self.evolving.energies.joint_elastic = sums.joint_energy;
-        self.evolving.energies.fracture = sums.fracture;
+        let ledger = &mut self.evolving.ledger;
+        ledger.energies.tet_elastic = sums.tet_energy;
+        ledger.energies.joint_elastic = sums.joint_energy;
+        ledger.energies.fracture = sums.fracture;
         // Each surface load's share of that work: Clapeyron's `½ f_k · u`,
         // the work of loads applied together in proportion on a linear
         // body (its loads at t = 0 on the reference faces). The shares and
         // gravity's add up to the stored energy as far as the state is
-        // linear elastic.
+        // linear elastic; the rest of the work is the ledger's `start`.
+        let mut shares = 0.0;
         for (k, load) in self.scene.loads.surfaces.iter().enumerate() {
             let mut share = 0.0;
             surface_forces(load, &self.scene.model.x0, load.ramp.factor(0.0), |n, f| {
                 share += 0.5 * f.dot(&u[n as usize])
             });
+            ledger.surfaces[k] = Trapezoid { total: share, ahead: 0.0 };
             self.evolving.record.surface_work[k] = share;
+            shares += share;
         }
+        ledger.start = sums.tet_energy + joint_work - shares;
+        ledger.close();
         Ok(stored)
     }
 }

@@ -16,10 +16,11 @@ use crate::state::State;
 /// documentation for the time-centring).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Powers {
-    /// `Σ f_ext,n · v_{n−½}` over the nodes: the external forces (surface
-    /// loads and gravity) of step `n` against the velocity before it, W.
+    /// `Σ m_i g · v_{n−½}` over the nodes: gravity's power against the
+    /// velocity before step `n`, W (the surface loads' powers are each
+    /// load's own: `External::surface_powers`).
     pub back: Real,
-    /// `Σ f_ext,n · v_{n+½}`: against the velocity after it, W.
+    /// `Σ m_i g · v_{n+½}`: against the velocity after it, W.
     pub ahead: Real,
     /// With `want_kinetic`, the leapfrog kinetic energy of `t_n`,
     /// `½ Σ m v_{n−½} · v_{n+½}`, J (else 0).
@@ -43,8 +44,8 @@ impl Update {
     }
 
     /// `v_{n+½} = v_{n−½} + Δt f / m` with the prescribed components
-    /// imposed (those of started drives and fixed sets), `x_{n+1} = x_n + Δt v_{n+½}`. Returns the powers of the
-    /// external forces (surface loads and gravity) against `v_{n−½}` and
+    /// imposed (those of started drives and fixed sets), `x_{n+1} = x_n + Δt v_{n+½}`. Returns the powers of
+    /// gravity against `v_{n−½}` and
     /// `v_{n+½}`, and, with `want_kinetic`, the kinetic energy of `t_n`
     /// ([`Powers`]). A non-empty `before` (the velocities of the step
     /// before, one per node) receives `v_{n−½}`.
@@ -100,7 +101,8 @@ fn advance_chunk(
     for (k, (x, v)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
         let i = first + k;
         let m = model.mass[i];
-        let f_ext = f_surface[i] + weight(model, loads, i);
+        let w = weight(model, loads, i);
+        let f_ext = f_surface[i] + w;
         let f_in = match contact {
             Some(f) => internal[i] + f[i],
             None => internal[i],
@@ -115,8 +117,8 @@ fn advance_chunk(
                 Claim::Drive(_) => {} // a drive not yet started: free
             }
         }
-        sums.back += f_ext.dot(&old);
-        sums.ahead += f_ext.dot(&new);
+        sums.back += w.dot(&old);
+        sums.ahead += w.dot(&new);
         if want_kinetic {
             sums.kinetic += 0.5 * m * old.dot(&new);
         }

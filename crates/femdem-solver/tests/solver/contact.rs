@@ -25,7 +25,7 @@ use femdem_core::Vec3;
 use femdem_material::Law;
 use femdem_mesh::{Region, insert_joints};
 use femdem_solver::select::{NodeSelection, select_nodes};
-use femdem_solver::{ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want};
+use femdem_solver::{ContactEnergy, ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, VelocityDrive, Want};
 
 fn momentum(s: &Solver) -> Vec3 {
     (0..s.model().num_nodes()).map(|i| s.state().v[i] * s.model().mass[i]).sum()
@@ -327,7 +327,7 @@ fn contact_force_of_a_joint_failed_in_compression_is_ramped_in() {
             ..ContactSettings::new(26e9)
         };
         let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
-        contact.joint_failed(&m, 0, true, 0.0);
+        contact.joint_failed(&m, 0, true, 0.0, &mut ContactEnergy::default());
         for step in 0..=n_total + 2 {
             contact.pass(&m, &x, &v, 1e-8);
             let on_b: Vec3 = m.tets[b as usize].iter().map(|&k| contact.force[k as usize]).sum();
@@ -366,7 +366,7 @@ fn a_settling_couple_ramps_its_first_overlap_and_carries_more_at_once() {
     };
     let total = f64::from(femdem_solver::RAMP_STEPS);
     let mut contact = femdem_solver::Contact::new(&m, settings, &[]);
-    contact.joint_failed(&m, 0, true, 0.0);
+    contact.joint_failed(&m, 0, true, 0.0, &mut ContactEnergy::default());
     let on_b = |c: &femdem_solver::Contact| -> Vec3 { m.tets[b as usize].iter().map(|&k| c.force[k as usize]).sum() };
     for step in 0..3 {
         contact.pass(&m, &x0, &v, 1e-8);

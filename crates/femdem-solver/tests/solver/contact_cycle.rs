@@ -1,7 +1,7 @@
 //! Closed contact cycles (issue 30, item 2): a frictionless, undamped
 //! elastic cube lands on a plane and leaves it again. A force with a
 //! potential gives back exactly what it absorbed, so after separation the
-//! work the normal contact forces absorbed (`Contact::normal_work`) is zero
+//! work the normal contact forces absorbed (`Solver::contact_normal_work`) is zero
 //! up to the integrator's error; Eq. 17's potential force is not the
 //! gradient of an energy (its two one-sided integrals differ), and what it
 //! leaves is the cycle's *residual*, here as a share of the impact's
@@ -189,7 +189,7 @@ fn bounce(impact: &Impact) -> Cycle {
     // What pairs still in contact hold (the two ground blocks of the crack
     // case may touch each other after the impact) is not a residual; only
     // the energy-conserving model knows it (0 with Eq. 17).
-    Cycle { brought, residual: (contact.normal_work() - contact.potential) / brought, steps }
+    Cycle { brought, residual: (s.contact_normal_work().unwrap() - contact.potential) / brought, steps }
 }
 
 /// The tilt that puts an edge (about x) or a vertex (about x, then y) down.

@@ -1,5 +1,5 @@
 //! The energy account, centred on `t_n` (`femdem-solver` `step/mod.rs`),
-//! and the guard that watches it (`Solver::check_energy`, `account.rs`).
+//! and the guard that watches it (`Solver::check_energy`, `ledger.rs`).
 //!
 //! 1. **Exact for a linear body.** The leapfrog's kinetic energy
 //!    `½ Σ m v_{n−½}·v_{n+½}` changes by exactly the trapezoidal work of

@@ -61,17 +61,21 @@ fn a_restored_solver_continues_bit_for_bit() {
 fn a_snapshot_of_another_layout_version_is_refused_by_name() {
     let mut a = block([0.02, 0.01, 0.02]);
     a.step(Want::default());
+    let version = femdem_solver::snapshot::SNAPSHOT_VERSION;
     let mut snap = a.snapshot();
-    // A snapshot of layout 2, from before incremental detection.
-    snap[..4].copy_from_slice(&(femdem_solver::snapshot::SNAPSHOT_VERSION - 1).to_le_bytes());
+    // The version is the first value, a varint: one byte below 128.
+    assert_eq!(snap[0] as u32, version);
+    snap[0] = (version - 1) as u8;
     let before = a.snapshot();
     let err = a.restore(&snap).unwrap_err().to_string();
-    let expected = format!(
-        "layout version {}; this build reads {}",
-        femdem_solver::snapshot::SNAPSHOT_VERSION - 1,
-        femdem_solver::snapshot::SNAPSHOT_VERSION
-    );
+    let expected = format!("layout version {}; this build reads {version}", version - 1);
     assert!(err.contains(&expected), "{err}");
+    // A hand-written snapshot of layout 8 began with the version as a
+    // little-endian u32.
+    let mut old = 8u32.to_le_bytes().to_vec();
+    old.extend_from_slice(&snap[1..]);
+    let err = a.restore(&old).unwrap_err().to_string();
+    assert!(err.contains(&format!("layout version 8; this build reads {version}")), "{err}");
     assert!(a.snapshot() == before, "a refused snapshot changed the solver");
 }
 

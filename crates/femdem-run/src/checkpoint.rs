@@ -17,12 +17,15 @@
 //! version  u32      FORMAT_VERSION
 //! length   u64      bytes of the payload
 //! checksum u64      FNV-1a 64 of the payload
-//! payload           identity, schedule, marks, solver snapshot (postcard)
+//! payload           identity, schedule, marks (postcard), then the solver
+//!                   snapshot (Solver::write_snapshot) to the end
 //! ```
 //!
 //! The payload is serialised with serde in postcard's format: the
-//! [`Checkpoint`] struct, its solver snapshot the serialised evolving
-//! state ([`femdem_solver::Solver::snapshot`]). Version 2 added the `--set`
+//! identity, schedule and marks, then the serialised evolving state
+//! ([`femdem_solver::Solver::write_snapshot`]), streamed to the file
+//! through the checksum, whose length and value are written into the
+//! header last. Version 2 added the `--set`
 //! overrides to the identity; version 3 is the serde payload with the
 //! solver's ledger. Older files are refused, naming both versions
 //! ([`MIGRATION`] says why they are not migrated).
@@ -42,7 +45,7 @@
 //! does, it goes on).
 
 use std::fs::{self, File};
-use std::io::Write;
+use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
@@ -201,7 +204,7 @@ pub struct Marks {
 }
 
 /// One checkpoint.
-#[derive(Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, PartialEq)]
 pub struct Checkpoint {
     /// The case it belongs to.
     pub identity: Identity,
@@ -213,19 +216,63 @@ pub struct Checkpoint {
     pub solver: Vec<u8>,
 }
 
-impl Checkpoint {
-    /// The whole file's bytes.
-    fn to_bytes(&self) -> Vec<u8> {
-        let payload = postcard::to_stdvec(self).expect("a checkpoint serialises");
-        let mut out = Vec::with_capacity(HEADER + payload.len());
-        out.extend_from_slice(MAGIC);
-        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-        out.extend_from_slice(&fnv1a(&payload).to_le_bytes());
-        out.extend_from_slice(&payload);
-        out
+/// What the payload starts with, before the solver's snapshot: serialised
+/// borrowed, read back owned.
+#[derive(Serialize)]
+struct HeadOut<'a>(&'a Identity, &'a Schedule, &'a Marks);
+
+/// [`HeadOut`] as read.
+#[derive(Deserialize)]
+struct HeadIn(Identity, Schedule, Marks);
+
+/// A writer that hashes (FNV-1a) and counts what passes through it.
+struct Hashing<W> {
+    inner: W,
+    hash: Fnv,
+    len: u64,
+}
+
+impl<W: Write> Write for Hashing<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.hash.write(&buf[..n]);
+        self.len += n as u64;
+        Ok(n)
     }
 
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// Writes a checkpoint to `out`, from its start: the header with the
+/// length and checksum left blank, the payload — identity, schedule and
+/// marks, then the solver's snapshot, streamed by `snapshot` — and then
+/// the length and checksum over the blanks. Nothing of the payload is held
+/// in memory.
+fn write_to<W: Write + Seek>(
+    out: &mut W,
+    identity: &Identity,
+    schedule: &Schedule,
+    marks: &Marks,
+    snapshot: &dyn Fn(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    out.write_all(MAGIC)?;
+    out.write_all(&FORMAT_VERSION.to_le_bytes())?;
+    out.write_all(&[0; 16])?;
+    let mut payload = Hashing { inner: BufWriter::new(&mut *out), hash: Fnv::new(), len: 0 };
+    postcard::to_io(&HeadOut(identity, schedule, marks), &mut payload).map_err(std::io::Error::other)?;
+    snapshot(&mut payload)?;
+    payload.flush()?;
+    let (len, hash) = (payload.len, payload.hash.0);
+    drop(payload);
+    out.seek(SeekFrom::Start(12))?;
+    out.write_all(&len.to_le_bytes())?;
+    out.write_all(&hash.to_le_bytes())?;
+    out.flush()
+}
+
+impl Checkpoint {
     /// Reads a file's bytes; the error says what is wrong with them.
     fn from_bytes(bytes: &[u8]) -> Result<Checkpoint, String> {
         if bytes.len() < HEADER || &bytes[..8] != MAGIC {
@@ -247,9 +294,10 @@ impl Checkpoint {
         if fnv1a(payload) != checksum {
             return Err("damaged: its checksum does not match".into());
         }
-        match postcard::take_from_bytes::<Checkpoint>(payload) {
-            Ok((c, [])) => Ok(c),
-            Ok((_, rest)) => Err(format!("malformed: {} bytes left over at the end", rest.len())),
+        match postcard::take_from_bytes::<HeadIn>(payload) {
+            Ok((HeadIn(identity, schedule, marks), solver)) => {
+                Ok(Checkpoint { identity, schedule, marks, solver: solver.to_vec() })
+            }
             Err(e) => Err(format!("malformed: {e}")),
         }
     }
@@ -287,20 +335,28 @@ fn list(dir: &Path) -> Result<Vec<(u64, PathBuf)>> {
     Ok(found)
 }
 
-/// Writes `checkpoint` into `dir` atomically (see the module
-/// documentation), then removes all but the [`KEEP`] newest checkpoints.
-/// Returns the file written. If the checkpoint's step is `pause` (a test
-/// hook), waits between the temporary file and the rename.
-pub fn write(dir: &Path, checkpoint: &Checkpoint, pause: Option<u64>) -> Result<PathBuf> {
-    let path = dir.join(file_name(checkpoint.schedule.next_step));
+/// Writes a checkpoint of `identity`, `schedule`, `marks` and the
+/// solver's snapshot (streamed by `snapshot`, e.g.
+/// [`femdem_solver::Solver::write_snapshot`]) into `dir` atomically (see
+/// the module documentation), then removes all but the [`KEEP`] newest
+/// checkpoints. Returns the file written. If the checkpoint's step is
+/// `pause` (a test hook), waits between the temporary file and the rename.
+pub fn write(
+    dir: &Path,
+    identity: &Identity,
+    schedule: &Schedule,
+    marks: &Marks,
+    snapshot: &dyn Fn(&mut dyn Write) -> std::io::Result<()>,
+    pause: Option<u64>,
+) -> Result<PathBuf> {
+    let path = dir.join(file_name(schedule.next_step));
     let tmp = dir.join(TEMPORARY);
-    let bytes = checkpoint.to_bytes();
     let written = File::create(&tmp).and_then(|mut f| {
-        f.write_all(&bytes)?;
+        write_to(&mut f, identity, schedule, marks, snapshot)?;
         f.sync_all()
     });
     written.with_context(|| format!("writing checkpoint {}", tmp.display()))?;
-    if pause == Some(checkpoint.schedule.next_step) {
+    if pause == Some(schedule.next_step) {
         File::create(dir.join(PAUSED)).with_context(|| format!("creating {}", dir.join(PAUSED).display()))?;
         std::thread::sleep(std::time::Duration::from_secs(PAUSE_SECONDS));
     }
@@ -385,10 +441,17 @@ mod tests {
         }
     }
 
+    /// The file `write` would write for `c`.
+    fn to_bytes(c: &Checkpoint) -> Vec<u8> {
+        let mut out = std::io::Cursor::new(Vec::new());
+        write_to(&mut out, &c.identity, &c.schedule, &c.marks, &|w| w.write_all(&c.solver)).unwrap();
+        out.into_inner()
+    }
+
     #[test]
     fn a_checkpoint_round_trips_and_any_damage_is_detected() {
         let c = sample();
-        let bytes = c.to_bytes();
+        let bytes = to_bytes(&c);
         assert_eq!(Checkpoint::from_bytes(&bytes).unwrap(), c);
         for cut in 0..bytes.len() {
             assert!(Checkpoint::from_bytes(&bytes[..cut]).is_err(), "cut at {cut}");
@@ -406,7 +469,7 @@ mod tests {
     /// payload does not read.
     #[test]
     fn a_checkpoint_of_another_format_is_refused_naming_both_versions() {
-        let bytes = sample().to_bytes();
+        let bytes = to_bytes(&sample());
         for version in [1u32, 2, FORMAT_VERSION + 1] {
             let mut other = bytes.clone();
             other[8..12].copy_from_slice(&version.to_le_bytes());

@@ -12,7 +12,7 @@ use femdem_case as case;
 use femdem_case::prepare::{Start, prepare, start_static};
 use femdem_solver::{Solver, Want};
 
-use crate::checkpoint::{self, Checkpoint, Identity, Schedule};
+use crate::checkpoint::{self, Identity, Schedule};
 use crate::output::{Output, Recorded, history_comments};
 use crate::peak::PeakWatch;
 use crate::{Observer, PastPeak, RunOptions, Status, Summary, outdir};
@@ -322,8 +322,7 @@ fn save(
     solver: &Solver,
     pause: Option<u64>,
 ) -> Result<PathBuf> {
-    let saved = Checkpoint { identity: identity.clone(), schedule, marks: output.marks()?, solver: solver.snapshot() };
-    checkpoint::write(dir, &saved, pause)
+    checkpoint::write(dir, identity, &schedule, &output.marks()?, &|w| solver.write_snapshot(w), pause)
 }
 
 /// One line on the static start: its size, its checks and its cost.

@@ -74,6 +74,21 @@ impl External {
             .map(move |(own, &back)| (back, own.iter().map(|&(n, f)| f.dot(&v[n as usize])).sum()))
     }
 
+    /// The velocity component `c` of node `i` is given in this step:
+    /// 0 for a fixed component, the target `v_{n+½}` of a started drive;
+    /// `None` when it moves freely (a drive not yet started leaves it
+    /// free). What the update imposes and what an intervention may change
+    /// (`intervene.rs`).
+    #[inline]
+    pub fn imposed(&self, i: usize, c: usize) -> Option<Real> {
+        match self.prescribed[i][c] {
+            Claim::Free => None,
+            Claim::Fixed => Some(0.0),
+            Claim::Drive(d) if self.active[d as usize] => Some(self.targets[d as usize][c]),
+            Claim::Drive(_) => None,
+        }
+    }
+
     pub fn held_nodes(&self, loads: &Loads) -> Vec<bool> {
         held(&self.prescribed, &loads.drives)
     }

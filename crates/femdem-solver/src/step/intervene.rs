@@ -52,17 +52,12 @@ use femdem_core::{Real, Vec3};
 
 use crate::SolverError;
 use crate::step::Solver;
-use crate::step::prescribed::Claim;
 
 impl Solver {
     /// Whether component `c` of node `i` moves freely now (not fixed, not
     /// driven by an active drive).
     fn free(&self, i: usize, c: usize) -> bool {
-        match self.pipeline.external.prescribed[i][c] {
-            Claim::Free => true,
-            Claim::Fixed => false,
-            Claim::Drive(d) => !self.pipeline.external.active[d as usize],
-        }
+        self.pipeline.external.imposed(i, c).is_none()
     }
 
     /// Sets the free components of node `i`'s velocity to those of `v`,

@@ -6,7 +6,6 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
 use super::external::{External, weight};
-use super::prescribed::Claim;
 use crate::forces::CHUNK;
 use crate::loads::Loads;
 use crate::model::Model;
@@ -95,8 +94,7 @@ fn advance_chunk(
     dt: Real,
     want_kinetic: bool,
 ) -> Powers {
-    let (prescribed, f_surface, targets, active) =
-        (&external.prescribed, &external.f_surface, &external.targets, &external.active);
+    let f_surface = &external.f_surface;
     let mut sums = Powers::default();
     for (k, (x, v)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
         let i = first + k;
@@ -110,11 +108,8 @@ fn advance_chunk(
         let old = *v;
         let mut new = if m > 0.0 { old + (f_in + f_ext) * (dt / m) } else { old };
         for comp in 0..3 {
-            match prescribed[i][comp] {
-                Claim::Free => {}
-                Claim::Fixed => new[comp] = 0.0,
-                Claim::Drive(d) if active[d as usize] => new[comp] = targets[d as usize][comp],
-                Claim::Drive(_) => {} // a drive not yet started: free
+            if let Some(imposed) = external.imposed(i, comp) {
+                new[comp] = imposed;
             }
         }
         sums.back += w.dot(&old);

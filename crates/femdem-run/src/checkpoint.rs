@@ -230,26 +230,33 @@ struct Hashing<W> {
     inner: W,
     hash: Fnv,
     len: u64,
+    /// The first error of `inner`, kept (postcard replaces it by its own).
+    error: Option<std::io::Error>,
 }
 
 impl<W: Write> Write for Hashing<W> {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let n = self.inner.write(buf)?;
+        let n = self.inner.write(buf).inspect_err(|e| {
+            self.error.get_or_insert_with(|| std::io::Error::new(e.kind(), e.to_string()));
+        })?;
         self.hash.write(&buf[..n]);
         self.len += n as u64;
         Ok(n)
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.inner.flush()
+        self.inner.flush().inspect_err(|e| {
+            self.error.get_or_insert_with(|| std::io::Error::new(e.kind(), e.to_string()));
+        })
     }
 }
 
 /// Writes a checkpoint to `out`, from its start: the header with the
 /// length and checksum left blank, the payload — identity, schedule and
 /// marks, then the solver's snapshot, streamed by `snapshot` — and then
-/// the length and checksum over the blanks. Nothing of the payload is held
-/// in memory.
+/// the length and checksum over the blanks. The payload is not held in
+/// memory (but for the contact pass's state, which
+/// [`femdem_solver::Solver::write_snapshot`] copies).
 fn write_to<W: Write + Seek>(
     out: &mut W,
     identity: &Identity,
@@ -260,8 +267,12 @@ fn write_to<W: Write + Seek>(
     out.write_all(MAGIC)?;
     out.write_all(&FORMAT_VERSION.to_le_bytes())?;
     out.write_all(&[0; 16])?;
-    let mut payload = Hashing { inner: BufWriter::new(&mut *out), hash: Fnv::new(), len: 0 };
-    postcard::to_io(&HeadOut(identity, schedule, marks), &mut payload).map_err(std::io::Error::other)?;
+    let mut payload = Hashing { inner: BufWriter::new(&mut *out), hash: Fnv::new(), len: 0, error: None };
+    if let Err(e) = postcard::to_io(&HeadOut(identity, schedule, marks), &mut payload) {
+        // postcard reports a failed write as a full buffer: the writer's own
+        // error says what happened.
+        return Err(payload.error.take().unwrap_or_else(|| std::io::Error::other(e)));
+    }
     snapshot(&mut payload)?;
     payload.flush()?;
     let (len, hash) = (payload.len, payload.hash.0);
@@ -486,6 +497,43 @@ mod tests {
         garbled.extend_from_slice(&fnv1a(&payload).to_le_bytes());
         garbled.extend_from_slice(&payload);
         assert!(Checkpoint::from_bytes(&garbled).unwrap_err().starts_with("malformed"));
+    }
+
+    /// A file that takes `room` bytes and then fails as a full disk does.
+    struct Full {
+        file: std::io::Cursor<Vec<u8>>,
+        room: usize,
+    }
+
+    impl Write for Full {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            if self.room == 0 {
+                return Err(std::io::Error::new(std::io::ErrorKind::StorageFull, "no space left on device"));
+            }
+            let n = self.file.write(&buf[..buf.len().min(self.room)])?;
+            self.room -= n;
+            Ok(n)
+        }
+
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    impl Seek for Full {
+        fn seek(&mut self, to: SeekFrom) -> std::io::Result<u64> {
+            self.file.seek(to)
+        }
+    }
+
+    #[test]
+    fn a_full_disk_is_reported_as_such() {
+        let c = sample();
+        for room in [HEADER, HEADER + 5] {
+            let mut out = Full { file: std::io::Cursor::new(Vec::new()), room };
+            let err = write_to(&mut out, &c.identity, &c.schedule, &c.marks, &|w| w.write_all(&c.solver)).unwrap_err();
+            assert_eq!(err.kind(), std::io::ErrorKind::StorageFull, "room {room}: {err}");
+        }
     }
 
     #[test]

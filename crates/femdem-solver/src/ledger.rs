@@ -93,7 +93,7 @@ impl Imbalance {
 /// One work term booked by intervals with the trapezoidal rule
 /// (`crate::step`, "The energy account and its time-centring").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Trapezoid {
+pub(crate) struct Trapezoid {
     /// The work from the start to `t_n`, J.
     pub total: Real,
     /// The half step after `t_n`, `½ Δt f_n · v_{n+½}`, J: booked with the

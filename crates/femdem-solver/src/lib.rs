@@ -84,7 +84,7 @@ pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSetti
 pub use error::SolverError;
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};
-pub use ledger::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance, Trapezoid};
+pub use ledger::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};
 pub use loads::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
 pub use model::{Gather, Model, RegionBehaviour, TetMaterial};
 pub use state::{Energies, Failure, State};

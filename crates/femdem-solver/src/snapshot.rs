@@ -80,6 +80,26 @@ struct Read {
     contact: Option<SavedContact>,
 }
 
+/// A writer that keeps the first error its inner writer returned.
+struct Keeping<W> {
+    inner: W,
+    error: Option<std::io::Error>,
+}
+
+impl<W: std::io::Write> std::io::Write for Keeping<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.inner.write(buf).inspect_err(|e| {
+            self.error.get_or_insert_with(|| std::io::Error::new(e.kind(), e.to_string()));
+        })
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush().inspect_err(|e| {
+            self.error.get_or_insert_with(|| std::io::Error::new(e.kind(), e.to_string()));
+        })
+    }
+}
+
 /// A [`SolverError::Snapshot`].
 pub(crate) fn snapshot_error(what: impl Into<String>) -> SolverError {
     SolverError::Snapshot(what.into())
@@ -122,10 +142,16 @@ impl Solver {
             record: &e.record,
             contact: e.contact.as_ref().map(|c| c.saved()),
         };
-        postcard::to_io(&written, w).map(|_| ()).map_err(|err| match err {
-            postcard::Error::SerdeSerCustom => std::io::Error::other("a value serde cannot write"),
-            other => std::io::Error::other(other),
-        })
+        let mut out = Keeping { inner: w, error: None };
+        let result = postcard::to_io(&written, &mut out).map(|_| ());
+        match result {
+            Ok(_) => Ok(()),
+            // postcard reports every failed write as a full buffer: give
+            // back the writer's own error (a full disk, say).
+            Err(_) if out.error.is_some() => Err(out.error.take().expect("checked")),
+            Err(postcard::Error::SerdeSerCustom) => Err(std::io::Error::other("a value serde cannot write")),
+            Err(other) => Err(std::io::Error::other(other)),
+        }
     }
 
     /// Puts back the state of a [`Solver::snapshot`]. The solver must have
@@ -173,6 +199,16 @@ impl Solver {
         expect_count("surface loads' work (record)", r.surface_work.len(), like.surface_work.len())?;
         if let Some(f) = read.failures.iter().find(|f| f.joint as usize >= n_joints) {
             return Err(snapshot_error(format!("a failure of joint {}, but the model has {n_joints}", f.joint)));
+        }
+        let new = &read.record.new_failures;
+        if new.start > new.end || new.end > read.failures.len() {
+            return Err(snapshot_error(format!(
+                "the last step's new failures {new:?}, but {} failures",
+                read.failures.len()
+            )));
+        }
+        if read.contact.is_none() && read.ledger.contact != crate::ContactEnergy::default() {
+            return Err(snapshot_error("contact energy terms in a snapshot without contact"));
         }
         let contact = match (read.contact, self.contact()) {
             (Some(saved), Some(c)) => Some(c.restored(&self.scene.model, saved)?),

@@ -341,17 +341,13 @@ fn a_run_ends_past_the_peak_with_its_final_row_and_frame() {
         ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"].iter().map(|c| last[col(c)]).sum();
     assert!(broken > 0.0);
     assert!(last[col("balance")].abs() < 0.02 * last[col("external_work")], "balance {}", last[col("balance")]);
-    // Each platen's work follows its displacement columns, and with no
-    // gravity and no surface load the two platens do all the external work:
-    // the ledger sums the external work from the drives' terms
-    // (`Ledger::close`), so the columns add up to it exactly.
+    // Each platen's work follows its displacement columns. (That with no
+    // gravity and no surface load they add up to the external work is the
+    // ledger's construction, `Ledger::close`, not checked again here.)
     for p in ["platen_top", "platen_bottom"] {
         assert_eq!(col(&format!("{p}_work")), col(&format!("{p}_uz")) + 1);
         assert!(last[col(&format!("{p}_work"))] > 0.0, "{p} presses the disc");
     }
-    let platens = last[col("platen_top_work")] + last[col("platen_bottom_work")];
-    let external = last[col("external_work")];
-    assert_eq!(platens, external, "the platens' work columns and the external work");
     // Contact's own columns: at every row the normal forces' work and the
     // springs' energy add up to the `contact` term (to round-off of its
     // scale), the springs hold no negative energy, and the platens touch

@@ -36,8 +36,8 @@
 //! as they are: the next step imposes them again.
 //!
 //! The loads', reactions' and contact's held-over half steps are numbers
-//! step `n` computed with the old `v_{n+½}` (`Powers::ahead`,
-//! `External::drive_halves`, contact's held-over work): that is why
+//! step `n` computed with the old `v_{n+½}` (the ledger's `Trapezoid::ahead`
+//! of gravity, each load and each drive, contact's held-over work): that is why
 //! `G_n` drops out of `R`.
 //!
 //! Before the first step there is nothing to book against: the state

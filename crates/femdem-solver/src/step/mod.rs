@@ -478,6 +478,9 @@ impl Solver {
     /// without the Eq. 18 ramp.
     pub fn enable_contact(&mut self, settings: ContactSettings, initial: &[(u32, u32)]) {
         self.evolving.contact = Some(Contact::new(&self.scene.model, settings, initial));
+        // A new pass starts a new account (what an earlier one held over is
+        // not this pass's).
+        self.evolving.ledger.contact = ContactEnergy::default();
         for j in 0..self.evolving.state.joints.len() {
             if self.evolving.state.joints[j].failed {
                 let xp = self.scene.model.joints[j].map(|n| self.evolving.state.x[n as usize]);

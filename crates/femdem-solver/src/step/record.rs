@@ -65,7 +65,9 @@ pub struct StepRecord {
     /// Work done by each surface load from the start to `t_n`, J, booked
     /// as the external work is (the trapezoidal rule centred on `t_n`,
     /// module documentation of `step`): with the drives' work
-    /// ([`StepRecord::drive_work`]) it is the external work less gravity's. After a static start
+    /// ([`StepRecord::drive_work`]) it is the external work less gravity's,
+    /// a static start's beyond the loads' shares and the kicks' (the
+    /// ledger's sum, `crate::ledger`). After a static start
     /// ([`crate::Solver::start_displaced`]) each starts at its Clapeyron
     /// share `½ f_k · u` of the stored energy that the external work
     /// starts at, so the sum agrees with it as far as the static state is

@@ -104,6 +104,9 @@ impl Solver {
             shares += share;
         }
         ledger.start = sums.tet_energy + joint_work - shares;
+        // A kick before the start changed velocities this start has set to
+        // zero: its work is gone with them.
+        ledger.kicks = 0.0;
         ledger.close();
         Ok(stored)
     }

@@ -95,3 +95,38 @@ fn a_snapshot_of_another_model_or_a_truncated_one_is_refused() {
     }
     assert!(other.snapshot() == before, "a refused snapshot changed the solver");
 }
+
+/// A writer that takes `room` bytes and then fails as a full disk does.
+struct Full {
+    room: usize,
+}
+
+impl std::io::Write for Full {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.room == 0 {
+            return Err(std::io::Error::new(std::io::ErrorKind::StorageFull, "no space left on device"));
+        }
+        let n = buf.len().min(self.room);
+        self.room -= n;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn a_failed_write_reports_the_writers_own_error() {
+    let mut a = block([0.02, 0.01, 0.02]);
+    a.step(Want::default());
+    let size = a.snapshot().len();
+    for room in [0, 10, size / 2] {
+        let err = a.write_snapshot(Full { room }).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::StorageFull, "room {room}: {err}");
+        assert!(err.to_string().contains("no space left"), "{err}");
+    }
+    let mut all = Vec::new();
+    a.write_snapshot(&mut all).unwrap();
+    assert!(all == a.snapshot());
+}

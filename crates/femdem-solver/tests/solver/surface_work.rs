@@ -86,6 +86,24 @@ fn each_load_keeps_its_own_work() {
     assert!(work[0] > 0.0 && work[1] > 0.0, "both pressures do work on the body they press: {work:?} J");
 }
 
+/// The force the update applies is the loads' recorded totals. With the
+/// loads at full value from the start, step 0 starts at rest in the
+/// reference configuration, where the internal forces are zero: its
+/// momentum `Σ m v_{½} / Δt` is what the loads pushed with (the base,
+/// fixed, is off the pressed top), against `StepRecord::surface_forces`,
+/// which each load sums from its own nodal forces: to round-off of the
+/// force (1e-12 relative, some thousand nodes summed in two orders).
+#[test]
+fn the_loads_recorded_forces_are_the_forces_applied() {
+    let (mut s, _, _) = column_ramped(10e6, 0.0, 2.0, true);
+    let r = s.step(Want::default()).clone();
+    let recorded: Vec3 = r.surface_forces.iter().sum();
+    let dt = s.dt();
+    let momentum: Vec3 = s.state().v.iter().zip(&s.model().mass).map(|(v, &m)| v * (m / dt)).sum();
+    assert!(recorded.z < 0.0, "the top is pressed down: {recorded:?}");
+    assert!((momentum - recorded).norm() <= 1e-12 * recorded.norm(), "applied {momentum:?}, recorded {recorded:?}");
+}
+
 #[test]
 fn a_slowly_pressed_column_takes_half_f_delta_from_its_load() {
     let periods = 20.0;

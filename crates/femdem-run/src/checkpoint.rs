@@ -230,24 +230,18 @@ struct Hashing<W> {
     inner: W,
     hash: Fnv,
     len: u64,
-    /// The first error of `inner`, kept (postcard replaces it by its own).
-    error: Option<std::io::Error>,
 }
 
 impl<W: Write> Write for Hashing<W> {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let n = self.inner.write(buf).inspect_err(|e| {
-            self.error.get_or_insert_with(|| std::io::Error::new(e.kind(), e.to_string()));
-        })?;
+        let n = self.inner.write(buf)?;
         self.hash.write(&buf[..n]);
         self.len += n as u64;
         Ok(n)
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.inner.flush().inspect_err(|e| {
-            self.error.get_or_insert_with(|| std::io::Error::new(e.kind(), e.to_string()));
-        })
+        self.inner.flush()
     }
 }
 
@@ -267,12 +261,11 @@ fn write_to<W: Write + Seek>(
     out.write_all(MAGIC)?;
     out.write_all(&FORMAT_VERSION.to_le_bytes())?;
     out.write_all(&[0; 16])?;
-    let mut payload = Hashing { inner: BufWriter::new(&mut *out), hash: Fnv::new(), len: 0, error: None };
-    if let Err(e) = postcard::to_io(&HeadOut(identity, schedule, marks), &mut payload) {
-        // postcard reports a failed write as a full buffer: the writer's own
-        // error says what happened.
-        return Err(payload.error.take().unwrap_or_else(|| std::io::Error::other(e)));
-    }
+    let mut payload = Hashing { inner: BufWriter::new(&mut *out), hash: Fnv::new(), len: 0 };
+    // The head is small: serialised in memory, so that a failed write is
+    // the writer's own error (postcard's writer reports any as a full
+    // buffer; the snapshot keeps the writer's error itself).
+    payload.write_all(&postcard::to_stdvec(&HeadOut(identity, schedule, marks)).map_err(std::io::Error::other)?)?;
     snapshot(&mut payload)?;
     payload.flush()?;
     let (len, hash) = (payload.len, payload.hash.0);

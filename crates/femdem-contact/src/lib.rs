@@ -22,8 +22,8 @@
 //! - [`contact_bound`] (`bound.rs`): an upper bound on a pair's Eq. 17
 //!   forces from the vertices of the two tets' overlap, to skip pairs
 //!   whose forces are negligible before clipping them;
-//!   [`tet_tet_contact_unless`] checks it and clips with the same
-//!   barycentric coordinates.
+//!   [`tet_tet_contact_within`] checks it and clips with the same
+//!   barycentric coordinates, leaving out faces whose pieces are negligible.
 //! - [`contact_bound_near`] (`bound_near.rs`): the same bound over every
 //!   configuration whose nodes are within a radius of a given one (after a
 //!   common translation), so that a pair shown negligible need not be
@@ -124,7 +124,7 @@ mod separation;
 #[cfg(test)]
 mod test_pairs;
 
-pub use bound::{MAX_SLACK, SLACK, contact_bound, tet_tet_contact_unless};
+pub use bound::{Bounded, MAX_SLACK, SLACK, contact_bound, tet_tet_contact_within};
 pub use bound_near::contact_bound_near;
 pub use gradient::{GradientContact, tet_tet_gradient};
 pub use nbs::{Nbs, Pair};

@@ -52,10 +52,33 @@
 //! within what those force differences allow.
 //!
 //! **Early-outs.** A face is skipped when its three corners lie outside one
-//! face plane of the other tet (`λ_i < 0` at all three), and a sub-tet `i`
-//! when one of its planes, `λ_i ≥ 0` or `λ_j − λ_i ≥ 0`, is negative at the
-//! three corners: every vertex the clips make is a convex combination of
-//! the corners, so the plane keeps nothing of the face.
+//! face plane of the other tet (`λ_i < 0` at all three). The rest of a face
+//! is first clipped to the other tet (`λ_j ≥ 0` for the planes some corner
+//! lies outside; every sub-tet is inside all four), and a sub-tet `i` of
+//! that polygon is skipped when one of its planes `λ_j − λ_i ≥ 0` is
+//! negative at every vertex: every vertex the clips make is a convex
+//! combination of the polygon's, so the plane keeps nothing. (The first
+//! clip to the tet replaced clipping each sub-tet by its own `λ_i ≥ 0`:
+//! the same pieces in exact arithmetic, fewer clips.)
+//!
+//! **Faces left out** (only where a caller asks, `contact_in`'s `omit`;
+//! never by [`tet_tet_contact`]). On the part `Q` of a face inside the
+//! other tet, the face's pieces sum to
+//!
+//! ```text
+//! Σ_k |F_k| = p Σ_i A_i φ(P_i) ≤ p A_Q · 4 min_j max_{v ∈ Q} λ_j,
+//! ```
+//!
+//! because on piece `i` `λ_i` is the least coordinate, so
+//! `λ_i(P_i) ≤ λ_j(P_i) ≤ max_Q λ_j` for every `j`, and the pieces tile
+//! `Q`. A face whose bound is at most `p · omit / 8` is left out: the eight
+//! faces of a pair then move each nodal force (a weighted sum of pieces,
+//! weights in `[0, 1]`) and the resultant by at most `p · omit`, the
+//! guarantee the solver's `negligible` gives a pair it skips whole
+//! (`bound.rs`). At a fracture network's conforming faces most clipped
+//! faces are of this kind: the slivers where the side faces of tets that
+//! share an edge or a vertex across a trace dip into each other, with
+//! forces of second or third order in the overlap (`docs/performance.md`).
 
 use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
@@ -111,6 +134,19 @@ impl Polygon {
             self.lam[self.n] = lam;
             self.n += 1;
         }
+    }
+
+    /// Area in `μ` (the real area divided by twice the face's; fan from
+    /// the first vertex, as [`Polygon::area_centroid`]).
+    #[inline]
+    fn area(&self) -> Real {
+        let m0 = self.mu[0];
+        (1..self.n.saturating_sub(1))
+            .map(|k| {
+                let (m1, m2) = (self.mu[k], self.mu[k + 1]);
+                0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]))
+            })
+            .sum()
     }
 
     /// Area in `μ` (the real area divided by twice the face's), the
@@ -175,11 +211,14 @@ impl Barycentric {
 
 /// Adds to `fa` (on the nodes of `a`) and `fb` (on the nodes of `b`) the
 /// forces of `a`'s faces penetrating `b`'s potential, and to `centre` the
-/// pieces' `Σ |F_k| P_k` and `Σ |F_k|`.
+/// pieces' `Σ |F_k| P_k` and `Σ |F_k|`. A face whose pieces' `Σ |F_k|` is
+/// at most `p · omit_face` (m²) by the bound of the module documentation
+/// ("Faces left out") adds nothing; `omit_face = 0` keeps every face.
 fn one_way(
     a: &[Vec3; 4],
     bary: Option<&Barycentric>,
     penalty: Real,
+    omit_face: Real,
     fa: &mut [Vec3; 4],
     fb: &mut [Vec3; 4],
     centre: &mut (Vec3, Real),
@@ -189,8 +228,8 @@ fn one_way(
         return;
     };
     let corners = a.map(|p| bary.at(&p));
-    // The face's triangle and the two clipping buffers, reused from face to
-    // face (only their first `n` vertices are read).
+    // The face's part inside `b` and the two clipping buffers, reused from
+    // face to face (only their first `n` vertices are read).
     let mut buffers = [Polygon::EMPTY; 3];
     for face in FACES {
         let [p0, p1, p2] = face.map(|k| a[k]);
@@ -206,26 +245,49 @@ fn one_way(
         if (0..4).any(|i| lam.iter().all(|l| l[i] < 0.0)) {
             continue;
         }
-        let [tri, poly, spare] = &mut buffers;
-        tri.n = 0;
+        let [inside, poly, spare] = &mut buffers;
+        inside.n = 0;
         for (m, l) in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]].into_iter().zip(lam) {
-            tri.push(m, l);
+            inside.push(m, l);
         }
-        let tri = &*tri;
-        for i in 0..4 {
-            // Sub-tet i: λ_i ≥ 0 and λ_j − λ_i ≥ 0 for j ≠ i; a plane
-            // negative at the three corners keeps nothing.
-            if lam.iter().all(|l| l[i] < 0.0) {
+        // The face inside b: clipped by b's face planes `λ_j ≥ 0` where a
+        // vertex lies outside one (every sub-tet lies inside all four).
+        let mut inside = &mut *inside;
+        let mut spare = &mut *spare;
+        for j in 0..4 {
+            if inside.lam[..inside.n].iter().any(|l| l[j] < 0.0) {
+                inside.clip_into(spare, |l| l[j]);
+                std::mem::swap(&mut inside, &mut spare);
+            }
+        }
+        if inside.n < 3 {
+            continue;
+        }
+        let inside = &*inside;
+        let vertices = &inside.lam[..inside.n];
+        if omit_face > 0.0 {
+            // Σ |F_k| / p over the face's pieces ≤ A · max φ_b.
+            let highest = (0..4)
+                .map(|j| vertices.iter().map(|l| l[j]).fold(Real::NEG_INFINITY, Real::max))
+                .fold(Real::INFINITY, Real::min);
+            if inside.area() * twice_area * 4.0 * highest.max(0.0) <= omit_face {
                 continue;
             }
-            if (0..4).any(|j| j != i && lam.iter().all(|l| l[j] - l[i] < 0.0)) {
+        }
+        for i in 0..4 {
+            // Sub-tet i: λ_j − λ_i ≥ 0 for j ≠ i (and λ_i ≥ 0, which the
+            // face inside b has already); a plane negative at every vertex
+            // keeps nothing.
+            if (0..4).any(|j| j != i && vertices.iter().all(|l| l[j] - l[i] < 0.0)) {
                 continue;
             }
             let (mut poly, mut spare) = (&mut *poly, &mut *spare);
-            tri.clip_into(poly, |l| l[i]);
+            let mut first = true;
             for j in (0..4).filter(|&j| j != i) {
-                poly.clip_into(spare, |l| l[j] - l[i]);
+                let from = if first { inside } else { &*poly };
+                from.clip_into(spare, |l| l[j] - l[i]);
                 std::mem::swap(&mut poly, &mut spare);
+                first = false;
             }
             if poly.n < 3 {
                 continue;
@@ -271,23 +333,27 @@ pub struct TetTetContact {
 /// orientation) for penalty `penalty` (Pa): the forces on their nodes and
 /// the contact centre. Zero forces and no centre when they do not overlap.
 pub fn tet_tet_contact(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> TetTetContact {
-    contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), penalty)
+    contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), penalty, 0.0)
 }
 
 /// [`tet_tet_contact`] with the two tets' barycentric coordinates given
-/// (`None` for a flat tet), for a caller that has them already.
+/// (`None` for a flat tet), for a caller that has them already, leaving out
+/// each face whose pieces' `Σ |F_k|` is at most `p · omit / 8` (module
+/// documentation, "Faces left out"; `omit = 0` leaves out none).
 pub(crate) fn contact_in(
     a: &[Vec3; 4],
     b: &[Vec3; 4],
     in_a: Option<&Barycentric>,
     in_b: Option<&Barycentric>,
     penalty: Real,
+    omit: Real,
 ) -> TetTetContact {
     let mut fa = [Vec3::zeros(); 4];
     let mut fb = [Vec3::zeros(); 4];
     let mut centre = (Vec3::zeros(), 0.0);
-    one_way(a, in_b, penalty, &mut fa, &mut fb, &mut centre);
-    one_way(b, in_a, penalty, &mut fb, &mut fa, &mut centre);
+    let omit_face = omit / 8.0;
+    one_way(a, in_b, penalty, omit_face, &mut fa, &mut fb, &mut centre);
+    one_way(b, in_a, penalty, omit_face, &mut fb, &mut fa, &mut centre);
     let (moment, weight) = centre;
     TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }
 }

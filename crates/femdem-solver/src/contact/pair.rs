@@ -1,7 +1,7 @@
 //! One candidate pair of the contact pass: the normal potential force
 //! (Eq. 17), the Eq. 18 ramp, and Coulomb friction at the contact centre.
 
-use femdem_contact::{tet_tet_contact, tet_tet_contact_unless, tet_tet_gradient};
+use femdem_contact::{Bounded, tet_tet_contact, tet_tet_contact_within, tet_tet_gradient};
 use femdem_core::{Mat3, Real, Vec3};
 
 use super::settings::{Activation, ContactModel, FrictionTable};
@@ -192,18 +192,19 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         energy = g.energy;
         g.contact
     } else if input.negligible > 0.0 {
-        // Every normal force at most p · bound ≤ negligible · p · ℓ², ℓ³ =
-        // V: as cubes, with no cube root (the bound is infinite, and the
-        // pair evaluated, where it cannot bound).
+        // Forces up to negligible · p · ℓ², ℓ³ = V the smaller tet's volume,
+        // are left out: the whole pair when its bound shows them all below
+        // that (the bound is infinite, and the pair evaluated, where it
+        // cannot bound), or the faces that carry less.
         let v = input.volumes[0].min(input.volumes[1]);
-        tet_tet_contact_unless(pa, pb, input.penalty, |bound| {
-            let r = bound / input.negligible;
-            let skip = r * r * r <= v * v;
-            if skip {
+        let omit = input.negligible * v.cbrt().powi(2);
+        match tet_tet_contact_within(pa, pb, input.penalty, omit) {
+            Bounded::Negligible(bound) => {
                 *negligible_bound = Some(bound);
+                return None;
             }
-            skip
-        })?
+            Bounded::Contact(c) => c,
+        }
     } else {
         tet_tet_contact(pa, pb, input.penalty)
     };

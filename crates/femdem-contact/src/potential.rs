@@ -333,13 +333,14 @@ pub struct TetTetContact {
 /// orientation) for penalty `penalty` (Pa): the forces on their nodes and
 /// the contact centre. Zero forces and no centre when they do not overlap.
 pub fn tet_tet_contact(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> TetTetContact {
-    contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), penalty, 0.0)
+    contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), penalty, 0.0).0
 }
 
 /// [`tet_tet_contact`] with the two tets' barycentric coordinates given
 /// (`None` for a flat tet), for a caller that has them already, leaving out
 /// each face whose pieces' `Σ |F_k|` is at most `p · omit / 8` (module
-/// documentation, "Faces left out"; `omit = 0` leaves out none).
+/// documentation, "Faces left out"; `omit = 0` leaves out none); with the
+/// sum `Σ |F_k|` over the pieces kept, N.
 pub(crate) fn contact_in(
     a: &[Vec3; 4],
     b: &[Vec3; 4],
@@ -347,7 +348,7 @@ pub(crate) fn contact_in(
     in_b: Option<&Barycentric>,
     penalty: Real,
     omit: Real,
-) -> TetTetContact {
+) -> (TetTetContact, Real) {
     let mut fa = [Vec3::zeros(); 4];
     let mut fb = [Vec3::zeros(); 4];
     let mut centre = (Vec3::zeros(), 0.0);
@@ -355,7 +356,7 @@ pub(crate) fn contact_in(
     one_way(a, in_b, penalty, omit_face, &mut fa, &mut fb, &mut centre);
     one_way(b, in_a, penalty, omit_face, &mut fb, &mut fa, &mut centre);
     let (moment, weight) = centre;
-    TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }
+    (TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }, weight)
 }
 
 /// The contact forces between tets `a` and `b` (node positions, positive

@@ -223,6 +223,10 @@ pub struct Contact {
     started_force: Vec<Vec3>,
     /// The pairs in contact at the last pass (ascending).
     in_contact: Vec<(u32, u32)>,
+    /// Scratch: for each candidate, whether it was in contact at the last
+    /// pass (then clipped before it is bounded: the order of work only,
+    /// `femdem_contact::tet_tet_contact_within`).
+    was_in_contact: Vec<bool>,
 }
 
 impl Contact {
@@ -281,6 +285,7 @@ impl Contact {
             newly: NewlyAllowed::new(n_tets),
             started_force: vec![Vec3::zeros(); model.num_nodes()],
             in_contact: Vec::new(),
+            was_in_contact: Vec::new(),
         };
         // A pre-existing fracture face activates its vertices as a failed
         // joint does: its tets are those of the vertices the pair shares.
@@ -533,6 +538,13 @@ impl Contact {
                 cert.anchor_new(&model.tets, x);
             }
         }
+        // Both lists ascending: one merge.
+        self.was_in_contact.clear();
+        let mut last = self.in_contact.iter().peekable();
+        for c in &self.candidates {
+            while last.next_if(|&p| p < c).is_some() {}
+            self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
+        }
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
         let (negligible, activation, contact_model) =
@@ -542,7 +554,8 @@ impl Contact {
         self.candidates
             .par_iter()
             .zip(self.certificates.cached.par_iter())
-            .map(|(&(a, b), &radius)| {
+            .zip(self.was_in_contact.par_iter())
+            .map(|((&(a, b), &radius), &clip_first)| {
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
                 let nodes = [ta, tb];
                 let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
@@ -568,6 +581,7 @@ impl Contact {
                         penalty,
                         model: contact_model,
                         negligible,
+                        clip_first,
                         friction,
                         regions: &model.tet_region,
                         ramps: ramp,

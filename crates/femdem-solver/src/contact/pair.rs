@@ -112,6 +112,9 @@ pub(crate) struct PairInput<'a> {
     pub model: ContactModel,
     /// [`super::ContactSettings::negligible`].
     pub negligible: Real,
+    /// Whether the pair was in contact at the last pass: clipped before it
+    /// is bounded (the order of work only; the result is the same).
+    pub clip_first: bool,
     /// What is read only for a pair in contact (most candidates are not):
     /// μ per pair of regions and the tets' regions, the Eq. 18 ramps
     /// (`n_c` per pair, out of `n_total`) and the friction springs of the
@@ -198,7 +201,7 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         // cannot bound), or the faces that carry less.
         let v = input.volumes[0].min(input.volumes[1]);
         let omit = input.negligible * v.cbrt().powi(2);
-        match tet_tet_contact_within(pa, pb, input.penalty, omit) {
+        match tet_tet_contact_within(pa, pb, input.penalty, omit, input.clip_first) {
             Bounded::Negligible(bound) => {
                 *negligible_bound = Some(bound);
                 return None;

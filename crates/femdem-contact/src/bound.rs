@@ -97,10 +97,10 @@ pub enum Bounded {
 /// The Eq. 17 contact of `a` and `b` for penalty `penalty` (Pa) up to
 /// forces of `p · omit` (`omit` in m²): [`Bounded::Negligible`] with the
 /// pair's [`contact_bound`] when that is at most `omit`, without clipping;
-/// otherwise the clipped contact with every face left out whose pieces
-/// together carry at most `p · omit / 8` (`potential.rs`, "Faces left
-/// out"), so that no nodal force and not the resultant moves by more than
-/// `p · omit`. The two tets' barycentric coordinates are computed once for
+/// otherwise the clipped contact with faces left out while the bounds on
+/// what their pieces carry sum to at most `p · omit` (`potential.rs`,
+/// "Faces left out"), so that no nodal force and not the resultant moves
+/// by more than `p · omit`. The two tets' barycentric coordinates are computed once for
 /// both. `omit = 0` clips every pair that overlaps and every face.
 ///
 /// `clip_first` only orders the work, for a caller that expects the pair

@@ -71,9 +71,11 @@
 //!
 //! because on piece `i` `λ_i` is the least coordinate, so
 //! `λ_i(P_i) ≤ λ_j(P_i) ≤ max_Q λ_j` for every `j`, and the pieces tile
-//! `Q`. A face whose bound is at most `p · omit / 8` is left out: the eight
-//! faces of a pair then move each nodal force (a weighted sum of pieces,
-//! weights in `[0, 1]`) and the resultant by at most `p · omit`, the
+//! `Q`. The faces are taken in a fixed order (`a`'s four, then `b`'s), and
+//! a face is left out when its bound fits in what is left of a budget of
+//! `p · omit`, which it then uses up: the faces left out move each nodal
+//! force (a weighted sum of pieces, weights in `[0, 1]`) and the resultant
+//! by at most the sum of their bounds, at most `p · omit`, the
 //! guarantee the solver's `negligible` gives a pair it skips whole
 //! (`bound.rs`). At a fracture network's conforming faces most clipped
 //! faces are of this kind: the slivers where the side faces of tets that
@@ -213,12 +215,13 @@ impl Barycentric {
 /// forces of `a`'s faces penetrating `b`'s potential, and to `centre` the
 /// pieces' `Σ |F_k| P_k` and `Σ |F_k|`. A face whose pieces' `Σ |F_k|` is
 /// at most `p · omit_face` (m²) by the bound of the module documentation
-/// ("Faces left out") adds nothing; `omit_face = 0` keeps every face.
+/// ("Faces left out") adds nothing, and its bound is taken from
+/// `omit_face`, the budget left; a budget of 0 keeps every face.
 fn one_way(
     a: &[Vec3; 4],
     bary: Option<&Barycentric>,
     penalty: Real,
-    omit_face: Real,
+    omit_face: &mut Real,
     fa: &mut [Vec3; 4],
     fb: &mut [Vec3; 4],
     centre: &mut (Vec3, Real),
@@ -265,12 +268,14 @@ fn one_way(
         }
         let inside = &*inside;
         let vertices = &inside.lam[..inside.n];
-        if omit_face > 0.0 {
+        if *omit_face > 0.0 {
             // Σ |F_k| / p over the face's pieces ≤ A · max φ_b.
             let highest = (0..4)
                 .map(|j| vertices.iter().map(|l| l[j]).fold(Real::NEG_INFINITY, Real::max))
                 .fold(Real::INFINITY, Real::min);
-            if inside.area() * twice_area * 4.0 * highest.max(0.0) <= omit_face {
+            let bound = inside.area() * twice_area * 4.0 * highest.max(0.0);
+            if bound <= *omit_face {
+                *omit_face -= bound;
                 continue;
             }
         }
@@ -338,9 +343,9 @@ pub fn tet_tet_contact(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> TetTetCon
 
 /// [`tet_tet_contact`] with the two tets' barycentric coordinates given
 /// (`None` for a flat tet), for a caller that has them already, leaving out
-/// each face whose pieces' `Σ |F_k|` is at most `p · omit / 8` (module
-/// documentation, "Faces left out"; `omit = 0` leaves out none); with the
-/// sum `Σ |F_k|` over the pieces kept, N.
+/// faces while the bounds on their pieces' `Σ |F_k|` sum to at most
+/// `p · omit` (module documentation, "Faces left out"; `omit = 0` leaves
+/// out none); with the sum `Σ |F_k|` over the pieces kept, N.
 pub(crate) fn contact_in(
     a: &[Vec3; 4],
     b: &[Vec3; 4],
@@ -352,9 +357,9 @@ pub(crate) fn contact_in(
     let mut fa = [Vec3::zeros(); 4];
     let mut fb = [Vec3::zeros(); 4];
     let mut centre = (Vec3::zeros(), 0.0);
-    let omit_face = omit / 8.0;
-    one_way(a, in_b, penalty, omit_face, &mut fa, &mut fb, &mut centre);
-    one_way(b, in_a, penalty, omit_face, &mut fb, &mut fa, &mut centre);
+    let mut budget = omit;
+    one_way(a, in_b, penalty, &mut budget, &mut fa, &mut fb, &mut centre);
+    one_way(b, in_a, penalty, &mut budget, &mut fb, &mut fa, &mut centre);
     let (moment, weight) = centre;
     (TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }, weight)
 }

@@ -48,12 +48,12 @@ pub struct ContactSettings {
     /// friction `(1 + μ)` times that. Tets that
     /// share a vertex across a fracture overlap near it at third order in
     /// the overlap, and are most of the candidates of a fracture network
-    /// (`docs/performance.md`). A pair that is evaluated leaves out each
-    /// face whose clipped pieces provably carry at most an eighth of that
-    /// together (`femdem_contact::tet_tet_contact_within`), so no nodal
-    /// force moves by more than `negligible · p · ℓ²` either way: the
-    /// slivers where the side faces of tets sharing an edge across a trace
-    /// dip into each other. 0 evaluates every candidate and face (Eq. 17
+    /// (`docs/performance.md`). A pair that is evaluated leaves out faces
+    /// while the bounds on what their clipped pieces carry sum to at most
+    /// that (`femdem_contact::tet_tet_contact_within`), so no nodal force
+    /// moves by more than `negligible · p · ℓ²` either way: the slivers
+    /// where the side faces of tets sharing an edge across a trace dip
+    /// into each other. 0 evaluates every candidate and face (Eq. 17
     /// as printed); default [`NEGLIGIBLE`].
     pub negligible: Real,
     /// Whether a pair shown negligible is certified for a radius of node

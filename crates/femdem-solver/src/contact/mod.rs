@@ -223,6 +223,9 @@ pub struct Contact {
     started_force: Vec<Vec3>,
     /// The pairs in contact at the last pass (ascending).
     in_contact: Vec<(u32, u32)>,
+    /// Each tet's `ℓ = V^{1/3}` (reference volume), m: derived from the
+    /// model.
+    sizes: Vec<Real>,
     /// Scratch: for each candidate, whether it was in contact at the last
     /// pass (then clipped before it is bounded: the order of work only,
     /// `femdem_contact::tet_tet_contact_within`).
@@ -285,6 +288,7 @@ impl Contact {
             newly: NewlyAllowed::new(n_tets),
             started_force: vec![Vec3::zeros(); model.num_nodes()],
             in_contact: Vec::new(),
+            sizes: model.tet_ref.iter().map(|r| r.volume.cbrt()).collect(),
             was_in_contact: Vec::new(),
         };
         // A pre-existing fracture face activates its vertices as a failed
@@ -545,6 +549,7 @@ impl Contact {
             while last.next_if(|&p| p < c).is_some() {}
             self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
         }
+        let sizes = &self.sizes;
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
         let (negligible, activation, contact_model) =
@@ -561,6 +566,7 @@ impl Contact {
                 let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
                 let fresh = newly.is_some_and(|n| n.contains(a, b));
                 let volumes = [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume];
+                let size = sizes[a as usize].min(sizes[b as usize]);
                 let mut verdict = Verdict::default();
                 // Within its certificate's radius: skipped (not a pair newly
                 // allowed, whose start is decided at this pass).
@@ -577,7 +583,7 @@ impl Contact {
                         x: xs,
                         nodes,
                         v,
-                        volumes,
+                        size,
                         penalty,
                         model: contact_model,
                         negligible,

@@ -103,10 +103,10 @@ pub(crate) struct PairInput<'a> {
     /// a pair in contact with friction (most candidates are not).
     pub nodes: [[u32; 4]; 2],
     pub v: &'a [Vec3],
-    /// The reference volumes of the two tets, m³: `V^{1/3}` of the smaller
-    /// is the friction spring's length scale, taken only for a pair in
-    /// contact (a cube root per candidate was 5% of a fragmented step).
-    pub volumes: [Real; 2],
+    /// `ℓ = V^{1/3}` of the smaller tet, m: the friction spring's length
+    /// scale and the negligible forces' (kept per tet by the contact pass:
+    /// a cube root per candidate was 5% of a fragmented step).
+    pub size: Real,
     pub penalty: Real,
     /// [`super::ContactSettings::model`].
     pub model: ContactModel,
@@ -199,8 +199,7 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         // are left out: the whole pair when its bound shows them all below
         // that (the bound is infinite, and the pair evaluated, where it
         // cannot bound), or the faces that carry less.
-        let v = input.volumes[0].min(input.volumes[1]);
-        let omit = input.negligible * v.cbrt().powi(2);
+        let omit = input.negligible * input.size.powi(2);
         match tet_tet_contact_within(pa, pb, input.penalty, omit, input.clip_first) {
             Bounded::Negligible(bound) => {
                 *negligible_bound = Some(bound);
@@ -285,8 +284,7 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         let mut spring = input.springs.get(&key).copied().unwrap_or_else(Vec3::zeros) * sign;
         spring -= n * spring.dot(&n);
         spring += vt * input.dt;
-        let size = input.volumes[0].min(input.volumes[1]).cbrt();
-        let kt = input.penalty * size;
+        let kt = input.penalty * input.size;
         let limit = mu * n_mag;
         let mut ft = -spring * kt;
         if ft.norm() > limit {

@@ -4,7 +4,7 @@
 //! stay flat: the target is within 1.5× from 10⁴ to 10⁶.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use femdem_contact::{Nbs, contact_bound, tet_tet_forces, tet_tet_gradient};
+use femdem_contact::{Nbs, contact_bound, tet_tet_contact_within, tet_tet_forces, tet_tet_gradient};
 use femdem_core::Vec3;
 
 /// `n` spheres of radius 0.5 on a jittered cubic lattice of spacing 1.
@@ -70,8 +70,10 @@ fn kernel(c: &mut Criterion) {
 /// The negligible-pair bound (`contact_bound`) against the kernel it
 /// saves, on the commonest pair of a fracture network: two unit tets that
 /// meet at a vertex from either side of a plane, pressed together by 10⁻⁴
-/// (a speck of overlap at the vertex), and on a face-to-face pair pressed
-/// by as much.
+/// (a speck of overlap at the vertex), on two that share an edge (a sliver
+/// along it) and on a face-to-face pair pressed by as much; and the two
+/// together as the solver calls them (`tet_tet_contact_within`, negligible
+/// faces left out, in either order).
 fn bound(c: &mut Criterion) {
     let s = 3f64.sqrt() / 2.0;
     let ring = |z: f64| [Vec3::new(1.0, 0.0, z), Vec3::new(-0.5, s, z), Vec3::new(-0.5, -s, z)];
@@ -87,12 +89,28 @@ fn bound(c: &mut Criterion) {
         }
         t
     };
+    // Two tets sharing the edge from (−1, 0, 0) to (1, 0, 0) from either
+    // side of z = 0, pressed by as much: a sliver along the edge.
+    let (e0, e1) = (Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
+    let edge = (
+        [e0, e1, Vec3::new(0.0, 1.0, -1.0), Vec3::new(0.1, -1.0, -1.0)],
+        [e0, e1, Vec3::new(0.0, 0.8, 1.0), Vec3::new(-0.1, -1.0, 1.0)].map(|p| p - down),
+    );
     let mut g = c.benchmark_group("contact_bound");
-    for (name, (a, b)) in [("vertex", vertex), ("face", face)] {
+    for (name, (a, b)) in [("vertex", vertex), ("edge", edge), ("face", face)] {
         let (a, b) = (positive(a), positive(b));
         let (a, b) = (std::hint::black_box(a), std::hint::black_box(b));
         g.bench_function(format!("{name}/bound"), |bench| bench.iter(|| contact_bound(&a, &b)));
         g.bench_function(format!("{name}/kernel"), |bench| bench.iter(|| tet_tet_forces(&a, &b, 1e9)));
+        // As the solver calls it at the default `negligible`: bound, then
+        // the clip with negligible faces left out; and clip first.
+        let omit = 1e-10 * femdem_core::tet::signed_volume(&a).min(femdem_core::tet::signed_volume(&b)).cbrt().powi(2);
+        for clip_first in [false, true] {
+            let order = if clip_first { "clip first" } else { "bound first" };
+            g.bench_function(format!("{name}/within, {order}"), |bench| {
+                bench.iter(|| tet_tet_contact_within(&a, &b, 1e9, omit, clip_first))
+            });
+        }
     }
     g.finish();
 }

@@ -85,18 +85,21 @@
 use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
 
-/// A convex polygon in a face's coordinates `μ` of at most 10 vertices (a
-/// triangle clipped by 4 planes has at most 7), each with its barycentric
+/// A convex polygon in a face's coordinates `μ` of at most 16 vertices (a
+/// triangle clipped by the 4 planes of the other tet and then a sub-tet's 3
+/// has at most 10; room is left for the duplicates that Sutherland–Hodgman
+/// makes where a vertex lies on a plane, exactly at shared nodes or within
+/// rounding), each with its barycentric
 /// coordinates `λ` in the other tet.
 #[derive(Clone, Copy)]
 struct Polygon {
-    mu: [[Real; 2]; 10],
-    lam: [[Real; 4]; 10],
+    mu: [[Real; 2]; 16],
+    lam: [[Real; 4]; 16],
     n: usize,
 }
 
 impl Polygon {
-    const EMPTY: Polygon = Polygon { mu: [[0.0; 2]; 10], lam: [[0.0; 4]; 10], n: 0 };
+    const EMPTY: Polygon = Polygon { mu: [[0.0; 2]; 16], lam: [[0.0; 4]; 16], n: 0 };
 
     /// Writes into `out` the part of this polygon where the linear function
     /// `f` of the barycentric coordinates is ≥ 0 (Sutherland–Hodgman); a new
@@ -211,29 +214,37 @@ impl Barycentric {
     }
 }
 
+/// What the two directions of a pair share: the budget of the faces left
+/// out (m², `p` times it in N), a face's part inside the other tet and two
+/// clipping buffers (reused from face to face; only their first `n`
+/// vertices are read), and the pieces' `Σ |F_k| P_k` and `Σ |F_k|`.
+struct Shared {
+    budget: Real,
+    buffers: [Polygon; 3],
+    centre: (Vec3, Real),
+}
+
 /// Adds to `fa` (on the nodes of `a`) and `fb` (on the nodes of `b`) the
-/// forces of `a`'s faces penetrating `b`'s potential, and to `centre` the
-/// pieces' `Σ |F_k| P_k` and `Σ |F_k|`. A face whose pieces' `Σ |F_k|` is
-/// at most `p · omit_face` (m²) by the bound of the module documentation
-/// ("Faces left out") adds nothing, and its bound is taken from
-/// `omit_face`, the budget left; a budget of 0 keeps every face.
+/// forces of `a`'s faces penetrating `b`'s potential, and to
+/// `shared.centre` the pieces' `Σ |F_k| P_k` and `Σ |F_k|`. A face whose
+/// pieces' `Σ |F_k|` is at most `p` times what is left of `shared.budget`
+/// by the bound of the module documentation ("Faces left out") adds
+/// nothing, and its bound is taken from the budget; a budget of 0 keeps
+/// every face.
 fn one_way(
     a: &[Vec3; 4],
     bary: Option<&Barycentric>,
     penalty: Real,
-    omit_face: &mut Real,
+    shared: &mut Shared,
     fa: &mut [Vec3; 4],
     fb: &mut [Vec3; 4],
-    centre: &mut (Vec3, Real),
 ) {
+    let Shared { budget: omit_face, buffers, centre } = shared;
     // A flat `b` has no coordinates, and no potential to penetrate.
     let Some(bary) = bary else {
         return;
     };
     let corners = a.map(|p| bary.at(&p));
-    // The face's part inside `b` and the two clipping buffers, reused from
-    // face to face (only their first `n` vertices are read).
-    let mut buffers = [Polygon::EMPTY; 3];
     for face in FACES {
         let [p0, p1, p2] = face.map(|k| a[k]);
         let (e1, e2) = (p1 - p0, p2 - p0);
@@ -248,7 +259,7 @@ fn one_way(
         if (0..4).any(|i| lam.iter().all(|l| l[i] < 0.0)) {
             continue;
         }
-        let [inside, poly, spare] = &mut buffers;
+        let [inside, poly, spare] = &mut *buffers;
         inside.n = 0;
         for (m, l) in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]].into_iter().zip(lam) {
             inside.push(m, l);
@@ -273,7 +284,8 @@ fn one_way(
             let highest = (0..4)
                 .map(|j| vertices.iter().map(|l| l[j]).fold(Real::NEG_INFINITY, Real::max))
                 .fold(Real::INFINITY, Real::min);
-            let bound = inside.area() * twice_area * 4.0 * highest.max(0.0);
+            // (An area negative by rounding would add to the budget.)
+            let bound = inside.area().max(0.0) * twice_area * 4.0 * highest.max(0.0);
             if bound <= *omit_face {
                 *omit_face -= bound;
                 continue;
@@ -356,11 +368,10 @@ pub(crate) fn contact_in(
 ) -> (TetTetContact, Real) {
     let mut fa = [Vec3::zeros(); 4];
     let mut fb = [Vec3::zeros(); 4];
-    let mut centre = (Vec3::zeros(), 0.0);
-    let mut budget = omit;
-    one_way(a, in_b, penalty, &mut budget, &mut fa, &mut fb, &mut centre);
-    one_way(b, in_a, penalty, &mut budget, &mut fb, &mut fa, &mut centre);
-    let (moment, weight) = centre;
+    let mut shared = Shared { budget: omit, buffers: [Polygon::EMPTY; 3], centre: (Vec3::zeros(), 0.0) };
+    one_way(a, in_b, penalty, &mut shared, &mut fa, &mut fb);
+    one_way(b, in_a, penalty, &mut shared, &mut fb, &mut fa);
+    let (moment, weight) = shared.centre;
     (TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }, weight)
 }
 

@@ -145,10 +145,14 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
     Some([1.0 - l.x - l.y - l.z, l.x, l.y, l.z])
 }
 
-/// Evaluates one pair; `None` when the two tets do not overlap, or when
+/// Evaluates one pair; `None` when the two tets do not overlap, when
 /// their forces are provably below `negligible · p · ℓ²`
 /// ([`super::ContactSettings::negligible`]; then `*negligible_bound` is
-/// the bound that showed it).
+/// the bound that showed it), or when every face that overlaps is left out
+/// as negligible (`femdem_contact::tet_tet_contact_within`): then the pair
+/// is not in contact, and a friction spring or the offset of a pair that
+/// started overlapped is dropped with it (the forces dropped are within the
+/// same `negligible · p · ℓ²`).
 ///
 /// Normal force: Eq. 17 (`femdem_contact::tet_tet_contact`), times the
 /// Eq. 18 ramp factor `n_c / n_total` for a joint that failed in
@@ -156,8 +160,9 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
 /// when newly allowed to touch), and with [`Activation::Offset`] times
 /// `max(0, 1 − N_off / N₁₇)` for a pair that started overlapped; `N` its
 /// resultant on the second tet, `n̂ = N / |N|`. A pair that started
-/// overlapped is returned while it overlaps, even with no force (its offset
-/// must be kept).
+/// overlapped is returned while it overlaps with a piece above the
+/// negligible, even with no force after its offset (the offset must be
+/// kept).
 ///
 /// Friction acts at the contact centre `c` (the force-weighted centre of
 /// the clipped overlap pieces, a point of both tets), where the slip is

@@ -50,10 +50,13 @@ pub struct ContactSettings {
     /// the overlap, and are most of the candidates of a fracture network
     /// (`docs/performance.md`). A pair that is evaluated leaves out faces
     /// while the bounds on what their clipped pieces carry sum to at most
-    /// that (`femdem_contact::tet_tet_contact_within`), so no nodal force
-    /// moves by more than `negligible · p · ℓ²` either way: the slivers
-    /// where the side faces of tets sharing an edge across a trace dip
-    /// into each other. 0 evaluates every candidate and face (Eq. 17
+    /// that (`femdem_contact::tet_tet_contact_within`), so no normal nodal
+    /// force moves by more than `negligible · p · ℓ²` either way: the
+    /// slivers where the side faces of tets sharing an edge across a trace
+    /// dip into each other. (The faces left out also move the contact
+    /// centre where friction acts, and a pair left with no face is not in
+    /// contact: its friction spring and, for a pair that started
+    /// overlapped, its offset are dropped.) 0 evaluates every candidate and face (Eq. 17
     /// as printed); default [`NEGLIGIBLE`].
     pub negligible: Real,
     /// Whether a pair shown negligible is certified for a radius of node

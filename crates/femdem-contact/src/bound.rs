@@ -326,7 +326,8 @@ mod tests {
     /// share`: negligible exactly when the bound is at most `omit`, and
     /// otherwise every nodal force and the resultant within `p · omit` of
     /// the full clipping's (the faces left out are the only difference; the
-    /// sums' own rounding is a relative 10⁻¹² of `p · bound`). Returns
+    /// sums' own rounding is a relative 10⁻¹² of `p · bound`), and the
+    /// contact centre within what the weight left out allows. Returns
     /// whether a face was left out (the forces differ).
     fn check_within(a: &[Vec3; 4], b: &[Vec3; 4], share: Real) -> Result<bool, TestCaseError> {
         let bound = contact_bound(a, b);
@@ -347,6 +348,34 @@ mod tests {
                 let off = nodal.map(|(x, y)| (x - y).norm()).fold(0.0, Real::max);
                 let resultant = (c.on_b.iter().sum::<Vec3>() - full.on_b.iter().sum::<Vec3>()).norm();
                 prop_assert!(off.max(resultant) <= allowed, "off by {off:e}, {resultant:e} > {allowed:e}: {a:?} {b:?}");
+                // The centre Σ W_k P_k / Σ W_k loses pieces of weight
+                // W_out ≤ p · omit out of W (the full sum): it moves by at
+                // most W_out / W times the distance between two points of
+                // the pair, at most its extent D (plus the rounding of a
+                // centre up to 10⁵ sizes from the origin, some 10⁻¹⁴ of its
+                // coordinates: 10⁻⁹ D).
+                let (_, weight) = crate::potential::contact_in(
+                    a,
+                    b,
+                    Barycentric::new(a).as_ref(),
+                    Barycentric::new(b).as_ref(),
+                    P,
+                    0.0,
+                );
+                let extent =
+                    a.iter().chain(b).flat_map(|p| a.iter().chain(b).map(move |q| (p - q).norm())).fold(0.0, Real::max);
+                match (c.centre, full.centre) {
+                    (Some(x), Some(y)) => {
+                        let moved = (x - y).norm();
+                        let allowed = (P * omit / weight + 1e-9) * extent;
+                        prop_assert!(moved <= allowed, "centre moved {moved:e} > {allowed:e}: {a:?} {b:?}");
+                    }
+                    (None, Some(_)) => {
+                        prop_assert!(weight <= P * omit * (1.0 + 1e-9), "all left out of {weight:e} > p · {omit:e}");
+                    }
+                    (Some(_), None) => prop_assert!(false, "a centre where the full clipping has none"),
+                    (None, None) => {}
+                }
                 Ok(c != full)
             }
         }

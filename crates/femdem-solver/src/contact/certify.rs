@@ -208,7 +208,9 @@ pub(super) fn certify(at: &[[Vec3; 4]; 2], d: Real, volume: Real, negligible: Re
     for delta0 in [base, base / 8.0] {
         let delta = d + delta0;
         let r = contact_bound_near(&at[0], &at[1], delta) / negligible;
-        // The bound's test (`pair::evaluate`): at most `ν ℓ²`, as cubes.
+        // At most `ν ℓ²`, as cubes (`pair::evaluate` compares `bound ≤ ν ℓ²`
+        // with the kept `ℓ = V^{1/3}`: the same test but for rounding at
+        // the threshold itself).
         if r * r * r <= volume * volume {
             return delta;
         }

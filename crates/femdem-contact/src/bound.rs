@@ -100,8 +100,9 @@ pub enum Bounded {
 /// otherwise the clipped contact with faces left out while the bounds on
 /// what their pieces carry sum to at most `p · omit` (`potential.rs`,
 /// "Faces left out"), so that no nodal force and not the resultant moves
-/// by more than `p · omit`. The two tets' barycentric coordinates are computed once for
-/// both. `omit = 0` clips every pair that overlaps and every face.
+/// by more than `p · omit`. The two tets' barycentric coordinates are
+/// computed once for both. `omit = 0` clips every pair that overlaps and
+/// every face.
 ///
 /// `clip_first` only orders the work, for a caller that expects the pair
 /// to carry force (it did at the last step): the pair is clipped first and
@@ -281,18 +282,21 @@ mod tests {
 
     use super::*;
     use crate::test_pairs::{face_pair, point, shared_pair, tet};
-    use crate::tet_tet_contact;
     use proptest::prelude::*;
 
     const P: Real = 3e10;
 
+    /// The full clipping of `a` and `b` (every face) and the sum of its
+    /// pieces' magnitudes `Σ |F_k|`, N.
+    fn full(a: &[Vec3; 4], b: &[Vec3; 4]) -> (TetTetContact, Real) {
+        crate::potential::contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), P, 0.0)
+    }
+
     /// Checks the bound on one pair; returns `(bound, largest nodal force)`.
     fn check(a: &[Vec3; 4], b: &[Vec3; 4]) -> Result<(Real, Real), TestCaseError> {
         let bound = contact_bound(a, b);
-        let c = tet_tet_contact(a, b, P);
         // The sum of the pieces, which `clip_first` compares with the bound.
-        let (_, pieces) =
-            crate::potential::contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), P, 0.0);
+        let (c, pieces) = full(a, b);
         prop_assert!(pieces <= P * bound * (1.0 + 1e-9), "pieces {pieces} > p · {bound}: {a:?} {b:?}");
         let largest = c.on_a.iter().chain(&c.on_b).map(|f| f.norm()).fold(0.0, Real::max);
         let resultant = c.on_b.iter().sum::<Vec3>().norm();
@@ -333,7 +337,7 @@ mod tests {
         let bound = contact_bound(a, b);
         // (An infinite bound, a flat tet's, is compared at omit = 0.)
         let omit = if bound.is_finite() { bound * share } else { 0.0 };
-        let full = tet_tet_contact(a, b, P);
+        let (full, weight) = full(a, b);
         let within = tet_tet_contact_within(a, b, P, omit, false);
         prop_assert_eq!(within, tet_tet_contact_within(a, b, P, omit, true), "the order changed the result");
         match within {
@@ -354,14 +358,6 @@ mod tests {
                 // the pair, at most its extent D (plus the rounding of a
                 // centre up to 10⁵ sizes from the origin, some 10⁻¹⁴ of its
                 // coordinates: 10⁻⁹ D).
-                let (_, weight) = crate::potential::contact_in(
-                    a,
-                    b,
-                    Barycentric::new(a).as_ref(),
-                    Barycentric::new(b).as_ref(),
-                    P,
-                    0.0,
-                );
                 let extent =
                     a.iter().chain(b).flat_map(|p| a.iter().chain(b).map(move |q| (p - q).norm())).fold(0.0, Real::max);
                 match (c.centre, full.centre) {

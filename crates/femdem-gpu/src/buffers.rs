@@ -1,0 +1,118 @@
+//! Device buffers: uploads, read-backs, and dispatches over more items than
+//! one dimension of workgroups holds.
+
+use bytemuck::Pod;
+use wgpu::util::DeviceExt;
+
+use crate::device::{Gpu, GpuError};
+
+/// Invocations per workgroup of every kernel (`@workgroup_size(64)`).
+pub(crate) const GROUP: u32 = 64;
+
+/// A storage buffer holding `data` (at least one element's bytes: a
+/// binding may not be empty), readable and writable by kernels and copies.
+pub(crate) fn storage<T: Pod>(gpu: &Gpu, what: &'static str, data: &[T]) -> Result<wgpu::Buffer, GpuError> {
+    let bytes: &[u8] = bytemuck::cast_slice(data);
+    gpu.check_size(what, bytes.len() as u64)?;
+    let padded;
+    let contents = if bytes.is_empty() {
+        padded = [0u8; 8];
+        &padded[..]
+    } else {
+        bytes
+    };
+    Ok(gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(what),
+        contents,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+    }))
+}
+
+/// A zeroed storage buffer of `len` elements of `T`.
+pub(crate) fn zeroed<T: Pod>(gpu: &Gpu, what: &'static str, len: usize) -> Result<wgpu::Buffer, GpuError> {
+    let bytes = (len * size_of::<T>()).max(8) as u64;
+    gpu.check_size(what, bytes)?;
+    Ok(gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(what),
+        size: bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    }))
+}
+
+/// Overwrites the start of `buffer` with `data`.
+pub(crate) fn write<T: Pod>(gpu: &Gpu, buffer: &wgpu::Buffer, data: &[T]) {
+    if !data.is_empty() {
+        gpu.queue.write_buffer(buffer, 0, bytemuck::cast_slice(data));
+    }
+}
+
+/// The first `len` elements of `buffer`, after all submitted work.
+pub(crate) fn read<T: Pod>(gpu: &Gpu, buffer: &wgpu::Buffer, len: usize) -> Vec<T> {
+    let bytes = (len * size_of::<T>()) as u64;
+    if bytes == 0 {
+        return Vec::new();
+    }
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back"),
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
+    gpu.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping a read-back buffer"));
+    gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
+    let out = bytemuck::cast_slice(&slice.get_mapped_range()).to_vec();
+    staging.unmap();
+    out
+}
+
+/// The uniform every kernel takes at `@group(0) @binding(0)`: how many
+/// items it runs over and one kernel-specific word.
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub(crate) struct Params {
+    /// Items (tets, nodes, ...); invocations beyond it return at once.
+    pub count: u32,
+    /// The kernel's flags.
+    pub flags: u32,
+    pub pad: [u32; 2],
+}
+
+/// A compute pass of `pipeline` over `count` items with `buffers` bound at
+/// `@binding(1)`, `@binding(2)`, …, recorded into `encoder`. The items are
+/// laid out over a two-dimensional grid of workgroups when one dimension
+/// cannot hold them; a kernel numbers them
+/// `(wg.y * nwg.x + wg.x) * 64 + local` (`ITEM` in `common.wgsl`).
+pub(crate) fn dispatch(
+    gpu: &Gpu,
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    params: Params,
+    buffers: &[&wgpu::Buffer],
+) {
+    let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("params"),
+        contents: bytemuck::bytes_of(&params),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }];
+    for (k, b) in buffers.iter().enumerate() {
+        entries.push(wgpu::BindGroupEntry { binding: k as u32 + 1, resource: b.as_entire_binding() });
+    }
+    let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    });
+    let groups = params.count.div_ceil(GROUP).max(1);
+    let x = groups.min(gpu.max_groups());
+    let y = groups.div_ceil(x);
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, &group, &[]);
+    pass.dispatch_workgroups(x, y, 1);
+}

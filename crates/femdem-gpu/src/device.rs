@@ -1,0 +1,174 @@
+//! The device: a Vulkan adapter with 64-bit floats in compute shaders,
+//! opened with the limits the model needs.
+//!
+//! femdem computes in double precision throughout: joint openings before
+//! the peak are ~10⁻⁸ m on coordinates of ~10⁻² m, which single precision
+//! (ε ≈ 6·10⁻⁸) cannot resolve. So an adapter without
+//! [`wgpu::Features::SHADER_F64`] is refused, with its name, rather than run
+//! in single precision.
+
+use std::sync::Arc;
+
+use thiserror::Error;
+
+/// Why no device could be opened.
+#[derive(Debug, Error)]
+pub enum GpuError {
+    /// No Vulkan adapter at all (no driver, or no Vulkan loader).
+    #[error(
+        "no Vulkan adapter found: install a Vulkan driver and its loader (on Debian: `libvulkan1` with the GPU's \
+         driver, or `mesa-vulkan-drivers` for lavapipe, a software device on the CPU)"
+    )]
+    NoAdapter,
+    /// Adapters exist, but none computes in 64-bit floats.
+    #[error("no Vulkan adapter with 64-bit floats in compute shaders (found: {0})")]
+    NoF64(String),
+    /// The adapter refused the device (limits or features).
+    #[error("the adapter {adapter} refused a device: {reason}")]
+    Device {
+        /// The adapter's name.
+        adapter: String,
+        /// What it said.
+        reason: String,
+    },
+    /// A buffer the model needs is larger than the device allows for one
+    /// storage binding.
+    #[error("{what} needs {bytes} bytes in one binding; the adapter {adapter} allows {limit}")]
+    TooLarge {
+        /// Which array.
+        what: &'static str,
+        /// Its size, bytes.
+        bytes: u64,
+        /// The adapter's name.
+        adapter: String,
+        /// The adapter's limit for one storage binding, bytes.
+        limit: u64,
+    },
+    /// A kernel failed to compile or validate (a bug in femdem, or a driver
+    /// that rejects valid code).
+    #[error("kernel `{kernel}` was refused by {adapter}: {reason}")]
+    Kernel {
+        /// The kernel's name.
+        kernel: &'static str,
+        /// The adapter's name.
+        adapter: String,
+        /// The validation error.
+        reason: String,
+    },
+}
+
+/// An opened device and its queue.
+#[derive(Clone, Debug)]
+pub struct Gpu {
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    info: Arc<wgpu::AdapterInfo>,
+    limits: wgpu::Limits,
+}
+
+impl Gpu {
+    /// Opens the first Vulkan adapter with 64-bit floats, a discrete or
+    /// integrated GPU before a software one, with the adapter's own limits
+    /// (the defaults are a portable minimum: 8 storage buffers and 128 MiB
+    /// per binding).
+    pub fn new() -> Result<Gpu, GpuError> {
+        let instance = wgpu::Instance::new(&wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::VULKAN,
+            ..wgpu::InstanceDescriptor::default()
+        });
+        let adapters = instance.enumerate_adapters(wgpu::Backends::VULKAN);
+        if adapters.is_empty() {
+            return Err(GpuError::NoAdapter);
+        }
+        let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
+            wgpu::DeviceType::DiscreteGpu => 0,
+            wgpu::DeviceType::IntegratedGpu => 1,
+            wgpu::DeviceType::VirtualGpu => 2,
+            wgpu::DeviceType::Other => 3,
+            wgpu::DeviceType::Cpu => 4,
+        };
+        let names = adapters.iter().map(|a| a.get_info().name).collect::<Vec<_>>().join(", ");
+        let mut usable: Vec<wgpu::Adapter> =
+            adapters.into_iter().filter(|a| a.features().contains(wgpu::Features::SHADER_F64)).collect();
+        usable.sort_by_key(rank);
+        let Some(adapter) = usable.into_iter().next() else {
+            return Err(GpuError::NoF64(names));
+        };
+        let info = adapter.get_info();
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("femdem"),
+            required_features: wgpu::Features::SHADER_F64,
+            required_limits: limits.clone(),
+            ..wgpu::DeviceDescriptor::default()
+        }))
+        .map_err(|e| GpuError::Device { adapter: info.name.clone(), reason: e.to_string() })?;
+        Ok(Gpu { device, queue, info: Arc::new(info), limits })
+    }
+
+    /// The adapter's name and driver, e.g. `llvmpipe (LLVM 15.0.6, 256
+    /// bits), Mesa 22.3.6` or `NVIDIA H100 80GB HBM3, 550.54`.
+    pub fn adapter(&self) -> String {
+        format!("{}, {}", self.info.name, self.info.driver_info)
+    }
+
+    /// Whether the adapter is a software device on the CPU (lavapipe):
+    /// correct, not fast.
+    pub fn is_software(&self) -> bool {
+        self.info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// The largest storage binding, bytes.
+    pub fn max_binding(&self) -> u64 {
+        u64::from(self.limits.max_storage_buffer_binding_size).min(self.limits.max_buffer_size)
+    }
+
+    /// The largest number of workgroups along one dimension of a dispatch.
+    pub(crate) fn max_groups(&self) -> u32 {
+        self.limits.max_compute_workgroups_per_dimension
+    }
+
+    /// `Err(TooLarge)` if `bytes` do not fit one storage binding.
+    pub(crate) fn check_size(&self, what: &'static str, bytes: u64) -> Result<(), GpuError> {
+        let limit = self.max_binding();
+        if bytes > limit {
+            return Err(GpuError::TooLarge { what, bytes, adapter: self.info.name.clone(), limit });
+        }
+        Ok(())
+    }
+
+    /// Compiles a WGSL module, turning a validation error into
+    /// [`GpuError::Kernel`].
+    pub(crate) fn module(&self, kernel: &'static str, source: &str) -> Result<wgpu::ShaderModule, GpuError> {
+        self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(kernel),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        match pollster::block_on(self.device.pop_error_scope()) {
+            Some(e) => Err(GpuError::Kernel { kernel, adapter: self.info.name.clone(), reason: e.to_string() }),
+            None => Ok(module),
+        }
+    }
+
+    /// A compute pipeline for entry point `main` of `module`.
+    pub(crate) fn pipeline(
+        &self,
+        kernel: &'static str,
+        module: &wgpu::ShaderModule,
+    ) -> Result<wgpu::ComputePipeline, GpuError> {
+        self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(kernel),
+            layout: None,
+            module,
+            entry_point: Some("main"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        match pollster::block_on(self.device.pop_error_scope()) {
+            Some(e) => Err(GpuError::Kernel { kernel, adapter: self.info.name.clone(), reason: e.to_string() }),
+            None => Ok(pipeline),
+        }
+    }
+}

@@ -1,0 +1,24 @@
+//! The WGSL sources of the kernels, each with the shared parts it needs
+//! (WGSL has no include): `common.wgsl` (the uniform and the item number)
+//! and `math.wgsl` (f64 `ln` and `exp`).
+
+/// The uniform and the item number.
+const COMMON: &str = include_str!("wgsl/common.wgsl");
+/// f64 `ln64` and `exp64`.
+const MATH: &str = include_str!("wgsl/math.wgsl");
+
+/// The tet pass (Eq. 1–2).
+pub(crate) fn tets() -> String {
+    [COMMON, MATH, include_str!("wgsl/tets.wgsl")].concat()
+}
+
+/// The gather of slots into nodal forces.
+pub(crate) fn gather() -> String {
+    [COMMON, include_str!("wgsl/gather.wgsl")].concat()
+}
+
+/// `ln64` (flag 0) or `exp64` (flag 1) of every element of an array: the
+/// math functions' test harness ([`crate::math`]).
+pub(crate) fn math_probe() -> String {
+    [COMMON, MATH, include_str!("wgsl/math_probe.wgsl")].concat()
+}

@@ -1,0 +1,30 @@
+//! The bulk of femdem's explicit step as compute kernels on a GPU, in
+//! double precision (issue 34, part 1).
+//!
+//! Built on `wgpu` over Vulkan with WGSL kernels in `f64`
+//! ([`wgpu::Features::SHADER_F64`]): the same code runs on a GPU and, for
+//! tests, on Mesa's lavapipe, a Vulkan device on the CPU. What is here:
+//!
+//! - [`Gpu`]: the adapter, refused with a clear [`GpuError`] when it has
+//!   no 64-bit floats;
+//! - [`math`]: the kernels' own `ln` and `exp` (Vulkan's are single
+//!   precision), with their formulas in `wgsl/math.wgsl`;
+//! - [`Bulk`]: the tet pass of Eq. 1–2 (`femdem_material::tet_forces` on
+//!   the device: `wgsl/tets.wgsl`) and the gather of each node's slots in
+//!   the CPU's fixed order (`wgsl/gather.wgsl`).
+//!
+//! Not yet here: the joint law, the update and loads, the energy sums, and
+//! the solver's switch to this path (`[solver] device`).
+//!
+//! This crate knows the material law and the tet's reference shape
+//! (`femdem-material`) and nothing of the solver, the case files or
+//! contact.
+
+mod buffers;
+pub mod bulk;
+pub mod device;
+mod kernels;
+pub mod math;
+
+pub use bulk::{Bulk, TetMesh};
+pub use device::{Gpu, GpuError};

@@ -8,10 +8,12 @@
 //! there are no atomics and two runs give the same bytes.
 
 use femdem_core::{Mat3, Real, Vec3};
+use femdem_fracture::{FailureMode, JointHistory};
 use femdem_material::{Law, Material, TetReference};
 
 use crate::buffers::{Params, dispatch, read, storage, write, zeroed};
 use crate::device::{Gpu, GpuError};
+use crate::joints::{HISTORY, JointMesh, LAW, mode, pack_history, pack_law, unpack_history};
 use crate::kernels;
 
 /// Material index of a rigid tet in the device's table.
@@ -44,8 +46,10 @@ pub struct TetMesh<'a> {
 pub struct Bulk {
     gpu: Gpu,
     tets_kernel: wgpu::ComputePipeline,
+    joints_kernel: wgpu::ComputePipeline,
     gather_kernel: wgpu::ComputePipeline,
     num_tets: usize,
+    num_joints: usize,
     num_nodes: usize,
     x: wgpu::Buffer,
     v: wgpu::Buffer,
@@ -58,7 +62,14 @@ pub struct Bulk {
     stress: wgpu::Buffer,
     tet_offsets: wgpu::Buffer,
     tet_table: wgpu::Buffer,
+    joints: wgpu::Buffer,
+    joint_law: wgpu::Buffer,
+    joint_hist: wgpu::Buffer,
+    joint_flags: wgpu::Buffer,
     joint_slots: wgpu::Buffer,
+    joint_sums: wgpu::Buffer,
+    joint_failed: wgpu::Buffer,
+    joint_consts: wgpu::Buffer,
     joint_offsets: wgpu::Buffer,
     joint_table: wgpu::Buffer,
     internal: wgpu::Buffer,
@@ -74,9 +85,17 @@ fn count(n: usize) -> u32 {
 }
 
 impl Bulk {
-    /// Uploads `mesh` (nodes at rest at the origin until [`Bulk::set_state`]).
-    pub fn new(gpu: &Gpu, mesh: TetMesh<'_>) -> Result<Bulk, GpuError> {
+    /// Uploads the tets and joints (nodes at the origin, at rest, until
+    /// [`Bulk::set_state`]).
+    pub fn new(gpu: &Gpu, mesh: TetMesh<'_>, joints: JointMesh<'_>) -> Result<Bulk, GpuError> {
         let n = mesh.tets.len();
+        let nj = joints.joints.len();
+        assert_eq!(joints.law.len(), nj, "one law per joint");
+        assert_eq!(joints.history.len(), nj, "one history per joint");
+        assert_eq!(joints.gather_offsets.len(), mesh.num_nodes + 1, "one joint gather row per node");
+        let joints_module = gpu.module("joints", &kernels::joints())?;
+        let (hist, flags) = pack_history(joints.history);
+        let consts = [femdem_fracture::KernelConsts::new().z0, femdem_fracture::softening::softening_area()];
         assert_eq!(mesh.refs.len(), n, "one reference per tet");
         assert_eq!(mesh.material.len(), n, "one material entry per tet");
         assert_eq!(mesh.gather_offsets.len(), mesh.num_nodes + 1, "one gather row per node");
@@ -102,8 +121,10 @@ impl Bulk {
         let nodes3 = 3 * mesh.num_nodes;
         Ok(Bulk {
             tets_kernel: gpu.pipeline("tets", &tets_module)?,
+            joints_kernel: gpu.pipeline("joints", &joints_module)?,
             gather_kernel: gpu.pipeline("gather", &gather_module)?,
             num_tets: n,
+            num_joints: nj,
             num_nodes: mesh.num_nodes,
             x: zeroed::<Real>(gpu, "positions", nodes3)?,
             v: zeroed::<Real>(gpu, "velocities", nodes3)?,
@@ -116,9 +137,16 @@ impl Bulk {
             stress: zeroed::<Real>(gpu, "tet stresses", 9 * n)?,
             tet_offsets: storage(gpu, "tet gather offsets", mesh.gather_offsets)?,
             tet_table: storage(gpu, "tet gather slots", mesh.gather_slots)?,
-            joint_slots: zeroed::<Real>(gpu, "joint slots", 0)?,
-            joint_offsets: zeroed::<u32>(gpu, "joint gather offsets", mesh.num_nodes + 1)?,
-            joint_table: zeroed::<u32>(gpu, "joint gather slots", 0)?,
+            joints: storage(gpu, "joint nodes", joints.joints.as_flattened())?,
+            joint_law: storage(gpu, "joint laws", &pack_law(joints.law))?,
+            joint_hist: storage(gpu, "joint histories", &hist)?,
+            joint_flags: storage(gpu, "joint flags", &flags)?,
+            joint_slots: zeroed::<Real>(gpu, "joint slots", 18 * nj)?,
+            joint_sums: zeroed::<Real>(gpu, "joint sums", 2 * nj)?,
+            joint_failed: zeroed::<u32>(gpu, "joint failures", nj)?,
+            joint_consts: storage(gpu, "joint constants", &consts)?,
+            joint_offsets: storage(gpu, "joint gather offsets", joints.gather_offsets)?,
+            joint_table: storage(gpu, "joint gather slots", joints.gather_slots)?,
             internal: zeroed::<Real>(gpu, "internal forces", nodes3)?,
             gpu: gpu.clone(),
         })
@@ -132,9 +160,10 @@ impl Bulk {
         write(&self.gpu, &self.v, &flat(v));
     }
 
-    /// Runs the tet pass (keeping each tet's Cauchy stress when `stress`)
-    /// and the gather.
-    pub fn forces(&mut self, stress: bool) {
+    /// Runs the tet pass (keeping each tet's Cauchy stress when `stress`),
+    /// the joint pass (summing each joint's stored energy and fracture
+    /// share when `energy`) and the gather.
+    pub fn forces(&mut self, stress: bool, energy: bool) {
         let gpu = &self.gpu;
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let flags = u32::from(stress);
@@ -155,6 +184,25 @@ impl Bulk {
                 &self.stress,
             ],
         );
+        if self.num_joints > 0 {
+            dispatch(
+                gpu,
+                &mut encoder,
+                &self.joints_kernel,
+                Params { count: count(self.num_joints), flags: u32::from(energy), pad: [0; 2] },
+                &[
+                    &self.x,
+                    &self.joints,
+                    &self.joint_law,
+                    &self.joint_hist,
+                    &self.joint_flags,
+                    &self.joint_slots,
+                    &self.joint_sums,
+                    &self.joint_failed,
+                    &self.joint_consts,
+                ],
+            );
+        }
         dispatch(
             gpu,
             &mut encoder,
@@ -197,3 +245,32 @@ impl Bulk {
         s.chunks_exact(9).map(Mat3::from_column_slice).collect()
     }
 }
+
+impl Bulk {
+    /// Each joint's forces on its six nodes (read back).
+    pub fn joint_slots(&self) -> Vec<[Vec3; 6]> {
+        let f: Vec<Real> = read(&self.gpu, &self.joint_slots, 18 * self.num_joints);
+        f.chunks_exact(18).map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2]))).collect()
+    }
+
+    /// Each joint's history (read back).
+    pub fn joint_history(&self) -> Vec<JointHistory> {
+        let numbers: Vec<Real> = read(&self.gpu, &self.joint_hist, HISTORY * self.num_joints);
+        let flags: Vec<u32> = read(&self.gpu, &self.joint_flags, self.num_joints);
+        unpack_history(&numbers, &flags)
+    }
+
+    /// How each joint that failed in the last evaluation failed (read back).
+    pub fn failed_now(&self) -> Vec<Option<FailureMode>> {
+        read::<u32>(&self.gpu, &self.joint_failed, self.num_joints).into_iter().map(mode).collect()
+    }
+
+    /// Each joint's stored energy and share of the fracture energy (its
+    /// work, less what it stores while intact) of the last evaluation that
+    /// asked for energies, J (read back).
+    pub fn joint_sums(&self) -> Vec<[Real; 2]> {
+        read::<Real>(&self.gpu, &self.joint_sums, 2 * self.num_joints).chunks_exact(2).map(|c| [c[0], c[1]]).collect()
+    }
+}
+
+const _: () = assert!(LAW == 10 && HISTORY == 24, "the layouts of wgsl/joints.wgsl");

@@ -12,6 +12,13 @@ pub(crate) fn tets() -> String {
     [COMMON, MATH, include_str!("wgsl/tets.wgsl")].concat()
 }
 
+/// The joint pass (Eq. 3–13). Its softening curve takes `(1 − D)^c` as a
+/// cube of a square, which holds for `c = 6` only.
+pub(crate) fn joints() -> String {
+    const _: () = assert!(femdem_fracture::softening::C == 6.0, "wgsl/joints.wgsl's z(D) assumes c = 6");
+    [COMMON, MATH, include_str!("wgsl/joints.wgsl")].concat()
+}
+
 /// The gather of slots into nodal forces.
 pub(crate) fn gather() -> String {
     [COMMON, include_str!("wgsl/gather.wgsl")].concat()

@@ -13,8 +13,11 @@
 //!   the device: `wgsl/tets.wgsl`) and the gather of each node's slots in
 //!   the CPU's fixed order (`wgsl/gather.wgsl`).
 //!
-//! Not yet here: the joint law, the update and loads, the energy sums, and
-//! the solver's switch to this path (`[solver] device`).
+//! - the joint pass of Eq. 3–13 (`femdem_fracture::joint_update_fast` on
+//!   the device: `wgsl/joints.wgsl`), histories kept on the device.
+//!
+//! Not yet here: the update and loads, and the solver's switch to this
+//! path (`[solver] device`).
 //!
 //! This crate knows the material law and the tet's reference shape
 //! (`femdem-material`) and nothing of the solver, the case files or
@@ -23,8 +26,10 @@
 mod buffers;
 pub mod bulk;
 pub mod device;
+mod joints;
 mod kernels;
 pub mod math;
 
 pub use bulk::{Bulk, TetMesh};
 pub use device::{Gpu, GpuError};
+pub use joints::JointMesh;

@@ -5,6 +5,7 @@
 //! `FEMDEM_GPU_REQUIRED` is set (as `.ci/run` sets it): then a missing
 //! adapter fails them.
 
+mod joints;
 mod math;
 mod tets;
 

@@ -18,7 +18,7 @@
 //! that term, `10⁻² … 1` of the scale here, far beyond it.
 
 use femdem_core::{Mat3, Real, Vec3};
-use femdem_gpu::{Bulk, TetMesh};
+use femdem_gpu::{Bulk, JointMesh, TetMesh};
 use femdem_material::{ElasticParams, J_FLOOR, Law, Material, TetReference, deformation_gradient, tet_forces};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -38,6 +38,7 @@ struct Scene {
     v: Vec<Vec3>,
     offsets: Vec<u32>,
     slots: Vec<u32>,
+    no_joints: Vec<u32>,
 }
 
 fn random_vec(rng: &mut ChaCha8Rng, r: Real) -> Vec3 {
@@ -110,7 +111,8 @@ fn scene(n: usize, seed: u64) -> Scene {
         slots.extend(row);
         offsets.push(slots.len() as u32);
     }
-    Scene { tets, refs, material, materials, x, v, offsets, slots }
+    let no_joints = vec![0; x.len() + 1];
+    Scene { tets, refs, material, materials, x, v, offsets, slots, no_joints }
 }
 
 fn mesh(s: &Scene) -> TetMesh<'_> {
@@ -173,9 +175,9 @@ fn scales(law: Law, m: &Material, r: &TetReference, x: &[Vec3; 4], v: &[Vec3; 4]
 fn tet_pass_matches_the_cpu_kernel() {
     let Some(g) = gpu() else { return };
     let s = scene(4000, 1);
-    let mut bulk = Bulk::new(&g, mesh(&s)).unwrap();
+    let mut bulk = Bulk::new(&g, mesh(&s), JointMesh::none(&s.no_joints)).unwrap();
     bulk.set_state(&s.x, &s.v);
-    bulk.forces(true);
+    bulk.forces(true, false);
     let (slots, stresses, energies) = (bulk.tet_slots(), bulk.stresses(), bulk.tet_energies());
     let eps = Real::EPSILON / 2.0;
     let (mut worst_f, mut worst_s, mut worst_e, mut crushed) = (0.0f64, 0.0f64, 0.0f64, 0);
@@ -216,9 +218,9 @@ fn tet_pass_matches_the_cpu_kernel() {
 fn gather_sums_in_slot_order_and_repeats_exactly() {
     let Some(g) = gpu() else { return };
     let s = scene(3000, 2);
-    let mut bulk = Bulk::new(&g, mesh(&s)).unwrap();
+    let mut bulk = Bulk::new(&g, mesh(&s), JointMesh::none(&s.no_joints)).unwrap();
     bulk.set_state(&s.x, &s.v);
-    bulk.forces(false);
+    bulk.forces(false, false);
     let (slots, internal) = (bulk.tet_slots(), bulk.internal());
     let flat: Vec<Vec3> = slots.iter().flatten().copied().collect();
     let mut shared = 0;
@@ -232,7 +234,7 @@ fn gather_sums_in_slot_order_and_repeats_exactly() {
         assert_eq!(sum.map(Real::to_bits), f.map(Real::to_bits), "node {i}");
     }
     assert!(shared > 1000, "the scene shares nodes ({shared})");
-    bulk.forces(false);
+    bulk.forces(false, false);
     assert_eq!(bulk.internal(), internal);
     assert_eq!(bulk.tet_slots(), slots);
 }

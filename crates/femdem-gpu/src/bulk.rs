@@ -19,6 +19,19 @@ use crate::kernels;
 /// Material index of a rigid tet in the device's table.
 const RIGID: u32 = u32::MAX;
 
+/// What [`Bulk::forces`] computes besides the forces.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Evaluate {
+    /// Each tet's Cauchy stress.
+    pub stress: bool,
+    /// Each tet's and joint's stored energy, and each joint's share of the
+    /// fracture energy.
+    pub energy: bool,
+    /// Each tet's viscous dissipation rate against the velocities of
+    /// [`Bulk::set_before`] (`femdem_solver::forces::Dissipation`).
+    pub dissipation: bool,
+}
+
 /// What the device needs of a mesh of tets: the CPU solver's arrays.
 #[derive(Clone, Copy, Debug)]
 pub struct TetMesh<'a> {
@@ -60,6 +73,8 @@ pub struct Bulk {
     tet_slots: wgpu::Buffer,
     energy: wgpu::Buffer,
     stress: wgpu::Buffer,
+    v_before: wgpu::Buffer,
+    rate: wgpu::Buffer,
     tet_offsets: wgpu::Buffer,
     tet_table: wgpu::Buffer,
     joints: wgpu::Buffer,
@@ -135,6 +150,8 @@ impl Bulk {
             tet_slots: zeroed::<Real>(gpu, "tet slots", 12 * n)?,
             energy: zeroed::<Real>(gpu, "tet energies", n)?,
             stress: zeroed::<Real>(gpu, "tet stresses", 9 * n)?,
+            v_before: zeroed::<Real>(gpu, "velocities of the step before", nodes3)?,
+            rate: zeroed::<Real>(gpu, "tet dissipation rates", n)?,
             tet_offsets: storage(gpu, "tet gather offsets", mesh.gather_offsets)?,
             tet_table: storage(gpu, "tet gather slots", mesh.gather_slots)?,
             joints: storage(gpu, "joint nodes", joints.joints.as_flattened())?,
@@ -160,13 +177,20 @@ impl Bulk {
         write(&self.gpu, &self.v, &flat(v));
     }
 
-    /// Runs the tet pass (keeping each tet's Cauchy stress when `stress`),
-    /// the joint pass (summing each joint's stored energy and fracture
-    /// share when `energy`) and the gather.
-    pub fn forces(&mut self, stress: bool, energy: bool) {
+    /// Uploads the velocities of the step before, `v_{n−3/2}`, for the
+    /// dissipation rate ([`Evaluate::dissipation`]).
+    pub fn set_before(&mut self, v_before: &[Vec3]) {
+        assert_eq!(v_before.len(), self.num_nodes, "one velocity per node");
+        write(&self.gpu, &self.v_before, &flat(v_before));
+    }
+
+    /// Runs the tet pass, the joint pass and the gather, with what `want`
+    /// asks for besides the forces.
+    pub fn forces(&mut self, want: Evaluate) {
         let gpu = &self.gpu;
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let flags = u32::from(stress);
+        let (stress, energy) = (want.stress, want.energy);
+        let flags = u32::from(stress) | u32::from(want.dissipation) << 1;
         dispatch(
             gpu,
             &mut encoder,
@@ -182,6 +206,8 @@ impl Bulk {
                 &self.tet_slots,
                 &self.energy,
                 &self.stress,
+                &self.v_before,
+                &self.rate,
             ],
         );
         if self.num_joints > 0 {
@@ -236,6 +262,12 @@ impl Bulk {
     /// Each tet's stored energy `W V₀`, J (read back).
     pub fn tet_energies(&self) -> Vec<Real> {
         read(&self.gpu, &self.energy, self.num_tets)
+    }
+
+    /// Each tet's viscous dissipation rate of the last [`Bulk::forces`]
+    /// that asked for it, W (read back; zero for the others).
+    pub fn tet_rates(&self) -> Vec<Real> {
+        read(&self.gpu, &self.rate, self.num_tets)
     }
 
     /// Each tet's Cauchy stress of the last [`Bulk::forces`] that asked for

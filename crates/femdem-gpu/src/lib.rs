@@ -30,6 +30,6 @@ mod joints;
 mod kernels;
 pub mod math;
 
-pub use bulk::{Bulk, TetMesh};
+pub use bulk::{Bulk, Evaluate, TetMesh};
 pub use device::{Gpu, GpuError};
 pub use joints::JointMesh;

@@ -6,6 +6,11 @@
 // Per tet t: nodes tets[4t..4t+4]; reference refs[10t..10t+10] = Dm^-1 by
 // columns, then V0; material materials[4m..4m+4] = lambda, mu, eta, law
 // (0 neo-Hookean, 1 linear elastic). Slots: 12 numbers, node by node.
+//
+// Flag bit 1: the viscous dissipation rate of each tet into rate[t],
+// R = eta D(v) : D(v_mean) V0 J with v_mean = (v + v_before)/2 and
+// L = edges(v) cof(Ds)^T / det(Ds) (femdem_solver::forces::Dissipation;
+// the CPU skips a rate that is not finite, and so does the host's sum).
 
 @group(0) @binding(1) var<storage, read> x: array<f64>;
 @group(0) @binding(2) var<storage, read> v: array<f64>;
@@ -16,6 +21,8 @@
 @group(0) @binding(7) var<storage, read_write> slots: array<f64>;
 @group(0) @binding(8) var<storage, read_write> energy: array<f64>;
 @group(0) @binding(9) var<storage, read_write> stress: array<f64>;
+@group(0) @binding(10) var<storage, read> v_before: array<f64>;
+@group(0) @binding(11) var<storage, read_write> rate: array<f64>;
 
 const J_FLOOR: f64 = 1.0e-2;
 const RIGID: u32 = 0xffffffffu;
@@ -27,6 +34,11 @@ fn position(n: u32) -> vec3<f64> {
 
 fn velocity(n: u32) -> vec3<f64> {
     return vec3<f64>(v[3u * n], v[3u * n + 1u], v[3u * n + 2u]);
+}
+
+fn mean_velocity(n: u32) -> vec3<f64> {
+    let b = vec3<f64>(v_before[3u * n], v_before[3u * n + 1u], v_before[3u * n + 2u]);
+    return (velocity(n) + b) * 0.5;
 }
 
 // [p1 - p0, p2 - p0, p3 - p0] by columns.
@@ -64,6 +76,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
             slots[12u * t + k] = 0.0;
         }
         energy[t] = 0.0;
+        rate[t] = 0.0;
         return;
     }
     let n0 = tets[4u * t];
@@ -122,6 +135,19 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         slots[s + 5u + 3u * c] = h[c].z;
     }
     energy[t] = w * volume;
+    rate[t] = 0.0;
+    if ((params.flags & 2u) != 0u && eta > 0.0) {
+        let ds = edges(position(n0), position(n1), position(n2), position(n3));
+        let cof_ds = cofactor(ds);
+        let det_ds = dot(ds[0], cof_ds[0]);
+        let lv = edges(velocity(n0), velocity(n1), velocity(n2), velocity(n3)) * transpose(cof_ds) * (1.0 / det_ds);
+        let lm = edges(mean_velocity(n0), mean_velocity(n1), mean_velocity(n2), mean_velocity(n3))
+            * transpose(cof_ds) * (1.0 / det_ds);
+        let dv = sym(lv);
+        let dm = sym(lm);
+        let dd = dot(dv[0], dm[0]) + dot(dv[1], dm[1]) + dot(dv[2], dm[2]);
+        rate[t] = eta * dd * volume * j;
+    }
     if ((params.flags & 1u) != 0u) {
         for (var c = 0u; c < 3u; c++) {
             stress[9u * t + 3u * c] = cauchy[c].x;

@@ -20,7 +20,7 @@
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::{Coupling, GfCalibration, Joint, JointHistory, JointParams, KernelConsts, joint_update_fast};
-use femdem_gpu::{Bulk, JointMesh, TetMesh};
+use femdem_gpu::{Bulk, Evaluate, JointMesh, TetMesh};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -115,7 +115,7 @@ fn joint_pass_matches_the_cpu_kernel_through_failure() {
     for step in 0..STEPS {
         let x: Vec<Vec3> = paths.iter().flat_map(|p| nodes(p, step)).collect();
         bulk.set_state(&x, &v);
-        bulk.forces(false, true);
+        bulk.forces(Evaluate { energy: true, ..Evaluate::default() });
         let (slots_gpu, hist_gpu, failed_gpu, sums_gpu) =
             (bulk.joint_slots(), bulk.joint_history(), bulk.failed_now(), bulk.joint_sums());
         for j in 0..n {

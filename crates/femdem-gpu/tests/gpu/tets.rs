@@ -18,8 +18,10 @@
 //! that term, `10⁻² … 1` of the scale here, far beyond it.
 
 use femdem_core::{Mat3, Real, Vec3};
-use femdem_gpu::{Bulk, JointMesh, TetMesh};
-use femdem_material::{ElasticParams, J_FLOOR, Law, Material, TetReference, deformation_gradient, tet_forces};
+use femdem_gpu::{Bulk, Evaluate, JointMesh, TetMesh};
+use femdem_material::{
+    ElasticParams, J_FLOOR, Law, Material, TetReference, deformation_gradient, tet_forces, velocity_gradient,
+};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -169,6 +171,32 @@ fn scales(law: Law, m: &Material, r: &TetReference, x: &[Vec3; 4], v: &[Vec3; 4]
     Scales { force: r.volume * r.inv_dm.norm() * piola, stress, energy: r.volume * energy }
 }
 
+/// The solver's viscous dissipation rate of a tet (`femdem_solver`'s tet
+/// pass: `R = η D(v) : D(v̄) V₀ J`, `v̄ = ½ (v + v_before)`), and its
+/// scale: `η V₀ |J|` times the two rates of deformation's magnitudes as
+/// they are rounded, `‖Δv‖ ‖cof Ds‖ / |det Ds|` each, times the
+/// conditioning of `det Ds`, `‖Ds‖³ / |det Ds|`.
+fn dissipation(m: &Material, r: &TetReference, x: &[Vec3; 4], v: &[Vec3; 4], before: &[Vec3; 4]) -> (Real, Real) {
+    let l = velocity_gradient(x, v);
+    let d = (l + l.transpose()) * 0.5;
+    let mean: [Vec3; 4] = std::array::from_fn(|k| (v[k] + before[k]) * 0.5);
+    let lm = velocity_gradient(x, &mean);
+    let dm = (lm + lm.transpose()) * 0.5;
+    let j = deformation_gradient(r, x).determinant();
+    let rate = m.viscosity() * d.dot(&dm) * r.volume * j;
+    let ds = Mat3::from_columns(&[x[1] - x[0], x[2] - x[0], x[3] - x[0]]);
+    let det = ds.determinant().abs();
+    let cof = ds.norm().powi(2);
+    let edges = |w: &[Vec3; 4]| Mat3::from_columns(&[w[1] - w[0], w[2] - w[0], w[3] - w[0]]).norm();
+    let scale = m.viscosity()
+        * r.volume
+        * j.abs()
+        * (edges(v) * cof / det)
+        * (edges(&mean) * cof / det)
+        * (1.0 + ds.norm().powi(3) / det);
+    (rate, scale)
+}
+
 /// Every tet's slots, stress and energy against the CPU kernel, within
 /// `C ε` of its scale; rigid tets exactly zero.
 #[test]
@@ -177,8 +205,13 @@ fn tet_pass_matches_the_cpu_kernel() {
     let s = scene(4000, 1);
     let mut bulk = Bulk::new(&g, mesh(&s), JointMesh::none(&s.no_joints)).unwrap();
     bulk.set_state(&s.x, &s.v);
-    bulk.forces(true, false);
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let before: Vec<Vec3> = s.v.iter().map(|v| v + random_vec(&mut rng, 0.5)).collect();
+    bulk.set_before(&before);
+    bulk.forces(Evaluate { stress: true, energy: true, dissipation: true });
     let (slots, stresses, energies) = (bulk.tet_slots(), bulk.stresses(), bulk.tet_energies());
+    let rates = bulk.tet_rates();
+    let mut worst_r = 0.0f64;
     let eps = Real::EPSILON / 2.0;
     let (mut worst_f, mut worst_s, mut worst_e, mut crushed) = (0.0f64, 0.0f64, 0.0f64, 0);
     for t in 0..s.tets.len() {
@@ -201,10 +234,17 @@ fn tet_pass_matches_the_cpu_kernel() {
         let e_s = (stresses[t] - cpu.stress).norm() / (eps * sc.stress);
         worst_s = worst_s.max(e_s);
         worst_e = worst_e.max((energies[t] - cpu.energy).abs() / (eps * sc.energy));
+        if mat.viscosity() > 0.0 {
+            let (rate, scale) = dissipation(mat, &s.refs[t], &xp, &vp, &s.tets[t].map(|n| before[n as usize]));
+            if rate.is_finite() {
+                worst_r = worst_r.max((rates[t] - rate).abs() / (eps * scale));
+            }
+        }
     }
     println!(
-        "tets: worst force {worst_f:.1} eps, stress {worst_s:.1} eps, energy {worst_e:.1} eps of the scale; {crushed} crushed"
+        "tets: worst force {worst_f:.1} eps, stress {worst_s:.1} eps, energy {worst_e:.1} eps, dissipation rate {worst_r:.1} eps of the scale; {crushed} crushed"
     );
+    assert!(worst_r <= C, "dissipation rates {worst_r} eps of their scale apart");
     assert!(crushed > 100, "the scene crushes some tets below the floor ({crushed})");
     assert!(worst_f <= C, "forces {worst_f} eps of their scale apart");
     assert!(worst_s <= C, "stresses {worst_s} eps of their scale apart");
@@ -220,7 +260,7 @@ fn gather_sums_in_slot_order_and_repeats_exactly() {
     let s = scene(3000, 2);
     let mut bulk = Bulk::new(&g, mesh(&s), JointMesh::none(&s.no_joints)).unwrap();
     bulk.set_state(&s.x, &s.v);
-    bulk.forces(false, false);
+    bulk.forces(Evaluate::default());
     let (slots, internal) = (bulk.tet_slots(), bulk.internal());
     let flat: Vec<Vec3> = slots.iter().flatten().copied().collect();
     let mut shared = 0;
@@ -234,7 +274,7 @@ fn gather_sums_in_slot_order_and_repeats_exactly() {
         assert_eq!(sum.map(Real::to_bits), f.map(Real::to_bits), "node {i}");
     }
     assert!(shared > 1000, "the scene shares nodes ({shared})");
-    bulk.forces(false, false);
+    bulk.forces(Evaluate::default());
     assert_eq!(bulk.internal(), internal);
     assert_eq!(bulk.tet_slots(), slots);
 }

@@ -69,6 +69,24 @@ pub fn start(name: &str) -> Result<Start, String> {
     }
 }
 
+/// Where stage 1 of the step runs (`[solver] device`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Device {
+    /// On the CPU's threads.
+    Cpu,
+    /// On a Vulkan device with 64-bit floats (`femdem_solver::Solver::use_device`).
+    Gpu,
+}
+
+/// `[solver] device` (or `--device`): `cpu` or `gpu`.
+pub fn device(name: &str) -> Result<Device, String> {
+    match name {
+        "cpu" => Ok(Device::Cpu),
+        "gpu" => Ok(Device::Gpu),
+        _ => Err(format!("`device`: `{name}` is not one of cpu, gpu")),
+    }
+}
+
 /// A solver ready to step.
 pub struct Runnable {
     /// The solver.
@@ -94,6 +112,8 @@ pub struct Runnable {
     pub probes: Vec<crate::probes::Probe>,
     /// How the run starts.
     pub start: Start,
+    /// Where stage 1 of the step runs, as the case asks.
+    pub device: Device,
 }
 
 /// Loads the case with the command line's `--set` arguments `sets`
@@ -131,6 +151,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     }
     let energy_tolerance = energy_tolerance(s.energy_tolerance).map_err(at)?;
     let start = start(s.start.as_deref().unwrap_or("dynamic")).map_err(at)?;
+    let device = device(s.device.as_deref().unwrap_or("cpu")).map_err(at)?;
     if start == Start::Static && !jointed.initial_contacts.is_empty() {
         bail!(at(format!(
             "`start = \"static\"`: {} tet pairs start in contact across pre-existing fracture faces (traces), and the \
@@ -203,6 +224,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             load_strain,
             probes,
             start,
+            device,
         }),
         warnings,
     })

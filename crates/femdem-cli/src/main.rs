@@ -94,6 +94,11 @@ enum Command {
         /// For tests: the memory available, bytes (instead of MemAvailable).
         #[arg(long, value_name = "BYTES", hide = true)]
         memory_available: Option<f64>,
+        /// Where stage 1 of the step (tets, joints, gather) runs: `cpu` or
+        /// `gpu` (a Vulkan device with 64-bit floats; cases with contact are
+        /// refused). Overrides `[solver] device`.
+        #[arg(long, value_name = "DEVICE")]
+        device: Option<String>,
         /// Remove the results of an earlier run from the output directory
         /// first (only femdem's own files: history.csv, failures.csv,
         /// .pvd series with their .vtu frames, checkpoints, plot_*.png;
@@ -141,6 +146,7 @@ fn main() -> ExitCode {
             contact_model,
             force,
             memory_available,
+            device,
             overwrite,
         } => femdem_case::memory::refuse_if_too_big(&case, &set, force, memory_available, "run").and_then(|()| {
             let options = femdem_run::RunOptions {
@@ -151,6 +157,7 @@ fn main() -> ExitCode {
                 stop_after_steps,
                 pause_checkpoint,
                 contact_model,
+                device,
                 overwrite,
             };
             commands::run::run(&case, options, progress_interval)

@@ -285,6 +285,15 @@ impl Bulk {
         f.chunks_exact(18).map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2]))).collect()
     }
 
+    /// Overwrites every joint's history (after the host changed it: joints
+    /// broken by decree, a restored checkpoint).
+    pub fn set_history(&mut self, history: &[JointHistory]) {
+        assert_eq!(history.len(), self.num_joints, "one history per joint");
+        let (numbers, flags) = pack_history(history);
+        write(&self.gpu, &self.joint_hist, &numbers);
+        write(&self.gpu, &self.joint_flags, &flags);
+    }
+
     /// Each joint's history (read back).
     pub fn joint_history(&self) -> Vec<JointHistory> {
         let numbers: Vec<Real> = read(&self.gpu, &self.joint_hist, HISTORY * self.num_joints);

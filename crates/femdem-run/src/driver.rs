@@ -27,7 +27,7 @@ use crate::{Observer, PastPeak, RunOptions, Status, Summary, outdir};
 /// written; and the run guard's verdict (after writing the state that
 /// shows the trouble).
 pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut dyn Observer) -> Result<Summary> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, contact_model, overwrite } =
+    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, contact_model, device, overwrite } =
         options;
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
@@ -60,6 +60,30 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         solver.set_contact_model(model).map_err(|e| anyhow::anyhow!("--contact-model: {e}"))?;
         observer.note(&format!("contact model `{name}` (--contact-model, for measurement)"));
     }
+    // The device is opened before anything is written (a missing one
+    // refuses the run at once) and takes the state once it is final: after
+    // a restore or a static start.
+    let gpu = match device.as_deref() {
+        Some(name) => case::prepare::device(name).map_err(|e| anyhow::anyhow!("--device: {e}"))?,
+        None => run.device,
+    };
+    let from = if device.is_some() {
+        format!("--device {}", device.as_deref().unwrap_or_default())
+    } else {
+        format!("{}: [solver] device = \"gpu\"", path.display())
+    };
+    let gpu = match gpu {
+        case::prepare::Device::Cpu => None,
+        case::prepare::Device::Gpu => {
+            Some(femdem_solver::Gpu::new().map_err(|e| anyhow::anyhow!("{from}: no device for the run: {e}"))?)
+        }
+    };
+    let attach = |solver: &mut Solver| -> Result<()> {
+        if let Some(g) = &gpu {
+            solver.use_device(g).map_err(|e| anyhow::anyhow!("{from}: {e}"))?;
+        }
+        Ok(())
+    };
     let m = &prepared.jointed.mesh;
     let pre_existing: Vec<[u32; 3]> = prepared.jointed.initial_contacts.iter().map(|(a, _)| a.nodes(&m.tets)).collect();
     let columns = Recorded { load_strain: run.load_strain, probes: run.probes.clone() };
@@ -68,6 +92,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         let (file, saved) = checkpoint::latest(&dir, &mut |line| observer.note(line))?;
         saved.identity.check(&identity, &file)?;
         solver.restore(&saved.solver).with_context(|| format!("checkpoint {}", file.display()))?;
+        attach(solver)?;
         let output =
             Output::resume(&dir, &stem, written, solver, pre_existing, columns, &saved.marks).with_context(|| {
                 format!("continuing the output in {} from checkpoint {}", dir.display(), file.display())
@@ -99,7 +124,11 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
                 observer.note(&line);
             }
         }
-        let comments = history_comments(&prepared.case);
+        attach(solver)?;
+        let mut comments = history_comments(&prepared.case);
+        if let Some(adapter) = solver.device() {
+            comments.push(format!("device: stage 1 (tets, joints, gather) on {adapter}"));
+        }
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;
@@ -122,6 +151,12 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         run.stable.critical,
         run.steps
     ));
+    if let Some(adapter) = solver.device() {
+        observer.note(&format!(
+            "stage 1 (tets, joints, gather) on {adapter}; {} bytes a step between host and device (more on output steps)",
+            solver.device_bytes_per_step()
+        ));
+    }
     let first = schedule.next_step;
     observer.started(first, run.steps, elements);
     let started = Instant::now();
@@ -246,6 +281,8 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         history,
         checkpoint: last_checkpoint,
         overrides: prepared.case.overrides.args(),
+        device: solver.device().map(str::to_owned),
+        device_bytes: solver.device_bytes_per_step(),
     })
 }
 
@@ -319,9 +356,11 @@ fn save(
     identity: &Identity,
     schedule: Schedule,
     output: &mut Output,
-    solver: &Solver,
+    solver: &mut Solver,
     pause: Option<u64>,
 ) -> Result<PathBuf> {
+    // The joint histories of a device run are brought back first.
+    solver.sync_device();
     checkpoint::write(dir, identity, &schedule, &output.marks()?, &|w| solver.write_snapshot(w), pause)
 }
 

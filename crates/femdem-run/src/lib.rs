@@ -57,6 +57,9 @@ pub struct RunOptions {
     /// `gradient` ([`femdem_solver::ContactModel`]); not a key of the case
     /// format.
     pub contact_model: Option<String>,
+    /// Where stage 1 of the step runs, `cpu` or `gpu` (overrides `[solver]
+    /// device`).
+    pub device: Option<String>,
     /// Remove the results of an earlier run from the output directory
     /// (femdem's own files only) instead of refusing it.
     pub overwrite: bool,
@@ -146,4 +149,8 @@ pub struct Summary {
     /// The `--set` overrides, canonical, as a resumed run must repeat
     /// them.
     pub overrides: Vec<String>,
+    /// The adapter stage 1 ran on (`None`: the CPU).
+    pub device: Option<String>,
+    /// Bytes a step moved between host and device at least (0 on the CPU).
+    pub device_bytes: u64,
 }

@@ -5,6 +5,10 @@ use thiserror::Error;
 /// Something the solver cannot work with.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SolverError {
+    /// The bulk cannot run on the device asked for (no adapter, no 64-bit
+    /// floats, a model too large, contact).
+    #[error("device: {0}")]
+    Device(String),
     /// A time step that is not finite and positive.
     #[error("time step must be finite and > 0 s, got {0}")]
     TimeStep(f64),

@@ -68,6 +68,7 @@
 //! ```
 
 pub mod contact;
+mod device;
 mod error;
 pub mod forces;
 mod guard;
@@ -82,6 +83,7 @@ mod timestep;
 
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
 pub use error::SolverError;
+pub use femdem_gpu::{Gpu, GpuError};
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};
 pub use ledger::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};

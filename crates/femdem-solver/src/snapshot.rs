@@ -129,8 +129,17 @@ impl Solver {
     /// memory (the contact pass's state excepted).
     ///
     /// # Errors
-    /// What writing to `w` fails with.
+    /// What writing to `w` fails with; with the bulk on a device
+    /// ([`Solver::use_device`]), a state whose joint histories have not been
+    /// brought back by [`Solver::sync_device`] since the last step.
     pub fn write_snapshot(&self, w: impl std::io::Write) -> std::io::Result<()> {
+        if self.pipeline.device.as_ref().is_some_and(|d| !d.synced) {
+            // The joint histories are on the device: writing the host's
+            // would lose them without a word.
+            return Err(std::io::Error::other(
+                "the joint histories are on the device: call Solver::sync_device before writing a snapshot",
+            ));
+        }
         let e = &self.evolving;
         let written = Written {
             version: SNAPSHOT_VERSION,
@@ -227,6 +236,9 @@ impl Solver {
         // solver left there belongs to another state.
         self.pipeline.workspace.internal.fill(Vec3::zeros());
         self.pipeline.forces_current = false;
+        if let Some(device) = &mut self.pipeline.device {
+            device.push(&self.evolving.state.joints);
+        }
         Ok(())
     }
 }

@@ -71,6 +71,12 @@ pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> 
     }
     println!("wall time   {:.2} s", s.wall);
     println!("throughput  {:.3e} tet-steps/s ({} threads)", s.throughput, rayon::current_num_threads());
+    if let Some(adapter) = &s.device {
+        println!(
+            "device      stage 1 (tets, joints, gather) on {adapter}; {} bytes a step between host and device",
+            s.device_bytes
+        );
+    }
     println!("built       femdem {}; {}; simd {}", provenance::build(), provenance::cpu(), provenance::simd());
     println!("results     {}", s.frames.display());
     println!("fractures   {} ({} joints failed)", s.fractures.display(), s.failed_joints);

@@ -3,6 +3,7 @@
 
 mod check;
 mod common;
+mod device;
 mod memory;
 mod outdir;
 mod overrides;

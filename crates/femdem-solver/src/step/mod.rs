@@ -97,6 +97,7 @@ pub use record::{FailureCounts, StepRecord};
 
 use crate::SolverError;
 use crate::contact::{Contact, ContactEnergy, ContactModel, ContactSettings};
+use crate::device::OnDevice;
 use crate::forces::{Dissipation, Want, Workspace, internal_forces};
 use crate::ledger::{Ledger, energy_floor};
 use crate::loads::Loads;
@@ -177,6 +178,9 @@ pub(crate) struct Pipeline {
     /// step of this state: false before the first step and after
     /// [`Solver::restore`] (the pipeline is not checkpointed).
     pub(crate) forces_current: bool,
+    /// The bulk of stage 1 on a GPU ([`Solver::use_device`]), or `None`
+    /// for the CPU.
+    pub(crate) device: Option<OnDevice>,
 }
 
 /// An explicit solver: the scene it runs (model, loads, step
@@ -228,6 +232,7 @@ impl Solver {
                 update: Update::new(n),
                 external,
                 forces_current: false,
+                device: None,
             },
             scene: Scene { floor: energy_floor(&model), model, loads, params, viscous },
         })
@@ -380,15 +385,26 @@ impl Solver {
         let t = self.evolving.state.time;
         let want = Want { energy: want.energy || self.evolving.state.step == 0, ..want };
         // 1. Internal forces at x_n.
-        let sums = internal_forces(
-            &self.scene.model,
-            &self.evolving.state.x,
-            &self.evolving.state.v,
-            &mut self.evolving.state.joints,
-            &mut self.pipeline.workspace,
-            want,
-            if self.scene.viscous { Dissipation::Since(&self.evolving.v_before) } else { Dissipation::None },
-        );
+        let dissipation =
+            if self.scene.viscous { Dissipation::Since(&self.evolving.v_before) } else { Dissipation::None };
+        let sums = match &mut self.pipeline.device {
+            Some(device) => device.internal_forces(
+                &self.evolving.state.x,
+                &self.evolving.state.v,
+                &mut self.pipeline.workspace,
+                want,
+                dissipation,
+            ),
+            None => internal_forces(
+                &self.scene.model,
+                &self.evolving.state.x,
+                &self.evolving.state.v,
+                &mut self.evolving.state.joints,
+                &mut self.pipeline.workspace,
+                want,
+                dissipation,
+            ),
+        };
         self.pipeline.forces_current = true;
         // 2. Failures, handed to contact.
         let first_new = self.evolving.failures.len();
@@ -476,7 +492,12 @@ impl Solver {
     /// Joints that have already failed (naturally or by
     /// [`Solver::break_joints`]) unbond their tets as if failing now,
     /// without the Eq. 18 ramp.
+    ///
+    /// # Panics
+    /// With the bulk on a device ([`Solver::use_device`]): contact runs on
+    /// the CPU only, and `use_device` refuses a solver with contact.
     pub fn enable_contact(&mut self, settings: ContactSettings, initial: &[(u32, u32)]) {
+        assert!(self.pipeline.device.is_none(), "contact with the bulk on a device is not built (issue 35)");
         self.evolving.contact = Some(Contact::new(&self.scene.model, settings, initial));
         // A new pass starts a new account (what an earlier one held over is
         // not this pass's).

@@ -1,0 +1,205 @@
+//! `femdem run --device gpu`: the bundled cases without contact on the
+//! device against the CPU, the refusals, and determinism.
+//!
+//! Where the machine has no Vulkan device with 64-bit floats the device
+//! tests say so and pass, unless `FEMDEM_GPU_REQUIRED` is set (`.ci/run`
+//! sets it and installs lavapipe, Mesa's Vulkan on the CPU).
+//!
+//! # The tolerances
+//!
+//! Stage 1 on the device agrees with the CPU's to round-off per element
+//! (`femdem-gpu`'s tests: 256 ε of each quantity's terms); the histories
+//! of a whole run then differ by that round-off carried through the steps.
+//! Until the first failure every column is compared against `10⁻⁹` of its
+//! group's scale (displacements against the largest drive displacement,
+//! forces against the largest drive force, work and energies against the
+//! largest external work), which leaves a factor of about 10⁴ over the
+//! per-step round-off of a few thousand steps. The stored elastic energy
+//! and the balance are differences of terms of size `(λ + 2μ) V` (the
+//! `‖F‖² − 3` of the neo-Hookean energy cancels), so their round-off does
+//! not scale with the energy: the row of step 0, where every tet is
+//! unstrained and the energy is round-off alone, shows its size, and the
+//! tolerance adds 8 times it. After the first failure a run's course is
+//! chaotic in its last bits (a joint failing a step earlier or later moves
+//! what follows), so there the checks apply: the same failures,
+//! the same peak load and energy balance.
+
+use std::path::{Path, PathBuf};
+
+use crate::common::{Table, col, failures, femdem, history};
+
+/// Runs `case` with `--device device` into a fresh directory; `None` when
+/// the device cannot be opened and `FEMDEM_GPU_REQUIRED` is not set.
+fn run(case: &str, device: &str, name: &str, extra: &[&str]) -> Option<PathBuf> {
+    let dir = std::env::temp_dir().join(format!("femdem-device-{name}-{device}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut args = vec!["run", case, "--out", dir.to_str().unwrap(), "--device", device];
+    args.extend(extra);
+    let o = femdem(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if !o.status.success()
+        && stderr.contains("no device for the run")
+        && std::env::var_os("FEMDEM_GPU_REQUIRED").is_none()
+    {
+        eprintln!("no device, GPU run not compared: {stderr}");
+        return None;
+    }
+    assert!(o.status.success(), "{case} on {device}: {stderr}");
+    Some(dir)
+}
+
+/// The largest `|value|` of the columns of `table` whose names satisfy
+/// `pick`, over rows `rows`.
+fn group_max(table: &Table, rows: usize, pick: impl Fn(&str) -> bool) -> f64 {
+    let mut m: f64 = 0.0;
+    for (k, name) in table.columns.iter().enumerate() {
+        if pick(name) {
+            for r in &table.rows[..rows] {
+                m = m.max(r[k].abs());
+            }
+        }
+    }
+    m
+}
+
+/// Every column of the first `rows` rows of `a` and `b` within the module's
+/// tolerance; returns the worst difference over its tolerance.
+fn agree(a: &Table, b: &Table, rows: usize) -> f64 {
+    assert_eq!(a.columns, b.columns);
+    let is_u = |n: &str| n.ends_with("_ux") || n.ends_with("_uy") || n.ends_with("_uz");
+    let is_f = |n: &str| n.ends_with("_fx") || n.ends_with("_fy") || n.ends_with("_fz");
+    let u = group_max(a, rows, is_u);
+    let f = group_max(a, rows, is_f);
+    let w = group_max(a, rows, |n| n == "external_work" || n == "kinetic");
+    let stored = |n: &str| n == "tet_elastic" || n == "joint_elastic" || n == "balance";
+    let mut worst: f64 = 0.0;
+    for (k, name) in a.columns.iter().enumerate() {
+        let tol = if is_u(name) {
+            1e-9 * u
+        } else if is_f(name) {
+            1e-9 * f
+        } else if stored(name) {
+            1e-9 * w + 8.0 * a.rows[0][k].abs().max(b.rows[0][k].abs())
+        } else if name == "time" || name == "step" || name.starts_with("broken_") {
+            0.0
+        } else {
+            1e-9 * w
+        };
+        for (ra, rb) in a.rows[..rows].iter().zip(&b.rows[..rows]) {
+            let d = (ra[k] - rb[k]).abs();
+            assert!(d <= tol, "column {name} at t = {:e}: {} vs {} (tolerance {tol:e})", ra[0], ra[k], rb[k]);
+            if tol > 0.0 {
+                worst = worst.max(d / tol);
+            }
+        }
+    }
+    worst
+}
+
+/// The elastic bar (no joints): every row agrees.
+#[test]
+fn the_elastic_bar_on_the_device_agrees_with_the_cpu() {
+    let Some(gpu) = run("cases/elastic-bar.toml", "gpu", "bar", &[]) else { return };
+    let cpu = run("cases/elastic-bar.toml", "cpu", "bar", &[]).unwrap();
+    let (a, b) = (history(&cpu), history(&gpu));
+    assert_eq!(a.rows.len(), b.rows.len());
+    let worst = agree(&a, &b, a.rows.len());
+    println!("elastic bar: worst difference {worst:.2e} of its tolerance");
+}
+
+/// The pulled bar (joints that fail): the rows before the first failure
+/// agree to round-off; then the same failures, peak and balance.
+#[test]
+fn the_pulled_bar_on_the_device_fails_as_on_the_cpu() {
+    let Some(gpu) = run("cases/pulled-bar.toml", "gpu", "pulled", &[]) else { return };
+    let cpu = run("cases/pulled-bar.toml", "cpu", "pulled", &[]).unwrap();
+    let (a, b) = (history(&cpu), history(&gpu));
+    assert_eq!(a.rows.len(), b.rows.len());
+    let first = femdem_post::failures::Failure::read_all(&cpu).unwrap().iter().map(|f| f.time).fold(f64::MAX, f64::min);
+    let before = a.rows.iter().take_while(|r| r[0] < first).count();
+    assert!(before > 10, "rows before the first failure: {before}");
+    let worst = agree(&a, &b, before);
+    assert_eq!(failures(&cpu), failures(&gpu), "failures");
+    assert!(failures(&cpu) > 10, "the pulled bar breaks joints");
+    let last = a.rows.len() - 1;
+    for name in ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"] {
+        assert_eq!(a.rows[last][col(&a, name)], b.rows[last][col(&b, name)], "{name}");
+    }
+    let fz = col(&a, "pull_fz");
+    let peak = |t: &Table| t.rows.iter().map(|r| r[fz].abs()).fold(0.0, f64::max);
+    let (pa, pb) = (peak(&a), peak(&b));
+    let work = a.rows[last][col(&a, "external_work")];
+    let (ba, bb) = (a.rows[last][col(&a, "balance")], b.rows[last][col(&b, "balance")]);
+    println!(
+        "pulled bar: {before} rows before the first failure, worst {worst:.2e} of the tolerance; peak {pa} N vs {pb} N; balance {ba:e} vs {bb:e} J of {work:e} J"
+    );
+    assert!((pa - pb).abs() <= 1e-6 * pa, "peak {pa} vs {pb}");
+    assert!((ba - bb).abs() <= 1e-6 * work, "balance {ba} vs {bb}");
+}
+
+/// Two device runs of the same case write the same bytes.
+#[test]
+fn two_device_runs_write_the_same_bytes() {
+    let Some(one) = run("cases/pulled-bar.toml", "gpu", "twice-1", &["--set", "solver.end_time=2.2e-4"]) else {
+        return;
+    };
+    let two = run("cases/pulled-bar.toml", "gpu", "twice-2", &["--set", "solver.end_time=2.2e-4"]).unwrap();
+    assert!(failures(&one) > 0, "the window includes failures");
+    for file in ["history.csv", "failures.csv"] {
+        assert_eq!(read(&one, file), read(&two, file), "{file}");
+    }
+}
+
+/// A device run stopped after its first failures and resumed on the
+/// device ends as the uninterrupted one (the checkpoint brings the joint
+/// histories back from the device, the resume sends them there again).
+#[test]
+fn a_device_run_resumes_bit_for_bit() {
+    let args = ["--set", "solver.end_time=2.2e-4", "--set", "output.checkpoint.interval_steps=0"];
+    let Some(whole) = run("cases/pulled-bar.toml", "gpu", "whole", &args) else { return };
+    let dir = std::env::temp_dir().join("femdem-device-resumed");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().unwrap();
+    let mut first = vec!["run", "cases/pulled-bar.toml", "--out", out, "--device", "gpu", "--stop-after-steps", "2400"];
+    first.extend(args);
+    let o = femdem(&first);
+    assert!(!o.status.success(), "a stopped run ends with an error status");
+    assert!(failures(&dir) > 0, "stopped after failures");
+    let mut again = vec!["run", "cases/pulled-bar.toml", "--device", "gpu", "--resume", out];
+    again.extend(args);
+    let o = femdem(&again);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for file in ["history.csv", "failures.csv"] {
+        assert_eq!(without_comments(&read(&whole, file)), without_comments(&read(&dir, file)), "{file}");
+    }
+}
+
+/// Cases with contact are refused on the device, naming the reason; an
+/// unknown device is refused naming the key.
+#[test]
+fn contact_and_unknown_devices_are_refused() {
+    let dir = std::env::temp_dir().join("femdem-device-refused");
+    let out = dir.to_str().unwrap();
+    let o = femdem(&["run", "cases/brazilian-split.toml", "--out", out, "--overwrite", "--device", "gpu"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(stderr.contains("contact runs on the CPU only") || stderr.contains("no device for the run"), "{stderr}");
+    assert!(stderr.contains("--device gpu"), "{stderr}");
+    let o = femdem(&["run", "cases/pulled-bar.toml", "--out", out, "--overwrite", "--device", "tpu"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && stderr.contains("--device: `device`: `tpu` is not one of cpu, gpu"), "{stderr}");
+    let o = femdem(&["run", "cases/pulled-bar.toml", "--out", out, "--overwrite", "--set", "solver.device=\"fpga\""]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && stderr.contains("pulled-bar.toml") && stderr.contains("`fpga` is not one of"),
+        "{stderr}"
+    );
+}
+
+fn read(dir: &Path, file: &str) -> String {
+    std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{}: {e}", dir.join(file).display()))
+}
+
+fn without_comments(text: &str) -> String {
+    text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n")
+}

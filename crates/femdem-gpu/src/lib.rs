@@ -16,8 +16,11 @@
 //! - the joint pass of Eq. 3–13 (`femdem_fracture::joint_update_fast` on
 //!   the device: `wgsl/joints.wgsl`), histories kept on the device.
 //!
-//! Not yet here: the update and loads, and the solver's switch to this
-//! path (`[solver] device`).
+//! The solver's switch to this path is `femdem_solver::Solver::use_device`
+//! (`[solver] device = "gpu"`, `femdem run --device gpu`). Not yet here:
+//! the update, loads and energy terms on the device (stages 4–6 stay on the
+//! CPU, so each step moves positions, velocities and forces across), and
+//! contact (issue 35).
 //!
 //! This crate knows the material law and the tet's reference shape
 //! (`femdem-material`) and nothing of the solver, the case files or

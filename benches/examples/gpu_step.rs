@@ -1,0 +1,69 @@
+//! The intact jointed step on the CPU and with stage 1 on a GPU
+//! (`Solver::use_device`), side by side, for issue 34's measurement:
+//!
+//! ```text
+//! RAYON_NUM_THREADS=16 target/release/examples/gpu_step 1000000 200
+//! ```
+//!
+//! builds the jointed box of about `TETS` tets (first argument, default
+//! 100,000; `femdem_benches::box_solver`, spinning so that every element
+//! strains and the viscous term runs), steps it `STEPS` times (second
+//! argument, default 100) after 5 steps of warm-up, on the CPU and then
+//! from the same state with the device, and prints both rates in
+//! tet-steps/s, their ratio, and how far the two runs' positions ended
+//! apart (round-off). Without a device it measures the CPU and says why.
+
+use std::time::Instant;
+
+use femdem_benches::box_solver;
+use femdem_solver::{Gpu, Solver, Want};
+
+/// Tet-steps per second of `steps` steps of `s` after 5 of warm-up.
+fn rate(s: &mut Solver, steps: usize) -> f64 {
+    for _ in 0..5 {
+        s.step(Want::default());
+    }
+    let start = Instant::now();
+    for _ in 0..steps {
+        s.step(Want::default());
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    (s.model().num_deformable_tets() * steps) as f64 / seconds
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let tets: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100_000);
+    let steps: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100);
+    let built = Instant::now();
+    let mut cpu = box_solver(tets);
+    println!(
+        "model           {} tets, {} joints, {} nodes (built in {:.1} s)",
+        cpu.model().num_deformable_tets(),
+        cpu.model().joints.len(),
+        cpu.model().num_nodes(),
+        built.elapsed().as_secs_f64()
+    );
+    let snapshot = cpu.snapshot();
+    let on_cpu = rate(&mut cpu, steps);
+    println!("cpu             {on_cpu:.3e} tet-steps/s ({} threads)", rayon::current_num_threads());
+    let gpu = match Gpu::new() {
+        Ok(g) => g,
+        Err(e) => {
+            println!("gpu             not measured: {e}");
+            return;
+        }
+    };
+    let mut dev = box_solver(tets);
+    dev.restore(&snapshot).expect("the same model");
+    let opened = Instant::now();
+    dev.use_device(&gpu).expect("the device takes the model");
+    println!("device          {} (model uploaded in {:.1} s)", gpu.adapter(), opened.elapsed().as_secs_f64());
+    println!("bytes a step    {}", dev.device_bytes_per_step());
+    let on_gpu = rate(&mut dev, steps);
+    println!("gpu             {on_gpu:.3e} tet-steps/s");
+    println!("gpu / cpu       {:.2}", on_gpu / on_cpu);
+    let apart = cpu.state().x.iter().zip(&dev.state().x).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
+    let size = cpu.model().x0.iter().map(|p| p.norm()).fold(0.0, f64::max);
+    println!("positions apart {apart:.3e} m after {} steps (coordinates up to {size:.3e} m)", steps + 5);
+}

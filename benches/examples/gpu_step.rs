@@ -16,7 +16,7 @@
 use std::time::Instant;
 
 use femdem_benches::box_solver;
-use femdem_solver::{Gpu, Solver, Want};
+use femdem_solver::{Gpu, Residency, Solver, Want};
 
 /// Tet-steps per second of `steps` steps of `s` after 5 of warm-up.
 fn rate(s: &mut Solver, steps: usize) -> f64 {
@@ -57,12 +57,14 @@ fn main() {
     let mut dev = box_solver(tets);
     dev.restore(&snapshot).expect("the same model");
     let opened = Instant::now();
-    dev.use_device(&gpu).expect("the device takes the model");
+    dev.use_device(&gpu, Residency::Auto).expect("the device takes the model");
     println!("device          {} (model uploaded in {:.1} s)", gpu.adapter(), opened.elapsed().as_secs_f64());
     println!("bytes a step    {}", dev.device_bytes_per_step());
     let on_gpu = rate(&mut dev, steps);
     println!("gpu             {on_gpu:.3e} tet-steps/s");
     println!("gpu / cpu       {:.2}", on_gpu / on_cpu);
+    dev.sync_device();
+    println!("stages          {}", dev.device_stages().unwrap_or("none"));
     let apart = cpu.state().x.iter().zip(&dev.state().x).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
     let size = cpu.model().x0.iter().map(|p| p.norm()).fold(0.0, f64::max);
     println!("positions apart {apart:.3e} m after {} steps (coordinates up to {size:.3e} m)", steps + 5);

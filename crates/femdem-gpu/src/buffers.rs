@@ -70,6 +70,71 @@ pub(crate) fn read<T: Pod>(gpu: &Gpu, buffer: &wgpu::Buffer, len: usize) -> Vec<
     out
 }
 
+/// Submits `encoder` with copies of `(buffer, offset, bytes)` appended and
+/// returns the copied bytes, each copy starting at a multiple of 8 of the
+/// result: one wait for several read-backs.
+pub(crate) fn submit_and_read(
+    gpu: &Gpu,
+    mut encoder: wgpu::CommandEncoder,
+    copies: &[(&wgpu::Buffer, u64, u64)],
+) -> Vec<Vec<u8>> {
+    let starts: Vec<u64> = copies
+        .iter()
+        .scan(0u64, |at, &(_, _, bytes)| {
+            let start = *at;
+            *at += bytes.div_ceil(8) * 8;
+            Some(start)
+        })
+        .collect();
+    let total = copies.iter().map(|c| c.2.div_ceil(8) * 8).sum::<u64>().max(8);
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back"),
+        size: total,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    for (&(buffer, offset, bytes), &start) in copies.iter().zip(&starts) {
+        if bytes > 0 {
+            encoder.copy_buffer_to_buffer(buffer, offset, &staging, start, bytes);
+        }
+    }
+    gpu.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping a read-back buffer"));
+    gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
+    let out = {
+        let mapped = slice.get_mapped_range();
+        copies.iter().zip(&starts).map(|(c, &s)| mapped[s as usize..(s + c.2) as usize].to_vec()).collect()
+    };
+    staging.unmap();
+    out
+}
+
+/// The u32 words at `indices` of `buffer`, after all submitted work.
+pub(crate) fn read_words(gpu: &Gpu, buffer: &wgpu::Buffer, indices: &[u32]) -> Vec<u32> {
+    if indices.is_empty() {
+        return Vec::new();
+    }
+    let bytes = 4 * indices.len() as u64;
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back words"),
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    for (k, &i) in indices.iter().enumerate() {
+        encoder.copy_buffer_to_buffer(buffer, 4 * u64::from(i), &staging, 4 * k as u64, 4);
+    }
+    gpu.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping a read-back buffer"));
+    gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
+    let out = bytemuck::cast_slice(&slice.get_mapped_range()).to_vec();
+    staging.unmap();
+    out
+}
+
 /// The uniform every kernel takes at `@group(0) @binding(0)`: how many
 /// items it runs over and one kernel-specific word.
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]

@@ -11,7 +11,7 @@ use femdem_core::{Mat3, Real, Vec3};
 use femdem_fracture::{FailureMode, JointHistory};
 use femdem_material::{Law, Material, TetReference};
 
-use crate::buffers::{Params, dispatch, read, storage, write, zeroed};
+use crate::buffers::{Params, dispatch, read, read_words, storage, write, zeroed};
 use crate::device::{Gpu, GpuError};
 use crate::joints::{HISTORY, JointMesh, LAW, mode, pack_history, pack_law, unpack_history};
 use crate::kernels;
@@ -57,24 +57,24 @@ pub struct TetMesh<'a> {
 /// The device's copy of a tet mesh and its state, with the two kernels.
 #[derive(Debug)]
 pub struct Bulk {
-    gpu: Gpu,
+    pub(crate) gpu: Gpu,
     tets_kernel: wgpu::ComputePipeline,
     joints_kernel: wgpu::ComputePipeline,
     gather_kernel: wgpu::ComputePipeline,
-    num_tets: usize,
-    num_joints: usize,
-    num_nodes: usize,
-    x: wgpu::Buffer,
-    v: wgpu::Buffer,
+    pub(crate) num_tets: usize,
+    pub(crate) num_joints: usize,
+    pub(crate) num_nodes: usize,
+    pub(crate) x: wgpu::Buffer,
+    pub(crate) v: wgpu::Buffer,
     tets: wgpu::Buffer,
     refs: wgpu::Buffer,
     tet_mat: wgpu::Buffer,
     materials: wgpu::Buffer,
     tet_slots: wgpu::Buffer,
-    energy: wgpu::Buffer,
+    pub(crate) energy: wgpu::Buffer,
     stress: wgpu::Buffer,
-    v_before: wgpu::Buffer,
-    rate: wgpu::Buffer,
+    pub(crate) v_before: wgpu::Buffer,
+    pub(crate) rate: wgpu::Buffer,
     tet_offsets: wgpu::Buffer,
     tet_table: wgpu::Buffer,
     joints: wgpu::Buffer,
@@ -82,12 +82,15 @@ pub struct Bulk {
     joint_hist: wgpu::Buffer,
     joint_flags: wgpu::Buffer,
     joint_slots: wgpu::Buffer,
-    joint_sums: wgpu::Buffer,
+    pub(crate) joint_sums: wgpu::Buffer,
     joint_failed: wgpu::Buffer,
+    pub(crate) failed_list: wgpu::Buffer,
     joint_consts: wgpu::Buffer,
     joint_offsets: wgpu::Buffer,
     joint_table: wgpu::Buffer,
-    internal: wgpu::Buffer,
+    pub(crate) internal: wgpu::Buffer,
+    /// The update's buffers, once [`Bulk::enable_motion`] has run.
+    pub(crate) motion: Option<crate::motion::Motion>,
 }
 
 /// `[x, y, z, x, y, z, …]` of a slice of vectors.
@@ -161,10 +164,12 @@ impl Bulk {
             joint_slots: zeroed::<Real>(gpu, "joint slots", 18 * nj)?,
             joint_sums: zeroed::<Real>(gpu, "joint sums", 2 * nj)?,
             joint_failed: zeroed::<u32>(gpu, "joint failures", nj)?,
+            failed_list: zeroed::<u32>(gpu, "failed joints", nj + 1)?,
             joint_consts: storage(gpu, "joint constants", &consts)?,
             joint_offsets: storage(gpu, "joint gather offsets", joints.gather_offsets)?,
             joint_table: storage(gpu, "joint gather slots", joints.gather_slots)?,
             internal: zeroed::<Real>(gpu, "internal forces", nodes3)?,
+            motion: None,
             gpu: gpu.clone(),
         })
     }
@@ -187,13 +192,20 @@ impl Bulk {
     /// Runs the tet pass, the joint pass and the gather, with what `want`
     /// asks for besides the forces.
     pub fn forces(&mut self, want: Evaluate) {
+        let mut encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        self.encode_forces(&mut encoder, want);
+        self.gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// [`Bulk::forces`]'s passes, recorded into `encoder`.
+    pub(crate) fn encode_forces(&self, encoder: &mut wgpu::CommandEncoder, want: Evaluate) {
         let gpu = &self.gpu;
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let encoder = &mut *encoder;
         let (stress, energy) = (want.stress, want.energy);
         let flags = u32::from(stress) | u32::from(want.dissipation) << 1;
         dispatch(
             gpu,
-            &mut encoder,
+            encoder,
             &self.tets_kernel,
             Params { count: count(self.num_tets), flags, pad: [0; 2] },
             &[
@@ -211,9 +223,10 @@ impl Bulk {
             ],
         );
         if self.num_joints > 0 {
+            encoder.clear_buffer(&self.failed_list, 0, Some(4));
             dispatch(
                 gpu,
-                &mut encoder,
+                encoder,
                 &self.joints_kernel,
                 Params { count: count(self.num_joints), flags: u32::from(energy), pad: [0; 2] },
                 &[
@@ -226,12 +239,13 @@ impl Bulk {
                     &self.joint_sums,
                     &self.joint_failed,
                     &self.joint_consts,
+                    &self.failed_list,
                 ],
             );
         }
         dispatch(
             gpu,
-            &mut encoder,
+            encoder,
             &self.gather_kernel,
             Params { count: count(self.num_nodes), flags: 0, pad: [0; 2] },
             &[
@@ -244,7 +258,6 @@ impl Bulk {
                 &self.internal,
             ],
         );
-        gpu.queue.submit([encoder.finish()]);
     }
 
     /// The gathered internal force on every node (read back).
@@ -299,6 +312,22 @@ impl Bulk {
         let numbers: Vec<Real> = read(&self.gpu, &self.joint_hist, HISTORY * self.num_joints);
         let flags: Vec<u32> = read(&self.gpu, &self.joint_flags, self.num_joints);
         unpack_history(&numbers, &flags)
+    }
+
+    /// The joints that failed in the last evaluation and how, in joint
+    /// order (reads back one word, and two per failed joint).
+    pub fn failures(&self) -> Vec<(u32, FailureMode)> {
+        if self.num_joints == 0 {
+            return Vec::new();
+        }
+        let count = read::<u32>(&self.gpu, &self.failed_list, 1)[0] as usize;
+        if count == 0 {
+            return Vec::new();
+        }
+        let mut joints: Vec<u32> = read::<u32>(&self.gpu, &self.failed_list, count + 1)[1..].to_vec();
+        joints.sort_unstable();
+        let words = read_words(&self.gpu, &self.joint_failed, &joints);
+        joints.into_iter().zip(words).map(|(j, w)| (j, mode(w).expect("a failed joint has a mode"))).collect()
     }
 
     /// How each joint that failed in the last evaluation failed (read back).

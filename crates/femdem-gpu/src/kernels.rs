@@ -9,14 +9,33 @@ const MATH: &str = include_str!("wgsl/math.wgsl");
 
 /// The tet pass (Eq. 1–2).
 pub(crate) fn tets() -> String {
+    const _: () = assert!(femdem_material::J_FLOOR == 1e-2, "wgsl/tets.wgsl's J_FLOOR");
     [COMMON, MATH, include_str!("wgsl/tets.wgsl")].concat()
 }
 
 /// The joint pass (Eq. 3–13). Its softening curve takes `(1 − D)^c` as a
 /// cube of a square, which holds for `c = 6` only.
 pub(crate) fn joints() -> String {
-    const _: () = assert!(femdem_fracture::softening::C == 6.0, "wgsl/joints.wgsl's z(D) assumes c = 6");
+    use femdem_fracture::softening::{A, B, C};
+    const _: () = assert!(C == 6.0, "wgsl/joints.wgsl's z(D) assumes c = 6");
+    const _: () = assert!(A == 0.63 && B == 1.8, "wgsl/joints.wgsl's ZA, ZB are Eq. 12's a, b");
+    const _: () = assert!(femdem_fracture::DOMINANT_SHARE == 0.75, "wgsl/joints.wgsl's DOMINANT_SHARE");
     [COMMON, MATH, include_str!("wgsl/joints.wgsl")].concat()
+}
+
+/// The update of stage 5 (no surface loads, no contact).
+pub(crate) fn update() -> String {
+    [COMMON, include_str!("wgsl/update.wgsl")].concat()
+}
+
+/// Sums in the CPU's chunk order.
+pub(crate) fn reduce() -> String {
+    [COMMON, include_str!("wgsl/reduce.wgsl")].concat()
+}
+
+/// Listed nodes' state.
+pub(crate) fn compact() -> String {
+    [COMMON, include_str!("wgsl/compact.wgsl")].concat()
 }
 
 /// The gather of slots into nodal forces.

@@ -16,10 +16,13 @@
 //! - the joint pass of Eq. 3–13 (`femdem_fracture::joint_update_fast` on
 //!   the device: `wgsl/joints.wgsl`), histories kept on the device.
 //!
+//! - [`motion`]: the update, the energy sums (in the CPU's chunk order)
+//!   and the drives' nodes' state, for scenes without surface loads, so
+//!   that positions and velocities stay on the device.
+//!
 //! The solver's switch to this path is `femdem_solver::Solver::use_device`
 //! (`[solver] device = "gpu"`, `femdem run --device gpu`). Not yet here:
-//! the update, loads and energy terms on the device (stages 4–6 stay on the
-//! CPU, so each step moves positions, velocities and forces across), and
+//! surface loads on the device (with them, only stage 1 runs there) and
 //! contact (issue 35).
 //!
 //! This crate knows the material law and the tet's reference shape
@@ -32,7 +35,9 @@ pub mod device;
 mod joints;
 mod kernels;
 pub mod math;
+pub mod motion;
 
 pub use bulk::{Bulk, Evaluate, TetMesh};
 pub use device::{Gpu, GpuError};
 pub use joints::JointMesh;
+pub use motion::{MotionSetup, Sum};

@@ -78,9 +78,15 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
             Some(femdem_solver::Gpu::new().map_err(|e| anyhow::anyhow!("{from}: no device for the run: {e}"))?)
         }
     };
+    if let (Some(g), true) = (&gpu, solver.contact().is_some()) {
+        bail!(
+            "{from}: {}: contact runs on the CPU only (contact on the device is not built yet); run this case on the CPU",
+            g.adapter()
+        );
+    }
     let attach = |solver: &mut Solver| -> Result<()> {
         if let Some(g) = &gpu {
-            solver.use_device(g).map_err(|e| anyhow::anyhow!("{from}: {e}"))?;
+            solver.use_device(g, femdem_solver::Residency::Auto).map_err(|e| anyhow::anyhow!("{from}: {e}"))?;
         }
         Ok(())
     };
@@ -119,15 +125,17 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
             report_static(&solved, observer);
             refuse_if_stopped(stop, "during the static start")?;
         }
+        // Attached before `--overwrite` clears anything: a refusal keeps
+        // the earlier results.
+        attach(solver)?;
         if overwrite {
             if let Some(line) = outdir::clear(&dir, &stem)? {
                 observer.note(&line);
             }
         }
-        attach(solver)?;
         let mut comments = history_comments(&prepared.case);
-        if let Some(adapter) = solver.device() {
-            comments.push(format!("device: stage 1 (tets, joints, gather) on {adapter}"));
+        if let (Some(adapter), Some(stages)) = (solver.device(), solver.device_stages()) {
+            comments.push(format!("device: {adapter}: {stages}"));
         }
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
@@ -151,9 +159,9 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         run.stable.critical,
         run.steps
     ));
-    if let Some(adapter) = solver.device() {
+    if let (Some(adapter), Some(stages)) = (solver.device(), solver.device_stages()) {
         observer.note(&format!(
-            "stage 1 (tets, joints, gather) on {adapter}; {} bytes a step between host and device (more on output steps)",
+            "on {adapter}: {stages}; {} bytes a step between host and device (more on output steps)",
             solver.device_bytes_per_step()
         ));
     }
@@ -281,7 +289,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         history,
         checkpoint: last_checkpoint,
         overrides: prepared.case.overrides.args(),
-        device: solver.device().map(str::to_owned),
+        device: solver.device().zip(solver.device_stages()).map(|(a, s)| format!("{a}: {s}")),
         device_bytes: solver.device_bytes_per_step(),
     })
 }

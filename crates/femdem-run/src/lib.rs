@@ -149,7 +149,7 @@ pub struct Summary {
     /// The `--set` overrides, canonical, as a resumed run must repeat
     /// them.
     pub overrides: Vec<String>,
-    /// The adapter stage 1 ran on (`None`: the CPU).
+    /// The adapter the step ran on and which stages (`None`: the CPU).
     pub device: Option<String>,
     /// Bytes a step moved between host and device at least (0 on the CPU).
     pub device_bytes: u64,

@@ -16,19 +16,35 @@
 
 use femdem_core::{Real, Vec3};
 use femdem_fracture::JointHistory;
-use femdem_gpu::{Bulk, Evaluate, Gpu, GpuError, JointMesh, TetMesh};
+use femdem_gpu::{Bulk, Evaluate, Gpu, GpuError, JointMesh, MotionSetup, TetMesh};
 
 use crate::SolverError;
 use crate::forces::{CHUNK, Dissipation, ForceSums, Want, Workspace};
 use crate::model::Model;
+use crate::state::State;
 
-/// The device's copy of the model and its joint histories.
+/// The device's copy of the model and its joint histories (and, resident,
+/// of the positions and velocities).
 pub(crate) struct OnDevice {
-    bulk: Bulk,
+    pub(crate) bulk: Bulk,
     /// The adapter's name.
     pub(crate) adapter: String,
-    /// Whether the host's joint histories are the device's.
+    /// Whether the host's joint histories (and, resident, positions,
+    /// velocities, the velocities of the step before and the internal
+    /// forces) are the device's.
     pub(crate) synced: bool,
+    /// Whether the host changed its state since the device's last step
+    /// (an intervention, a restore): sent up before the next step.
+    pub(crate) edited: bool,
+    /// Whether positions and velocities stay on the device between steps
+    /// (the update runs there: scenes without surface loads), or go up
+    /// and down every step.
+    pub(crate) resident: bool,
+    /// Resident: the nodes whose state stage 4 reads (the drives'), in the
+    /// order [`Bulk::listed`] returns them.
+    pub(crate) listed: Vec<u32>,
+    /// Resident: the joints whose `failed_now` entry the last step set.
+    pub(crate) flagged: Vec<u32>,
 }
 
 /// Bytes one step moves between host and device at least: positions and
@@ -44,7 +60,11 @@ pub(crate) fn bytes_per_step(model: &Model, viscous: bool) -> u64 {
 impl OnDevice {
     /// Uploads `model` and the joint `history` to `gpu`.
     pub(crate) fn new(gpu: &Gpu, model: &Model, history: &[JointHistory]) -> Result<OnDevice, GpuError> {
-        let material: Vec<Option<u16>> = model.tet_material.iter().map(|m| m.index().map(|i| i as u16)).collect();
+        let material: Vec<Option<u16>> = model
+            .tet_material
+            .iter()
+            .map(|m| m.index().map(|i| u16::try_from(i).expect("TetMaterial holds a u16")))
+            .collect();
         let bulk = Bulk::new(
             gpu,
             TetMesh {
@@ -64,7 +84,73 @@ impl OnDevice {
                 gather_slots: &model.joint_gather.slots,
             },
         )?;
-        Ok(OnDevice { bulk, adapter: gpu.adapter(), synced: true })
+        Ok(OnDevice {
+            bulk,
+            adapter: gpu.adapter(),
+            synced: true,
+            edited: false,
+            resident: false,
+            listed: Vec::new(),
+            flagged: Vec::new(),
+        })
+    }
+
+    /// Keeps positions and velocities on the device from now on: `setup`
+    /// for the update, `x`, `v`, `v_before` the state to start from.
+    pub(crate) fn make_resident(
+        &mut self,
+        setup: MotionSetup<'_>,
+        x: &[Vec3],
+        v: &[Vec3],
+        v_before: &[Vec3],
+    ) -> Result<(), GpuError> {
+        self.bulk.enable_motion(setup)?;
+        self.listed = setup.listed.to_vec();
+        self.bulk.set_state(x, v);
+        if !v_before.is_empty() {
+            self.bulk.set_before(v_before);
+        }
+        self.resident = true;
+        Ok(())
+    }
+
+    /// Sends the host's state up if the host changed it since the last
+    /// step ([`OnDevice::edited`]).
+    pub(crate) fn push_if_edited(&mut self, state: &State, v_before: &[Vec3]) {
+        if !self.edited {
+            return;
+        }
+        self.bulk.set_history(&state.joints);
+        if self.resident {
+            self.bulk.set_state(&state.x, &state.v);
+            if !v_before.is_empty() {
+                self.bulk.set_before(v_before);
+            }
+        }
+        self.edited = false;
+        self.synced = true;
+    }
+
+    /// Brings everything the device holds of the state back to the host.
+    pub(crate) fn pull_all(&mut self, state: &mut State, v_before: &mut [Vec3], internal: &mut [Vec3]) {
+        if self.synced {
+            return;
+        }
+        state.joints.copy_from_slice(&self.bulk.joint_history());
+        if self.resident {
+            self.pull_motion(state);
+            if !v_before.is_empty() {
+                v_before.copy_from_slice(&self.bulk.velocities_before());
+            }
+            internal.copy_from_slice(&self.bulk.internal());
+        }
+        self.synced = true;
+    }
+
+    /// Resident: positions and velocities back to the host.
+    pub(crate) fn pull_motion(&mut self, state: &mut State) {
+        state.x.copy_from_slice(&self.bulk.positions());
+        state.v.copy_from_slice(&self.bulk.velocities());
     }
 
     /// [`crate::forces::internal_forces`] on the device: fills
@@ -105,18 +191,6 @@ impl OnDevice {
         }
         sums
     }
-
-    /// Copies the device's joint histories into `history`.
-    pub(crate) fn pull(&mut self, history: &mut [JointHistory]) {
-        history.copy_from_slice(&self.bulk.joint_history());
-        self.synced = true;
-    }
-
-    /// Replaces the device's joint histories by `history`.
-    pub(crate) fn push(&mut self, history: &[JointHistory]) {
-        self.bulk.set_history(history);
-        self.synced = true;
-    }
 }
 
 /// `Σ_chunks Σ_{k in chunk} f(item_k)`, chunks of [`CHUNK`] summed in
@@ -125,47 +199,95 @@ fn chunked<T>(items: &[T], f: impl Fn(&T) -> Real) -> Real {
     items.chunks(CHUNK).map(|c| c.iter().fold(0.0, |a, x| a + f(x))).fold(0.0, |a, c| a + c)
 }
 
+/// How much of the step a device takes ([`crate::Solver::use_device`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Residency {
+    /// The whole step without contact where the scene allows it (no surface
+    /// loads: positions and velocities stay on the device, the host reads
+    /// the drives' nodes, the sums and the failures each step, and the
+    /// whole state only on steps that ask for stresses or energies), else
+    /// stage 1 alone.
+    Auto,
+    /// Stage 1 alone (tets, joints, gather): positions and velocities go up
+    /// and forces come down every step.
+    ForcesOnly,
+}
+
 impl crate::Solver {
-    /// Runs stage 1 of every later step (tets, joints, gather) on `gpu`;
-    /// the rest of the step stays on the CPU. Results agree with the CPU's
-    /// to round-off (`femdem-gpu`'s tests; on lavapipe they are the CPU's
-    /// bit for bit).
+    /// Runs the step on `gpu` from the next step on, as much of it as
+    /// `residency` allows ([`Residency`]); the rest stays on the CPU.
+    /// Results agree with the CPU's to round-off (`femdem-gpu`'s tests;
+    /// on lavapipe the joints are the CPU's bit for bit).
     ///
     /// # Errors
     /// A solver with contact ([`SolverError::Device`]: contact on the
     /// device is not built), or a model the device cannot hold.
-    pub fn use_device(&mut self, gpu: &Gpu) -> Result<(), SolverError> {
+    pub fn use_device(&mut self, gpu: &Gpu, residency: Residency) -> Result<(), SolverError> {
         if self.evolving.contact.is_some() {
             return Err(SolverError::Device(format!(
                 "{}: contact runs on the CPU only (contact on the device is not built yet); run this case on the CPU",
                 gpu.adapter()
             )));
         }
+        self.sync_device();
         let device = OnDevice::new(gpu, &self.scene.model, &self.evolving.state.joints)
             .map_err(|e| SolverError::Device(e.to_string()))?;
         self.pipeline.device = Some(device);
+        if residency == Residency::Auto && self.scene.loads.surfaces.is_empty() {
+            self.make_resident().map_err(|e| SolverError::Device(e.to_string()))?;
+        }
         Ok(())
     }
 
-    /// The adapter stage 1 runs on, or `None` on the CPU.
+    /// The adapter the step runs on, or `None` on the CPU.
     pub fn device(&self) -> Option<&str> {
         self.pipeline.device.as_ref().map(|d| d.adapter.as_str())
     }
 
-    /// Bytes a step moves between host and device at least (positions and
-    /// velocities up, internal forces and failures down), or 0 on the CPU;
-    /// output steps read back stresses and energies on top.
-    pub fn device_bytes_per_step(&self) -> u64 {
-        if self.pipeline.device.is_some() { bytes_per_step(&self.scene.model, self.scene.viscous) } else { 0 }
+    /// Which stages run on the device (`None` on the CPU).
+    pub fn device_stages(&self) -> Option<&'static str> {
+        self.pipeline.device.as_ref().map(|d| {
+            if d.resident {
+                "stages 1 and 5 (tets, joints, gather, update, the energy sums); failures, drives and the account on \
+                 the CPU"
+            } else {
+                "stage 1 (tets, joints, gather); the rest on the CPU"
+            }
+        })
     }
 
-    /// Brings the joint histories of [`Solver::state`] up to date with the
-    /// device's (nothing to do on the CPU). A snapshot needs it.
+    /// Bytes a step moves between host and device at least, or 0 on the
+    /// CPU; output steps read back positions, velocities, stresses and
+    /// energies on top, and a step with failures the positions.
+    pub fn device_bytes_per_step(&self) -> u64 {
+        match &self.pipeline.device {
+            None => 0,
+            Some(d) if d.resident => {
+                // Failure count, the seven sums, the listed nodes' state,
+                // the drive table and the step's scalars.
+                4 + 56 + 72 * d.listed.len() as u64 + 32 * self.scene.loads.drives.len() as u64 + 16
+            }
+            Some(_) => bytes_per_step(&self.scene.model, self.scene.viscous),
+        }
+    }
+
+    /// Brings the state the device holds (joint histories; resident, also
+    /// positions, velocities and the velocities of the step before) back
+    /// into [`Solver::state`] (nothing to do on the CPU). A snapshot needs
+    /// it.
     pub fn sync_device(&mut self) {
         if let Some(device) = &mut self.pipeline.device {
-            if !device.synced {
-                device.pull(&mut self.evolving.state.joints);
-            }
+            let e = &mut self.evolving;
+            device.pull_all(&mut e.state, &mut e.v_before, &mut self.pipeline.workspace.internal);
+        }
+    }
+
+    /// Before the host changes the state between steps: brings it back
+    /// from the device, and has it sent up again before the next step.
+    pub(crate) fn edit_on_host(&mut self) {
+        self.sync_device();
+        if let Some(device) = &mut self.pipeline.device {
+            device.edited = true;
         }
     }
 }

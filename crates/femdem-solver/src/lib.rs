@@ -82,6 +82,7 @@ mod step;
 mod timestep;
 
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
+pub use device::Residency;
 pub use error::SolverError;
 pub use femdem_gpu::{Gpu, GpuError};
 pub use forces::{Dissipation, ForceSums, Want, Workspace};

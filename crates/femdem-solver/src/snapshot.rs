@@ -121,7 +121,8 @@ impl Solver {
     /// settings to continue bit for bit from here.
     pub fn snapshot(&self) -> Vec<u8> {
         let mut out = Vec::new();
-        self.write_snapshot(&mut out).expect("writing to memory");
+        self.write_snapshot(&mut out)
+            .expect("writing to memory (with the state on a device, call Solver::sync_device first)");
         out
     }
 
@@ -237,7 +238,9 @@ impl Solver {
         self.pipeline.workspace.internal.fill(Vec3::zeros());
         self.pipeline.forces_current = false;
         if let Some(device) = &mut self.pipeline.device {
-            device.push(&self.evolving.state.joints);
+            // The host's state is the truth now: sent up before the next step.
+            device.synced = true;
+            device.edited = true;
         }
         Ok(())
     }

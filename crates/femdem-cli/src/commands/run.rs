@@ -73,7 +73,7 @@ pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> 
     println!("throughput  {:.3e} tet-steps/s ({} threads)", s.throughput, rayon::current_num_threads());
     if let Some(adapter) = &s.device {
         println!(
-            "device      stage 1 (tets, joints, gather) on {adapter}; {} bytes a step between host and device",
+            "device      {adapter}; {} bytes a step between host and device (more on output steps)",
             s.device_bytes
         );
     }

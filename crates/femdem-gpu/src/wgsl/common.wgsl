@@ -5,7 +5,8 @@
 struct Params {
     count: u32,
     flags: u32,
-    pad0: u32,
+    // A kernel's own number (reduce.wgsl: the items it sums).
+    extra: u32,
     pad1: u32,
 }
 

@@ -16,7 +16,8 @@
 //           contribution (work of a failed joint, work less stored energy
 //           of an intact one; flag bit 0)
 //   failed  failed[j]: 0 none, else 1 + FailureMode (tensile, shear, mixed,
-//           collapsed) when the joint failed in this evaluation
+//           collapsed) when the joint failed in this evaluation, and j in
+//           failed_list
 // consts: z(0) (the CPU's, so that an undamaged point softens alike on
 // both), the area under z (the exact calibration).
 
@@ -29,6 +30,14 @@
 @group(0) @binding(7) var<storage, read_write> sums: array<f64>;
 @group(0) @binding(8) var<storage, read_write> failed: array<u32>;
 @group(0) @binding(9) var<storage, read> consts: array<f64>;
+// [0]: how many joints failed in this evaluation; [1..]: which (in no
+// particular order: the host sorts them). The host zeroes [0] first.
+@group(0) @binding(10) var<storage, read_write> failed_list: array<atomic<u32>>;
+
+fn report_failure(j: u32) {
+    let k = atomicAdd(&failed_list[0], 1u);
+    atomicStore(&failed_list[k + 1u], j);
+}
 
 const MODE_TENSILE: u32 = 1u;
 const MODE_SHEAR: u32 = 2u;
@@ -340,6 +349,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         flags[j] = fl | 64u;
         hist[hb + 4u] = 0.0;
         failed[j] = MODE_COLLAPSED;
+        report_failure(j);
         zero_slots(j);
         if (want_energy) {
             sums[2u * j + 1u] = hist[hb + 5u];
@@ -427,6 +437,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
             mode = MODE_MIXED;
         }
         failed[j] = mode;
+        report_failure(j);
         zero_slots(j);
         if (want_energy) {
             // The joint is failed now: all its work is lost.

@@ -2,8 +2,10 @@
 //
 // SPIR-V's extended instructions `Log` and `Exp` take 16- and 32-bit floats
 // only (Vulkan drivers return garbage or single precision for f64), so the
-// kernels carry their own, built from what is exact or correctly rounded
-// in f64 on every Vulkan device: +, -, *, /, `ldexp` and comparisons.
+// kernels carry their own, built from +, -, *, /, `ldexp` and comparisons
+// alone. `ldexp` is exact; Vulkan does not promise correctly rounded f64
+// division everywhere, so the tests (crates/femdem-gpu/tests/gpu/math.rs,
+// in ulps against the CPU's libm) are what vouches for a device.
 //
 // ln x, x > 0 finite: x = m 2^e with m in [1/sqrt2, sqrt2) (e from the
 // f32 logarithm, then corrected; `ldexp` is exact), and

@@ -115,13 +115,15 @@ fn joint_pass_matches_the_cpu_kernel_through_failure() {
     for step in 0..STEPS {
         let x: Vec<Vec3> = paths.iter().flat_map(|p| nodes(p, step)).collect();
         bulk.set_state(&x, &v);
-        bulk.forces(Evaluate { energy: true, ..Evaluate::default() });
+        // Every other step without energies, as most steps of a run.
+        let energy = step % 2 == 0;
+        bulk.forces(Evaluate { energy, ..Evaluate::default() });
         let (slots_gpu, hist_gpu, failed_gpu, sums_gpu) =
             (bulk.joint_slots(), bulk.joint_history(), bulk.failed_now(), bulk.joint_sums());
         for j in 0..n {
             let xp: [Vec3; 6] = std::array::from_fn(|k| x[6 * j + k]);
             let was_failed = cpu[j].failed;
-            let out = joint_update_fast(&consts, &law[j], &mut cpu[j], &xp, true);
+            let out = joint_update_fast(&consts, &law[j], &mut cpu[j], &xp, energy);
             assert_eq!(failed_gpu[j], out.failed, "joint {j} at step {step}: failure");
             assert_eq!(hist_gpu[j].failed, cpu[j].failed, "joint {j} at step {step}");
             if let Some(m) = out.failed {
@@ -148,8 +150,10 @@ fn joint_pass_matches_the_cpu_kernel_through_failure() {
             }
             // The energy sums the solver takes (forces::joint_chunk).
             let fracture = if was_failed || cpu[j].failed { cpu[j].work } else { cpu[j].work - out.energy };
-            worst_w = worst_w.max((sums_gpu[j][0] - out.energy).abs() / (eps * kappa * work_scale));
-            worst_w = worst_w.max((sums_gpu[j][1] - fracture).abs() / (eps * kappa * work_scale));
+            if energy {
+                worst_w = worst_w.max((sums_gpu[j][0] - out.energy).abs() / (eps * kappa * work_scale));
+                worst_w = worst_w.max((sums_gpu[j][1] - fracture).abs() / (eps * kappa * work_scale));
+            }
             assert_eq!(hist_gpu[j].softened, cpu[j].softened, "joint {j} at step {step}");
         }
     }

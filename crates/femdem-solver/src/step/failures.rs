@@ -34,7 +34,7 @@ impl Solver {
     /// all the work done on the joint (its stored energy included) counts as
     /// `fracture` energy from then on.
     pub fn break_joints(&mut self, joints: &[u32]) {
-        self.sync_device();
+        self.edit_on_host();
         for &j in joints {
             let history = &mut self.evolving.state.joints[j as usize];
             if !history.failed {
@@ -44,9 +44,6 @@ impl Solver {
                 let area = k.as_ref().map_or(0.0, |k| k.frame.area);
                 self.unbond(j as usize, closed(k.as_ref()), area);
             }
-        }
-        if let Some(device) = &mut self.pipeline.device {
-            device.push(&self.evolving.state.joints);
         }
     }
 

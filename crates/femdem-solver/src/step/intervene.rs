@@ -115,6 +115,7 @@ impl Solver {
             return Err(SolverError::Intervention(format!("damp: keep must lie in [0, 1], got {keep}")));
         }
         self.check_forces("damp")?;
+        self.edit_on_host();
         let mut removed = 0.0;
         for i in 0..self.evolving.state.v.len() {
             let v = self.evolving.state.v[i] * keep;
@@ -143,6 +144,7 @@ impl Solver {
             return Err(SolverError::Intervention(format!("kick: the velocity change {dv:?} is not finite")));
         }
         self.check_forces("kick")?;
+        self.edit_on_host();
         let v = self.evolving.state.v[node] + dv;
         let work = self.replace_velocity(node, v);
         self.evolving.ledger.kicks += work;

@@ -86,6 +86,7 @@ mod failures;
 mod intervene;
 mod prescribed;
 mod record;
+mod resident;
 mod start;
 mod update;
 
@@ -98,7 +99,7 @@ pub use record::{FailureCounts, StepRecord};
 use crate::SolverError;
 use crate::contact::{Contact, ContactEnergy, ContactModel, ContactSettings};
 use crate::device::OnDevice;
-use crate::forces::{Dissipation, Want, Workspace, internal_forces};
+use crate::forces::{Dissipation, ForceSums, Want, Workspace, internal_forces};
 use crate::ledger::{Ledger, energy_floor};
 use crate::loads::Loads;
 use crate::model::Model;
@@ -325,6 +326,12 @@ impl Solver {
     /// [`Solver::set_velocity`], [`Solver::start_displaced`],
     /// [`Solver::restore`]).
     ///
+    /// With the step on a device ([`Solver::use_device`]) the joint
+    /// histories are the device's as of the last [`Solver::sync_device`];
+    /// with a resident device, so are the positions and velocities, which
+    /// a step brings back itself when it asked for stresses or energies or
+    /// had failures (what a run's output and guard read).
+    ///
     /// ```compile_fail
     /// fn tamper(s: &mut femdem_solver::Solver) {
     ///     s.state.v[0].x = 1.0; // private: use Solver::kick
@@ -335,7 +342,10 @@ impl Solver {
     }
 
     /// The force workspace: the tet stresses of the last step that asked
-    /// for them (`Want::stress`), the internal forces.
+    /// for them (`Want::stress`), the internal forces. With the step on a
+    /// device ([`Solver::use_device`]) the element slots are not filled,
+    /// and the internal forces of a resident device are the drives' nodes'
+    /// only until [`Solver::sync_device`].
     pub fn workspace(&self) -> &Workspace {
         &self.pipeline.workspace
     }
@@ -353,6 +363,7 @@ impl Solver {
     /// kinetic energy as energy no force accounts for, and
     /// [`Solver::check_energy`] stops a run on it.
     pub fn set_velocity(&mut self, v: impl Fn(&Vec3) -> Vec3) {
+        self.edit_on_host();
         for (vi, x) in self.evolving.state.v.iter_mut().zip(&self.scene.model.x0) {
             *vi = v(x);
         }
@@ -384,6 +395,13 @@ impl Solver {
         let dt = self.scene.params.dt;
         let t = self.evolving.state.time;
         let want = Want { energy: want.energy || self.evolving.state.step == 0, ..want };
+        if let Some(device) = &mut self.pipeline.device {
+            device.push_if_edited(&self.evolving.state, &self.evolving.v_before);
+            if device.resident {
+                self.advance_resident(want);
+                return;
+            }
+        }
         // 1. Internal forces at x_n.
         let dissipation =
             if self.scene.viscous { Dissipation::Since(&self.evolving.v_before) } else { Dissipation::None };
@@ -438,8 +456,13 @@ impl Solver {
             dt,
             want.energy,
         );
-        // 6. The energy account (centred on t_n: module documentation) and
-        // the record.
+        self.account(sums, powers, first_new, t, want);
+    }
+
+    /// Stage 6 of the step: the energy account (centred on `t_n`: module
+    /// documentation) and the record of step `n`; then the clock moves on.
+    fn account(&mut self, sums: ForceSums, powers: update::Powers, first_new: usize, t: Real, want: Want) {
+        let dt = self.scene.params.dt;
         let ledger = &mut self.evolving.ledger;
         ledger.gravity.book(0.5 * dt * powers.back, 0.5 * dt * powers.ahead);
         let surface = self.pipeline.external.surface_powers(&self.evolving.state.v);

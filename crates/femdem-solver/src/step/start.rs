@@ -45,6 +45,7 @@ impl Solver {
         if let Some(i) = u.iter().position(|d| !d.iter().all(|c| c.is_finite())) {
             return bad(format!("node {i}: not finite"));
         }
+        self.edit_on_host();
         let (table, drives) = (&self.pipeline.external.prescribed, &self.scene.loads.drives);
         if let Some((i, c)) = (0..u.len())
             .flat_map(|i| (0..3).map(move |c| (i, c)))

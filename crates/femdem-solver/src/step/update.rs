@@ -14,7 +14,7 @@ use crate::state::State;
 /// What the update reports for the energy account (see `super`'s module
 /// documentation for the time-centring).
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Powers {
+pub(crate) struct Powers {
     /// `Σ m_i g · v_{n−½}` over the nodes: gravity's power against the
     /// velocity before step `n`, W (the surface loads' powers are each
     /// load's own: `External::surface_powers`).

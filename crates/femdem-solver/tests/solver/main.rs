@@ -15,6 +15,7 @@ mod contact_pressed;
 mod contact_start;
 mod contact_step;
 mod determinism;
+mod device;
 mod energy;
 mod energy_guard;
 mod extremes;

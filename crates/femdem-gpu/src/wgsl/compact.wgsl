@@ -1,0 +1,24 @@
+// The positions, velocities and internal forces of listed nodes, nine
+// numbers each (x, v, f), for the host's stage 4 (the drives' reactions
+// and displacements) without reading whole arrays.
+
+@group(0) @binding(1) var<storage, read> x: array<f64>;
+@group(0) @binding(2) var<storage, read> v: array<f64>;
+@group(0) @binding(3) var<storage, read> internal: array<f64>;
+@group(0) @binding(4) var<storage, read> nodes: array<u32>;
+@group(0) @binding(5) var<storage, read_write> out: array<f64>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3<u32>,
+        @builtin(local_invocation_index) local: u32) {
+    let k = item(wg, nwg, local);
+    if (k >= params.count) {
+        return;
+    }
+    let n = nodes[k];
+    for (var c = 0u; c < 3u; c++) {
+        out[9u * k + c] = x[3u * n + c];
+        out[9u * k + 3u + c] = v[3u * n + c];
+        out[9u * k + 6u + c] = internal[3u * n + c];
+    }
+}

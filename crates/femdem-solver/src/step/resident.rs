@@ -1,0 +1,138 @@
+//! The step with positions and velocities resident on a device
+//! ([`crate::Residency::Auto`] on a scene without surface loads or
+//! contact): the same six stages as [`Solver::step`]'s, with stages 1 and
+//! 5 and the sums on the device.
+//!
+//! Each step reads back one word (how many joints failed), the drives'
+//! nodes (position, velocity and internal force, for stage 4's reactions
+//! and displacements, computed by the CPU's code) and the seven sums; a
+//! step with failures also the positions and velocities (the record needs
+//! the failed joints' geometry), and a step that asks for stresses or
+//! energies the whole state, so that what the output and the run guard
+//! read of [`Solver::state`] is current after it.
+
+use femdem_core::Vec3;
+use femdem_gpu::{Evaluate, MotionSetup, Sum};
+
+use super::Solver;
+use super::external::weight;
+use super::prescribed::Claim;
+use super::update::Powers;
+use crate::forces::{ForceSums, Want};
+
+impl Solver {
+    /// Readies the device's update: masses, weights, the prescribed
+    /// components, the drives' nodes; sends the state up.
+    pub(crate) fn make_resident(&mut self) -> Result<(), femdem_gpu::GpuError> {
+        let model = &self.scene.model;
+        let loads = &self.scene.loads;
+        let weights: Vec<Vec3> = (0..model.num_nodes()).map(|i| weight(model, loads, i)).collect();
+        let claims: Vec<[u32; 3]> = self
+            .pipeline
+            .external
+            .prescribed
+            .iter()
+            .map(|c| {
+                c.map(|claim| match claim {
+                    Claim::Free => 0,
+                    Claim::Fixed => 1,
+                    Claim::Drive(d) => 2 + u32::from(d),
+                })
+            })
+            .collect();
+        let mut listed: Vec<u32> = loads.drives.iter().flat_map(|d| d.nodes.iter().copied()).collect();
+        listed.sort_unstable();
+        listed.dedup();
+        let setup = MotionSetup {
+            mass: &model.mass,
+            weight: &weights,
+            claims: &claims,
+            drives: loads.drives.len(),
+            listed: &listed,
+        };
+        let e = &self.evolving;
+        let device = self.pipeline.device.as_mut().expect("a device");
+        device.make_resident(setup, &e.state.x, &e.state.v, &e.v_before)
+    }
+
+    /// [`Solver::step`]'s work with the state on the device.
+    pub(super) fn advance_resident(&mut self, want: Want) {
+        let dt = self.scene.params.dt;
+        let t = self.evolving.state.time;
+        let viscous = self.scene.viscous;
+        let device = self.pipeline.device.as_mut().expect("a resident device");
+        let ws = &mut self.pipeline.workspace;
+        // 1. Internal forces at x_n, on the device, with the sums asked
+        // for and the drives' nodes' state read back together.
+        for &j in &device.flagged {
+            ws.failed_now[j as usize] = None;
+        }
+        device.flagged.clear();
+        let mut sums_wanted = Vec::new();
+        if viscous {
+            sums_wanted.push(Sum::Dissipation);
+        }
+        if want.energy {
+            sums_wanted.extend([Sum::TetEnergy, Sum::JointEnergy, Sum::Fracture]);
+        }
+        let evaluate = Evaluate { stress: want.stress, energy: want.energy, dissipation: viscous };
+        let (failed, listed) = device.bulk.forces_resident(evaluate, &sums_wanted);
+        device.synced = false;
+        self.pipeline.forces_current = true;
+        if want.stress {
+            ws.stress.copy_from_slice(&device.bulk.stresses());
+        }
+        let failures = if failed > 0 { device.bulk.failures() } else { Vec::new() };
+        for &(j, mode) in &failures {
+            ws.failed_now[j as usize] = Some(mode);
+            device.flagged.push(j);
+        }
+        // 2. Failures: the record reads the failed joints' positions.
+        let first_new = self.evolving.failures.len();
+        if !failures.is_empty() {
+            device.pull_motion(&mut self.evolving.state);
+            self.record_failures(t);
+        }
+        // 4. External forces: the drives' reactions from their nodes' state,
+        // by the CPU's code (no surface loads here).
+        let device = self.pipeline.device.as_ref().expect("a resident device");
+        let state = &mut self.evolving.state;
+        let internal = &mut self.pipeline.workspace.internal;
+        for (&i, [x, v, f]) in device.listed.iter().zip(listed) {
+            let i = i as usize;
+            (state.x[i], state.v[i], internal[i]) = (x, v, f);
+        }
+        self.pipeline.external.evaluate(
+            &self.scene.model,
+            &self.scene.loads,
+            &self.evolving.state,
+            &self.pipeline.workspace.internal,
+            None,
+            dt,
+            &mut self.evolving.record,
+        );
+        // 5. The update, on the device; every sum comes back with it.
+        let external = &self.pipeline.external;
+        let drives: Vec<(Vec3, bool)> = external.targets.iter().copied().zip(external.active.iter().copied()).collect();
+        let device = self.pipeline.device.as_mut().expect("a resident device");
+        let totals = device.bulk.advance(dt, &drives, viscous);
+        let total = |s: Sum| totals[s as usize];
+        let powers =
+            Powers { back: total(Sum::WeightBack), ahead: total(Sum::WeightAhead), kinetic: total(Sum::Kinetic) };
+        let mut sums = ForceSums { newly_failed: failures.len(), ..ForceSums::default() };
+        if viscous {
+            sums.dissipation_rate = total(Sum::Dissipation);
+        }
+        if want.energy {
+            sums.tet_energy = total(Sum::TetEnergy);
+            sums.joint_energy = total(Sum::JointEnergy);
+            sums.fracture = total(Sum::Fracture);
+        }
+        // The state the output and the guard read after this step.
+        if want.stress || want.energy {
+            device.pull_motion(&mut self.evolving.state);
+        }
+        // 6. The account and the record, as on the CPU.
+        self.account(sums, powers, first_new, t, want);
+    }
+}

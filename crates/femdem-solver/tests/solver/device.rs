@@ -1,0 +1,159 @@
+//! The step on a device (`Solver::use_device`), both residencies, against
+//! the CPU: a jointed bar pulled to failure under gravity, with a pressure
+//! on its side for the path that keeps only stage 1 on the device, and the
+//! interventions and checkpoints that move the state between host and
+//! device.
+//!
+//! Where no Vulkan device with 64-bit floats exists these tests say so and
+//! pass, unless `FEMDEM_GPU_REQUIRED` is set (CI sets it).
+//!
+//! Tolerance: the device's stage 1 agrees with the CPU's to round-off per
+//! element (`femdem-gpu`'s tests) and the update is the same arithmetic,
+//! so until the first failure positions agree to round-off carried over
+//! the steps: `10⁻¹²` of the bar's width (10⁻¹⁴ m; coordinates of 10⁻² m
+//! carry 2·10⁻¹⁸ m of rounding, so the steps here may amplify it a
+//! thousandfold), and velocities, which are position differences over a
+//! step, to that over `Δt`. After
+//! failures begin a failure a step earlier or later is allowed to move the
+//! course, so there the same joints must fail.
+
+use femdem_core::Vec3;
+use femdem_material::Law;
+use femdem_mesh::insert_joints;
+use femdem_solver::{Gpu, Model, RegionBehaviour, Residency, Solver, SurfaceKind, SurfaceLoad, Want};
+
+use crate::common::{at_step, box_mesh, joints, pulled_bar_loads, rock, stable};
+
+const W: f64 = 0.01;
+/// The pull's speed, m/s.
+const V: f64 = 0.5;
+
+/// The device, or `None` (with a line) where the machine has none and
+/// `FEMDEM_GPU_REQUIRED` is not set.
+fn gpu() -> Option<Gpu> {
+    match Gpu::new() {
+        Ok(g) => Some(g),
+        Err(e) if std::env::var_os("FEMDEM_GPU_REQUIRED").is_none() => {
+            eprintln!("no device, GPU test not run: {e}");
+            None
+        }
+        Err(e) => panic!("FEMDEM_GPU_REQUIRED is set and no device opened: {e}"),
+    }
+}
+
+/// The pulled bar (10 × 10 × 20 mm, viscous, weak joints so that it breaks
+/// within the steps below), under gravity, with a pressure on its x = 0
+/// face when `pressed`.
+fn bar(pressed: bool) -> Solver {
+    let mesh = box_mesh([0.0; 3], [W, W, 0.02], 0.0025, 0.1, true);
+    let jointed = insert_joints(&mesh).unwrap();
+    let mut params = joints(26e10);
+    params.tensile_strength = 3e5;
+    params.cohesion = 1.5e6;
+    params.gf_tension = 0.5;
+    params.gf_shear = 0.5;
+    let behaviour = RegionBehaviour::Deformable { law: Law::NeoHookean, material: rock(2e3), joints: Some(params) };
+    let model = Model::new(&jointed, &[behaviour], 1.0).unwrap();
+    let mut loads = pulled_bar_loads(&jointed, W, V);
+    loads.gravity = Vec3::new(0.0, -9.81, -9.81);
+    if pressed {
+        let faces = femdem_solver::select::group_faces(&jointed, "xmin").unwrap();
+        loads.surfaces.push(SurfaceLoad {
+            name: "side".into(),
+            faces,
+            kind: SurfaceKind::Pressure(2e5),
+            ramp: femdem_solver::Ramp { ramp_time: 5e-5, stop_time: None },
+        });
+    }
+    let dt = 0.5 * stable(&model, &loads, 300).critical;
+    at_step(model, loads, dt)
+}
+
+/// Steps `s` `n` times, asking for energies every 10th step and stresses
+/// every 25th, as a run's output would; returns the joints failed.
+fn run(s: &mut Solver, n: usize) -> usize {
+    let mut failed = 0;
+    for k in 0..n {
+        let want = Want { stress: k % 25 == 0, energy: k % 10 == 0 };
+        failed += s.step(want).new_failures.len();
+    }
+    failed
+}
+
+/// Positions and velocities of `a` and `b` within the module's tolerance;
+/// the energies of their last records within `10⁻⁹` of the work.
+fn assert_close(a: &Solver, b: &Solver, what: &str) {
+    let dx = a.state().x.iter().zip(&b.state().x).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
+    let dv = a.state().v.iter().zip(&b.state().v).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
+    println!("{what}: positions {dx:.2e} m, velocities {dv:.2e} m/s apart");
+    assert!(dx <= 1e-12 * W, "{what}: positions {dx:e} m apart");
+    assert!(dv <= 1e-12 * W / a.dt(), "{what}: velocities {dv:e} m/s apart");
+    let (ea, eb) = (a.record().energies, b.record().energies);
+    let scale = ea.external_work.abs().max(1e-12);
+    for (x, y, name) in [
+        (ea.kinetic, eb.kinetic, "kinetic"),
+        (ea.external_work, eb.external_work, "external work"),
+        (ea.damping, eb.damping, "damping"),
+        (ea.joint_elastic, eb.joint_elastic, "joint elastic"),
+    ] {
+        assert!((x - y).abs() <= 1e-9 * scale, "{what}: {name} {x} vs {y}");
+    }
+}
+
+/// Both residencies against the CPU before any failure, then the same
+/// failures once the bar breaks.
+#[test]
+fn the_device_steps_as_the_cpu_with_and_without_surface_loads() {
+    let Some(g) = gpu() else { return };
+    for pressed in [false, true] {
+        let mut cpu = bar(pressed);
+        let mut dev = bar(pressed);
+        dev.use_device(&g, Residency::Auto).unwrap();
+        let stages = dev.device_stages().unwrap();
+        assert_eq!(stages.starts_with("stages 1 and 5"), !pressed, "{stages}");
+        assert_eq!(run(&mut cpu, 400), 0, "no failure yet");
+        assert_eq!(run(&mut dev, 400), 0);
+        dev.sync_device();
+        assert_close(&cpu, &dev, if pressed { "pressed, stage 1 on the device" } else { "resident" });
+        let (fc, fd) = (run(&mut cpu, 1500), run(&mut dev, 1500));
+        assert!(fc > 5, "the bar breaks ({fc})");
+        let joints = |s: &Solver| s.failures().iter().map(|f| (f.joint, f.mode)).collect::<Vec<_>>();
+        assert_eq!(joints(&cpu), joints(&dev), "the same joints fail the same way");
+        assert_eq!(fc, fd);
+    }
+}
+
+/// Damping, a kick and joints broken by decree between steps, then a
+/// checkpoint of the device run resumed on the CPU: the same as the CPU
+/// doing all of it.
+#[test]
+fn interventions_and_checkpoints_cross_between_host_and_device() {
+    let Some(g) = gpu() else { return };
+    let mut cpu = bar(false);
+    let mut dev = bar(false);
+    dev.use_device(&g, Residency::Auto).unwrap();
+    for s in [&mut cpu, &mut dev] {
+        run(s, 150);
+        s.damp(0.9).unwrap();
+        s.kick(7, Vec3::new(0.0, 0.01, 0.0)).unwrap();
+        s.break_joints(&[3, 4, 5]);
+        run(s, 100);
+    }
+    dev.sync_device();
+    assert_close(&cpu, &dev, "after the interventions");
+    assert_eq!(cpu.state().joints.iter().filter(|j| j.failed).count(), 3, "the decreed failures");
+    assert_eq!(dev.state().joints.iter().filter(|j| j.failed).count(), 3);
+    // A checkpoint of the device run, resumed on the CPU and on the device.
+    let saved = dev.snapshot();
+    let mut back_on_cpu = bar(false);
+    back_on_cpu.restore(&saved).unwrap();
+    let mut again = bar(false);
+    again.use_device(&g, Residency::Auto).unwrap();
+    again.restore(&saved).unwrap();
+    run(&mut cpu, 50);
+    run(&mut back_on_cpu, 50);
+    run(&mut again, 50);
+    again.sync_device();
+    assert_close(&cpu, &back_on_cpu, "resumed on the CPU");
+    assert_close(&cpu, &again, "resumed on the device");
+}

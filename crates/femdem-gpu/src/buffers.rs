@@ -53,21 +53,9 @@ pub(crate) fn read<T: Pod>(gpu: &Gpu, buffer: &wgpu::Buffer, len: usize) -> Vec<
     if bytes == 0 {
         return Vec::new();
     }
-    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read-back"),
-        size: bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
-    gpu.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping a read-back buffer"));
-    gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
-    let out = bytemuck::cast_slice(&slice.get_mapped_range()).to_vec();
-    staging.unmap();
-    out
+    let encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    let out = submit_and_read(gpu, encoder, &[(buffer, 0, bytes)]);
+    bytemuck::pod_collect_to_vec(&out[0])
 }
 
 /// Submits `encoder` with copies of `(buffer, offset, bytes)` appended and
@@ -115,24 +103,9 @@ pub(crate) fn read_words(gpu: &Gpu, buffer: &wgpu::Buffer, indices: &[u32]) -> V
     if indices.is_empty() {
         return Vec::new();
     }
-    let bytes = 4 * indices.len() as u64;
-    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read-back words"),
-        size: bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    for (k, &i) in indices.iter().enumerate() {
-        encoder.copy_buffer_to_buffer(buffer, 4 * u64::from(i), &staging, 4 * k as u64, 4);
-    }
-    gpu.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping a read-back buffer"));
-    gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
-    let out = bytemuck::cast_slice(&slice.get_mapped_range()).to_vec();
-    staging.unmap();
-    out
+    let encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    let copies: Vec<_> = indices.iter().map(|&i| (buffer, 4 * u64::from(i), 4)).collect();
+    submit_and_read(gpu, encoder, &copies).iter().map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]])).collect()
 }
 
 /// The uniform every kernel takes at `@group(0) @binding(0)`: how many

@@ -106,6 +106,21 @@ impl Gpu {
         Ok(Gpu { device, queue, info: Arc::new(info), limits })
     }
 
+    /// The device for a test: `Some` where one opens; `None`, with a line
+    /// on stderr, where none does and the environment variable
+    /// `FEMDEM_GPU_REQUIRED` is not set; a panic where it is set (CI
+    /// requires a device).
+    pub fn for_tests() -> Option<Gpu> {
+        match Gpu::new() {
+            Ok(g) => Some(g),
+            Err(e) if std::env::var_os("FEMDEM_GPU_REQUIRED").is_none() => {
+                eprintln!("no device, GPU test not run: {e}");
+                None
+            }
+            Err(e) => panic!("FEMDEM_GPU_REQUIRED is set and no device opened: {e}"),
+        }
+    }
+
     /// The adapter's name and driver, e.g. `llvmpipe (LLVM 15.0.6, 256
     /// bits), Mesa 22.3.6` or `NVIDIA H100 80GB HBM3, 550.54`.
     pub fn adapter(&self) -> String {

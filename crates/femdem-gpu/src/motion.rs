@@ -155,7 +155,7 @@ impl Bulk {
             &[(&self.failed_list, 0, failed_words), (&m.compacted, 0, 72 * m.num_listed as u64)],
         );
         let failed = if failed_words > 0 { u32::from_le_bytes(bytes[0][..4].try_into().expect("4 bytes")) } else { 0 };
-        let numbers: &[Real] = bytemuck::cast_slice(&bytes[1]);
+        let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[1]);
         let listed = numbers
             .chunks_exact(9)
             .map(|c| [Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5]), Vec3::new(c[6], c[7], c[8])])
@@ -200,7 +200,7 @@ impl Bulk {
             self.encode_sum(&mut encoder, &m.terms, self.num_nodes, 3, offset, false, sum);
         }
         let bytes = submit_and_read(gpu, encoder, &[(&m.totals, 0, 56)]);
-        let t: &[Real] = bytemuck::cast_slice(&bytes[0]);
+        let t: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
         std::array::from_fn(|k| t[k])
     }
 

@@ -133,10 +133,8 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
                 observer.note(&line);
             }
         }
-        let mut comments = history_comments(&prepared.case);
-        if let (Some(adapter), Some(stages)) = (solver.device(), solver.device_stages()) {
-            comments.push(format!("device: {adapter}: {stages}"));
-        }
+        let gpu = solver.device().zip(solver.device_stages()).map(|(a, s)| format!("{a}: {s}"));
+        let comments = history_comments(&prepared.case, gpu.as_deref());
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;

@@ -33,7 +33,7 @@ fn check_fields(fields: &[String]) -> Result<()> {
 /// breaks in the title become spaces. They are written when a run starts
 /// and kept by a resumed run, whose history is then the same byte for byte
 /// as an uninterrupted run's.
-pub fn history_comments(case: &LoadedCase) -> Vec<String> {
+pub fn history_comments(case: &LoadedCase, gpu: Option<&str>) -> Vec<String> {
     let name = case.path.file_name().map_or_else(|| case.path.display().to_string(), |n| n.to_string_lossy().into());
     let mut lines = vec![format!("{CASE_COMMENT}{name}")];
     let title = case.case.title.split(['\n', '\r']).map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>();
@@ -44,7 +44,7 @@ pub fn history_comments(case: &LoadedCase) -> Vec<String> {
     if !sets.is_empty() {
         lines.push(format!("set: {}", sets.join(" ")));
     }
-    lines.extend(crate::provenance::lines());
+    lines.extend(crate::provenance::lines(gpu));
     lines
 }
 

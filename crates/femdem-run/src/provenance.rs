@@ -39,14 +39,15 @@ pub fn simd() -> String {
 }
 
 /// The provenance lines, `key: value`, for a history header (each behind
-/// `# `) or a run summary.
-pub fn lines() -> Vec<String> {
+/// `# `) or a run summary; `gpu` is the device the step runs on and what
+/// of it runs there (`Solver::device`, `Solver::device_stages`), if any.
+pub fn lines(gpu: Option<&str>) -> Vec<String> {
     vec![
         format!("femdem: {}", build()),
         format!("cpu: {}", cpu()),
         format!("simd: {}", simd()),
         format!("threads: {}", rayon::current_num_threads()),
-        "gpu: none".to_owned(),
+        format!("gpu: {}", gpu.unwrap_or("none")),
     ]
 }
 
@@ -59,7 +60,7 @@ mod tests {
     /// `unknown`, never empty.
     #[test]
     fn the_lines_name_version_commit_cpu_simd_threads_and_gpu() {
-        let lines = lines();
+        let lines = lines(None);
         let keys: Vec<&str> = lines.iter().map(|l| l.split_once(": ").unwrap().0).collect();
         assert_eq!(keys, ["femdem", "cpu", "simd", "threads", "gpu"]);
         assert!(lines.iter().all(|l| !l.split_once(": ").unwrap().1.is_empty()));
@@ -68,5 +69,7 @@ mod tests {
         assert!(commit == "unknown" || (hash.len() == 12 && hash.chars().all(|c| c.is_ascii_hexdigit())), "{commit}");
         assert!(lines[0].starts_with(&format!("femdem: {} (commit ", env!("CARGO_PKG_VERSION"))));
         assert!(lines[3]["threads: ".len()..].parse::<usize>().unwrap() >= 1);
+        assert_eq!(lines[4], "gpu: none");
+        assert_eq!(super::lines(Some("llvmpipe: stage 1"))[4], "gpu: llvmpipe: stage 1");
     }
 }

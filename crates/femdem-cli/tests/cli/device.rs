@@ -140,10 +140,10 @@ fn the_pulled_bar_on_the_device_fails_as_on_the_cpu() {
 /// Two device runs of the same case write the same bytes.
 #[test]
 fn two_device_runs_write_the_same_bytes() {
-    let Some(one) = run("cases/pulled-bar.toml", "gpu", "twice-1", &["--set", "solver.end_time=2.2e-4"]) else {
+    let Some(one) = run("cases/pulled-bar.toml", "gpu", "twice-1", &["--set", "solver.end_time=1.8e-4"]) else {
         return;
     };
-    let two = run("cases/pulled-bar.toml", "gpu", "twice-2", &["--set", "solver.end_time=2.2e-4"]).unwrap();
+    let two = run("cases/pulled-bar.toml", "gpu", "twice-2", &["--set", "solver.end_time=1.8e-4"]).unwrap();
     assert!(failures(&one) > 0, "the window includes failures");
     for file in ["history.csv", "failures.csv"] {
         assert_eq!(read(&one, file), read(&two, file), "{file}");
@@ -155,12 +155,12 @@ fn two_device_runs_write_the_same_bytes() {
 /// histories back from the device, the resume sends them there again).
 #[test]
 fn a_device_run_resumes_bit_for_bit() {
-    let args = ["--set", "solver.end_time=2.2e-4", "--set", "output.checkpoint.interval_steps=0"];
+    let args = ["--set", "solver.end_time=1.8e-4", "--set", "output.checkpoint.interval_steps=0"];
     let Some(whole) = run("cases/pulled-bar.toml", "gpu", "whole", &args) else { return };
     let dir = std::env::temp_dir().join("femdem-device-resumed");
     let _ = std::fs::remove_dir_all(&dir);
     let out = dir.to_str().unwrap();
-    let mut first = vec!["run", "cases/pulled-bar.toml", "--out", out, "--device", "gpu", "--stop-after-steps", "2400"];
+    let mut first = vec!["run", "cases/pulled-bar.toml", "--out", out, "--device", "gpu", "--stop-after-steps", "2350"];
     first.extend(args);
     let o = femdem(&first);
     assert!(!o.status.success(), "a stopped run ends with an error status");

@@ -11,15 +11,8 @@ mod tets;
 
 use femdem_gpu::Gpu;
 
-/// The device, or `None` (with a line on stderr) where the machine has no
-/// usable adapter and `FEMDEM_GPU_REQUIRED` is not set.
+/// The device, or `None` where the machine has none and
+/// `FEMDEM_GPU_REQUIRED` is not set ([`Gpu::for_tests`]).
 pub fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => Some(g),
-        Err(e) if std::env::var_os("FEMDEM_GPU_REQUIRED").is_none() => {
-            eprintln!("no device, GPU test not run: {e}");
-            None
-        }
-        Err(e) => panic!("FEMDEM_GPU_REQUIRED is set and no device opened: {e}"),
-    }
+    Gpu::for_tests()
 }

@@ -312,6 +312,18 @@ fn zero_slots(j: u32) {
     }
 }
 
+// Joint j fails now with `mode` (its flags before were `fl`): flagged,
+// listed, no force; all its work is lost to fracture from now on.
+fn fail(j: u32, fl: u32, mode: u32, want_energy: bool) {
+    flags[j] = fl | 64u;
+    failed[j] = mode;
+    report_failure(j);
+    zero_slots(j);
+    if (want_energy) {
+        sums[2u * j + 1u] = hist[24u * j + 5u];
+    }
+}
+
 @compute @workgroup_size(64)
 fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3<u32>,
         @builtin(local_invocation_index) local: u32) {
@@ -346,14 +358,8 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     let twice_area = sqrt(dot(nrm, nrm));
     let len1 = sqrt(dot(e1, e1));
     if (!(twice_area > 0.0) || !(len1 > 0.0) || !(twice_area <= 1.7976931348623157e308)) {
-        flags[j] = fl | 64u;
         hist[hb + 4u] = 0.0;
-        failed[j] = MODE_COLLAPSED;
-        report_failure(j);
-        zero_slots(j);
-        if (want_energy) {
-            sums[2u * j + 1u] = hist[hb + 5u];
-        }
+        fail(j, fl, MODE_COLLAPSED, want_energy);
         return;
     }
     let zn = nrm / twice_area;
@@ -430,19 +436,12 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         }
     }
     if (broken_points >= 2u) {
-        flags[j] = fl | 64u;
         hist[hb + 5u] = hist[hb + 5u] - ending;
         hist[hb + 4u] = stored_sum;
         if (mode == 0u) {
             mode = MODE_MIXED;
         }
-        failed[j] = mode;
-        report_failure(j);
-        zero_slots(j);
-        if (want_energy) {
-            // The joint is failed now: all its work is lost.
-            sums[2u * j + 1u] = hist[hb + 5u];
-        }
+        fail(j, fl, mode, want_energy);
         return;
     }
     flags[j] = fl;

@@ -1,16 +1,19 @@
-//! The bulk of the step on a GPU: stage 1 (the tet pass of Eq. 1–2, the
-//! joint pass of Eq. 3–13 and the gather) run by `femdem-gpu`, the rest of
-//! the step (failures, external forces, the update, the ledger) on the CPU
-//! as before ([`Solver::use_device`](crate::Solver::use_device)).
+//! The step on a GPU ([`Solver::use_device`](crate::Solver::use_device),
+//! [`Residency`]), run by `femdem-gpu`: here the device's copy of the model
+//! and state ([`OnDevice`]), the stage-1-only path
+//! ([`Residency::ForcesOnly`], or a scene with surface loads), and the
+//! bookkeeping of where the state is; the resident step is
+//! `step/resident.rs`.
 //!
-//! Each step uploads the positions and velocities (and, with viscous
-//! materials, the velocities of the step before) and reads back the
-//! gathered internal forces and which joints failed; the stresses, the
+//! Stage 1 only: each step uploads the positions and velocities (and, with
+//! viscous materials, the velocities of the step before) and reads back
+//! the gathered internal forces and which joints failed; the stresses, the
 //! per-element energies and dissipation rates only on the steps that ask
-//! for them. The joint histories live on the device: [`State::joints`]
-//! is brought up to date by [`Solver::sync_device`](crate::Solver::sync_device).
-//! The energy sums are taken on the host from the per-element values in
-//! the CPU pass's chunk order, so equal element values give equal sums.
+//! for them, their sums taken on the host in the CPU pass's chunk order,
+//! so equal element values give equal sums. Failures, external forces, the
+//! update and the ledger stay on the CPU. The joint histories live on the
+//! device in both paths: [`State::joints`] is brought up to date by
+//! [`Solver::sync_device`](crate::Solver::sync_device).
 //!
 //! [`State::joints`]: crate::State::joints
 
@@ -202,11 +205,11 @@ fn chunked<T>(items: &[T], f: impl Fn(&T) -> Real) -> Real {
 /// How much of the step a device takes ([`crate::Solver::use_device`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Residency {
-    /// The whole step without contact where the scene allows it (no surface
+    /// Stages 1 and 5 and the sums where the scene allows it (no surface
     /// loads: positions and velocities stay on the device, the host reads
     /// the drives' nodes, the sums and the failures each step, and the
-    /// whole state only on steps that ask for stresses or energies), else
-    /// stage 1 alone.
+    /// positions and velocities on steps that ask for stresses or energies
+    /// or have failures: `step/resident.rs`), else stage 1 alone.
     Auto,
     /// Stage 1 alone (tets, joints, gather): positions and velocities go up
     /// and forces come down every step.
@@ -234,7 +237,11 @@ impl crate::Solver {
             .map_err(|e| SolverError::Device(e.to_string()))?;
         self.pipeline.device = Some(device);
         if residency == Residency::Auto && self.scene.loads.surfaces.is_empty() {
-            self.make_resident().map_err(|e| SolverError::Device(e.to_string()))?;
+            if let Err(e) = self.make_resident() {
+                // All or nothing: no half-attached device stays behind.
+                self.pipeline.device = None;
+                return Err(SolverError::Device(e.to_string()));
+            }
         }
         Ok(())
     }
@@ -256,9 +263,11 @@ impl crate::Solver {
         })
     }
 
-    /// Bytes a step moves between host and device at least, or 0 on the
-    /// CPU; output steps read back positions, velocities, stresses and
-    /// energies on top, and a step with failures the positions.
+    /// Bytes a step moves between host and device at least (the arrays;
+    /// each dispatch also sends 16 bytes of parameters), or 0 on the CPU;
+    /// output steps read back positions, velocities and stresses on top,
+    /// and a step with failures the failed joints, positions and
+    /// velocities.
     pub fn device_bytes_per_step(&self) -> u64 {
         match &self.pipeline.device {
             None => 0,

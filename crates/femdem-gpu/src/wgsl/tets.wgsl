@@ -136,10 +136,12 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     }
     energy[t] = w * volume;
     rate[t] = 0.0;
-    if ((params.flags & 2u) != 0u && eta > 0.0) {
-        let ds = edges(position(n0), position(n1), position(n2), position(n3));
-        let cof_ds = cofactor(ds);
-        let det_ds = dot(ds[0], cof_ds[0]);
+    let ds = edges(position(n0), position(n1), position(n2), position(n3));
+    let cof_ds = cofactor(ds);
+    let det_ds = dot(ds[0], cof_ds[0]);
+    // A flat tet's rate is not finite: the CPU leaves it out, and a device
+    // may assume values finite and not filter it (reduce.wgsl tries too).
+    if ((params.flags & 2u) != 0u && eta > 0.0 && det_ds != 0.0) {
         let lv = edges(velocity(n0), velocity(n1), velocity(n2), velocity(n3)) * transpose(cof_ds) * (1.0 / det_ds);
         let lm = edges(mean_velocity(n0), mean_velocity(n1), mean_velocity(n2), mean_velocity(n3))
             * transpose(cof_ds) * (1.0 / det_ds);

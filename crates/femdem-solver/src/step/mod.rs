@@ -327,10 +327,12 @@ impl Solver {
     /// [`Solver::restore`]).
     ///
     /// With the step on a device ([`Solver::use_device`]) the joint
-    /// histories are the device's as of the last [`Solver::sync_device`];
-    /// with a resident device, so are the positions and velocities, which
-    /// a step brings back itself when it asked for stresses or energies or
-    /// had failures (what a run's output and guard read).
+    /// histories are the device's as of the last [`Solver::sync_device`].
+    /// With a resident device so are the positions and velocities, except
+    /// that a step that asked for stresses or energies brings back those
+    /// after it (what a run's output and guard read), a step with failures
+    /// those of its own `t_n` (for the failure record), and every step its
+    /// drives' nodes' at its `t_n`.
     ///
     /// ```compile_fail
     /// fn tamper(s: &mut femdem_solver::Solver) {

@@ -3,13 +3,16 @@
 //! contact): the same six stages as [`Solver::step`]'s, with stages 1 and
 //! 5 and the sums on the device.
 //!
-//! Each step reads back one word (how many joints failed), the drives'
+//! Each step reads back one word (how many joints failed) with the drives'
 //! nodes (position, velocity and internal force, for stage 4's reactions
-//! and displacements, computed by the CPU's code) and the seven sums; a
-//! step with failures also the positions and velocities (the record needs
-//! the failed joints' geometry), and a step that asks for stresses or
-//! energies the whole state, so that what the output and the run guard
-//! read of [`Solver::state`] is current after it.
+//! and displacements, computed by the CPU's code), and the seven sums; a
+//! step with failures also the failed joints and the positions and
+//! velocities of `t_n` (the record needs the failed joints' geometry), and
+//! a step that asks for stresses or energies the positions and velocities
+//! after the update (and the stresses), so that what the output and the
+//! run guard read of [`Solver::state`] is current after it. Joint
+//! histories, the velocities of the step before and the internal forces
+//! come back only with [`Solver::sync_device`].
 
 use femdem_core::Vec3;
 use femdem_gpu::{Evaluate, MotionSetup, Sum};
@@ -51,6 +54,9 @@ impl Solver {
             listed: &listed,
         };
         let e = &self.evolving;
+        // Failures the last CPU or stage-1 step flagged are not this path's
+        // to clear (it clears only what it flags).
+        self.pipeline.workspace.failed_now.fill(None);
         let device = self.pipeline.device.as_mut().expect("a device");
         device.make_resident(setup, &e.state.x, &e.state.v, &e.v_before)
     }

@@ -45,7 +45,6 @@ impl Solver {
         if let Some(i) = u.iter().position(|d| !d.iter().all(|c| c.is_finite())) {
             return bad(format!("node {i}: not finite"));
         }
-        self.edit_on_host();
         let (table, drives) = (&self.pipeline.external.prescribed, &self.scene.loads.drives);
         if let Some((i, c)) = (0..u.len())
             .flat_map(|i| (0..3).map(move |c| (i, c)))
@@ -53,6 +52,7 @@ impl Solver {
         {
             return bad(format!("node {i} component {} is prescribed but displaced", ["x", "y", "z"][c]));
         }
+        self.edit_on_host();
         for ((x, x0), d) in self.evolving.state.x.iter_mut().zip(&self.scene.model.x0).zip(u) {
             *x = x0 + d;
         }

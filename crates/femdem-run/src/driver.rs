@@ -133,8 +133,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
                 observer.note(&line);
             }
         }
-        let gpu = solver.device().zip(solver.device_stages()).map(|(a, s)| format!("{a}: {s}"));
-        let comments = history_comments(&prepared.case, gpu.as_deref());
+        let comments = history_comments(&prepared.case, solver.device_summary().as_deref());
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)
             .with_context(|| format!("output directory {}", dir.display()))?;
         checkpoint::remove_after(&dir, None)?;
@@ -157,9 +156,9 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         run.stable.critical,
         run.steps
     ));
-    if let (Some(adapter), Some(stages)) = (solver.device(), solver.device_stages()) {
+    if let Some(device) = solver.device_summary() {
         observer.note(&format!(
-            "on {adapter}: {stages}; {} bytes a step between host and device (more on output steps)",
+            "on {device}; {} bytes a step between host and device (more on output steps)",
             solver.device_bytes_per_step()
         ));
     }
@@ -287,7 +286,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         history,
         checkpoint: last_checkpoint,
         overrides: prepared.case.overrides.args(),
-        device: solver.device().zip(solver.device_stages()).map(|(a, s)| format!("{a}: {s}")),
+        device: solver.device_summary(),
         device_bytes: solver.device_bytes_per_step(),
     })
 }

@@ -18,7 +18,7 @@
 //! [`State::joints`]: crate::State::joints
 
 use femdem_core::{Real, Vec3};
-use femdem_fracture::JointHistory;
+use femdem_fracture::{FailureMode, JointHistory};
 use femdem_gpu::{Bulk, Evaluate, Gpu, GpuError, JointMesh, MotionSetup, TetMesh};
 
 use crate::SolverError;
@@ -46,18 +46,18 @@ pub(crate) struct OnDevice {
     /// Resident: the nodes whose state stage 4 reads (the drives'), in the
     /// order [`Bulk::listed`] returns them.
     pub(crate) listed: Vec<u32>,
-    /// Resident: the joints whose `failed_now` entry the last step set.
+    /// The joints whose `failed_now` entry the last step set.
     pub(crate) flagged: Vec<u32>,
 }
 
-/// Bytes one step moves between host and device at least: positions and
-/// velocities up, internal forces down (24 bytes a node each), the
-/// velocities of the step before up with viscous materials, and the
-/// failure word of every joint down.
+/// Bytes one step of stage 1 alone moves between host and device at
+/// least: positions and velocities up, internal forces down (24 bytes a
+/// node each), the velocities of the step before up with viscous
+/// materials, and the count of failed joints down.
 pub(crate) fn bytes_per_step(model: &Model, viscous: bool) -> u64 {
     let nodes = model.num_nodes() as u64;
     let vectors = if viscous { 4 } else { 3 };
-    24 * vectors * nodes + 4 * model.joints.len() as u64
+    24 * vectors * nodes + 4
 }
 
 impl OnDevice {
@@ -150,6 +150,24 @@ impl OnDevice {
         self.synced = true;
     }
 
+    /// Puts the joints that failed in the last evaluation into `failed_now`
+    /// (clearing the entries the evaluation before set) and returns how
+    /// many; `any` false (the count read back with something else was 0)
+    /// reads nothing.
+    pub(crate) fn take_failures(&mut self, failed_now: &mut [Option<FailureMode>], any: bool) -> usize {
+        for &j in &self.flagged {
+            failed_now[j as usize] = None;
+        }
+        self.flagged.clear();
+        if any {
+            for (j, mode) in self.bulk.failures() {
+                failed_now[j as usize] = Some(mode);
+                self.flagged.push(j);
+            }
+        }
+        self.flagged.len()
+    }
+
     /// Resident: positions and velocities back to the host.
     pub(crate) fn pull_motion(&mut self, state: &mut State) {
         state.x.copy_from_slice(&self.bulk.positions());
@@ -177,12 +195,11 @@ impl OnDevice {
         self.bulk.forces(Evaluate { stress: want.stress, energy: want.energy, dissipation: viscous });
         self.synced = false;
         ws.internal.copy_from_slice(&self.bulk.internal());
-        ws.failed_now.copy_from_slice(&self.bulk.failed_now());
         if want.stress {
             ws.stress.copy_from_slice(&self.bulk.stresses());
         }
-        let mut sums =
-            ForceSums { newly_failed: ws.failed_now.iter().filter(|f| f.is_some()).count(), ..ForceSums::default() };
+        let newly_failed = self.take_failures(&mut ws.failed_now, true);
+        let mut sums = ForceSums { newly_failed, ..ForceSums::default() };
         if want.energy {
             sums.tet_energy = chunked(&self.bulk.tet_energies(), |&e| e);
             let joints = self.bulk.joint_sums();
@@ -249,6 +266,12 @@ impl crate::Solver {
     /// The adapter the step runs on, or `None` on the CPU.
     pub fn device(&self) -> Option<&str> {
         self.pipeline.device.as_ref().map(|d| d.adapter.as_str())
+    }
+
+    /// The adapter and the stages it runs, `adapter: stages` (`None` on the
+    /// CPU): what a run's summary and history header say.
+    pub fn device_summary(&self) -> Option<String> {
+        self.device().zip(self.device_stages()).map(|(a, s)| format!("{a}: {s}"))
     }
 
     /// Which stages run on the device (`None` on the CPU).

@@ -179,8 +179,7 @@ pub(crate) struct Pipeline {
     /// step of this state: false before the first step and after
     /// [`Solver::restore`] (the pipeline is not checkpointed).
     pub(crate) forces_current: bool,
-    /// The bulk of stage 1 on a GPU ([`Solver::use_device`]), or `None`
-    /// for the CPU.
+    /// The step on a GPU ([`Solver::use_device`]), or `None` for the CPU.
     pub(crate) device: Option<OnDevice>,
 }
 

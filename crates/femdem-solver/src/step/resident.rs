@@ -70,10 +70,6 @@ impl Solver {
         let ws = &mut self.pipeline.workspace;
         // 1. Internal forces at x_n, on the device, with the sums asked
         // for and the drives' nodes' state read back together.
-        for &j in &device.flagged {
-            ws.failed_now[j as usize] = None;
-        }
-        device.flagged.clear();
         let mut sums_wanted = Vec::new();
         if viscous {
             sums_wanted.push(Sum::Dissipation);
@@ -88,14 +84,10 @@ impl Solver {
         if want.stress {
             ws.stress.copy_from_slice(&device.bulk.stresses());
         }
-        let failures = if failed > 0 { device.bulk.failures() } else { Vec::new() };
-        for &(j, mode) in &failures {
-            ws.failed_now[j as usize] = Some(mode);
-            device.flagged.push(j);
-        }
+        let newly_failed = device.take_failures(&mut ws.failed_now, failed > 0);
         // 2. Failures: the record reads the failed joints' positions.
         let first_new = self.evolving.failures.len();
-        if !failures.is_empty() {
+        if newly_failed > 0 {
             device.pull_motion(&mut self.evolving.state);
             self.record_failures(t);
         }
@@ -125,7 +117,7 @@ impl Solver {
         let total = |s: Sum| totals[s as usize];
         let powers =
             Powers { back: total(Sum::WeightBack), ahead: total(Sum::WeightAhead), kinetic: total(Sum::Kinetic) };
-        let mut sums = ForceSums { newly_failed: failures.len(), ..ForceSums::default() };
+        let mut sums = ForceSums { newly_failed, ..ForceSums::default() };
         if viscous {
             sums.dissipation_rate = total(Sum::Dissipation);
         }

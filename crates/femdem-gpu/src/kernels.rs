@@ -23,7 +23,7 @@ pub(crate) fn joints() -> String {
     [COMMON, MATH, include_str!("wgsl/joints.wgsl")].concat()
 }
 
-/// The update of stage 5 (no surface loads, no contact).
+/// The update of stage 5 (no contact).
 pub(crate) fn update() -> String {
     [COMMON, include_str!("wgsl/update.wgsl")].concat()
 }
@@ -31,6 +31,11 @@ pub(crate) fn update() -> String {
 /// Sums in the CPU's chunk order.
 pub(crate) fn reduce() -> String {
     [COMMON, include_str!("wgsl/reduce.wgsl")].concat()
+}
+
+/// Surface loads' nodal forces and powers.
+pub(crate) fn surface() -> String {
+    [COMMON, include_str!("wgsl/surface.wgsl")].concat()
 }
 
 /// Listed nodes' state.

@@ -17,12 +17,12 @@
 //!   the device: `wgsl/joints.wgsl`), histories kept on the device.
 //!
 //! - [`motion`]: the update, the energy sums (in the CPU's chunk order)
-//!   and the drives' nodes' state, for scenes without surface loads, so
-//!   that positions and velocities stay on the device.
+//!   and the drives' nodes' state, and [`surface`]: pressures and
+//!   tractions on the current geometry, so that positions and velocities
+//!   stay on the device.
 //!
 //! The solver's switch to this path is `femdem_solver::Solver::use_device`
 //! (`[solver] device = "gpu"`, `femdem run --device gpu`). Not yet here:
-//! surface loads on the device (with them, only stage 1 runs there) and
 //! contact (issue 35).
 //!
 //! This crate knows the material law and the tet's reference shape
@@ -36,8 +36,10 @@ mod joints;
 mod kernels;
 pub mod math;
 pub mod motion;
+pub mod surface;
 
 pub use bulk::{Bulk, Evaluate, TetMesh};
 pub use device::{Gpu, GpuError};
 pub use joints::JointMesh;
-pub use motion::{MotionSetup, Sum};
+pub use motion::{MotionSetup, Sum, Totals};
+pub use surface::{LoadSums, SurfaceKind, SurfaceLoad};

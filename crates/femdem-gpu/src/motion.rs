@@ -1,8 +1,9 @@
-//! The rest of a step on the device, for scenes without surface loads or
-//! contact: the update (`wgsl/update.wgsl`), the sums the energy account
-//! takes (`wgsl/reduce.wgsl`, in the CPU's chunk order), and the listed
-//! nodes' state the host needs for the drives (`wgsl/compact.wgsl`). With
-//! these, positions and velocities stay on the device between steps.
+//! The rest of a step on the device, for scenes without contact: the
+//! surface loads ([`crate::surface`]), the update (`wgsl/update.wgsl`),
+//! the sums the energy account takes (`wgsl/reduce.wgsl`, in the CPU's
+//! chunk order), and the listed nodes' state the host needs for the drives
+//! (`wgsl/compact.wgsl`). With these, positions and velocities stay on the
+//! device between steps.
 
 use femdem_core::{Real, Vec3};
 
@@ -11,6 +12,7 @@ use crate::bulk::Bulk;
 use crate::bulk::Evaluate;
 use crate::device::{Gpu, GpuError};
 use crate::kernels;
+use crate::surface::{LoadSums, SurfaceLoad, Surfaces, TERMS};
 
 /// Items per chunk of the CPU's parallel passes (`femdem_solver::forces::CHUNK`).
 pub const CHUNK: usize = 512;
@@ -27,9 +29,33 @@ pub struct MotionSetup<'a> {
     pub claims: &'a [[u32; 3]],
     /// How many drives there are.
     pub drives: usize,
-    /// The nodes whose state the host reads every step ([`Bulk::listed`]).
+    /// The nodes whose state the host reads every step
+    /// ([`Bulk::forces_resident`]).
     pub listed: &'a [u32],
+    /// The surface loads, in the order their factors and sums take.
+    pub surfaces: &'a [SurfaceLoad<'a>],
 }
+
+/// What [`Bulk::advance`] returns: the sums of a step.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Totals {
+    /// The sums of [`Sum`], in its order: gravity's powers and the kinetic
+    /// energy of the update, and those of stage 1 that
+    /// [`Bulk::forces_resident`] was asked for (others are stale).
+    pub sums: [Real; 7],
+    /// Each surface load's total force and powers, in load order.
+    pub loads: Vec<LoadSums>,
+}
+
+impl std::ops::Index<Sum> for Totals {
+    type Output = Real;
+    fn index(&self, s: Sum) -> &Real {
+        &self.sums[s as usize]
+    }
+}
+
+/// Slots of the totals buffer before the surface loads'.
+const FIXED: usize = 7;
 
 /// A sum [`Bulk::sum`] can take, and where [`Bulk::totals`] returns it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,7 +94,16 @@ pub(crate) struct Motion {
     listed: wgpu::Buffer,
     num_listed: usize,
     compacted: wgpu::Buffer,
+    /// The reduce kernel's shape of each [`Sum`], in its order.
+    shapes: Vec<wgpu::Buffer>,
+    surfaces: Option<Surfaces>,
+    /// The reduce kernel's shapes of each surface load's five sums (force
+    /// x, y, z; back; ahead).
+    load_shapes: Vec<[wgpu::Buffer; TERMS]>,
 }
+
+/// Stride and offset of each [`Sum`] in its source array.
+const SHAPES: [(u32, u32); FIXED] = [(3, 0), (3, 1), (3, 2), (1, 0), (2, 0), (2, 1), (1, 0)];
 
 impl Motion {
     pub(crate) fn new(
@@ -85,7 +120,20 @@ impl Motion {
         let reduce = gpu.module("reduce", &kernels::reduce())?;
         let compact = gpu.module("compact", &kernels::compact())?;
         let weight: Vec<Real> = setup.weight.iter().flat_map(|w| [w.x, w.y, w.z]).collect();
-        let chunks = nodes.max(tets).max(joints).div_ceil(CHUNK);
+        let surfaces = Surfaces::new(gpu, setup.surfaces, nodes)?;
+        let faces = surfaces.as_ref().map_or(0, |s| s.ranges.last().map_or(0, |r| r.1));
+        let chunks = nodes.max(tets).max(joints).max(faces).div_ceil(CHUNK);
+        let shape = |stride: usize, offset: usize, slot: usize| {
+            storage(gpu, "sum shape", &[count(stride), count(offset), count(slot), 0])
+        };
+        let shapes =
+            SHAPES.iter().enumerate().map(|(k, &(s, o))| shape(s as usize, o as usize, k)).collect::<Result<_, _>>()?;
+        let mut load_shapes = Vec::new();
+        for (k, &(first, _)) in surfaces.iter().flat_map(|s| s.ranges.iter()).enumerate() {
+            let one = |c: usize| shape(TERMS, TERMS * first + c, FIXED + TERMS * k + c);
+            load_shapes.push([one(0)?, one(1)?, one(2)?, one(3)?, one(4)?]);
+        }
+        let slots = FIXED + TERMS * setup.surfaces.len();
         Ok(Motion {
             update_kernel: gpu.pipeline("update", &update)?,
             reduce_kernel: gpu.pipeline("reduce", &reduce)?,
@@ -98,10 +146,13 @@ impl Motion {
             scalars: zeroed::<Real>(gpu, "update scalars", 2)?,
             terms: zeroed::<Real>(gpu, "power terms", 3 * nodes)?,
             partial: zeroed::<Real>(gpu, "chunk sums", chunks)?,
-            totals: zeroed::<Real>(gpu, "sums", 8)?,
+            totals: zeroed::<Real>(gpu, "sums", slots)?,
             listed: storage(gpu, "listed nodes", setup.listed)?,
             num_listed: setup.listed.len(),
-            compacted: zeroed::<Real>(gpu, "listed nodes' state", 9 * setup.listed.len())?,
+            compacted: zeroed::<Real>(gpu, "listed nodes' state", 12 * setup.listed.len())?,
+            shapes,
+            surfaces,
+            load_shapes,
         })
     }
 }
@@ -121,56 +172,68 @@ impl Bulk {
         self.motion.as_ref().expect("Bulk::enable_motion first")
     }
 
-    /// Stage 1 ([`Bulk::forces`] with `want`), the sums `sums` of it, and
-    /// the listed nodes' position, velocity and internal force, in one
-    /// submission and one read-back: how many joints failed (their list:
-    /// [`Bulk::failures`]) and the listed nodes' state. The sums land in
-    /// the totals that [`Bulk::advance`] returns.
-    pub fn forces_resident(&mut self, want: Evaluate, sums: &[Sum]) -> (u32, Vec<[Vec3; 3]>) {
+    /// Stage 1 ([`Bulk::forces`] with `want`), the sums `sums` of it, the
+    /// surface loads at the factors `factors` (one per load: their ramps
+    /// at `t_n`) and the listed nodes' position, velocity, internal force
+    /// and surface-load force, in one submission and one read-back: how
+    /// many joints failed (their list: [`Bulk::failures`]) and the listed
+    /// nodes' state. The sums land in the totals that [`Bulk::advance`]
+    /// returns.
+    pub fn forces_resident(&mut self, want: Evaluate, sums: &[Sum], factors: &[Real]) -> (u32, Vec<[Vec3; 4]>) {
         let gpu = &self.gpu;
         let m = self.motion();
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         self.encode_forces(&mut encoder, want);
         for &sum in sums {
-            let (source, items, stride, offset, finite) = match sum {
-                Sum::TetEnergy => (&self.energy, self.num_tets, 1, 0, false),
-                Sum::Dissipation => (&self.rate, self.num_tets, 1, 0, true),
-                Sum::JointEnergy => (&self.joint_sums, self.num_joints, 2, 0, false),
-                Sum::Fracture => (&self.joint_sums, self.num_joints, 2, 1, false),
+            let (source, items, finite) = match sum {
+                Sum::TetEnergy => (&self.energy, self.num_tets, false),
+                Sum::Dissipation => (&self.rate, self.num_tets, true),
+                Sum::JointEnergy | Sum::Fracture => (&self.joint_sums, self.num_joints, false),
                 Sum::WeightBack | Sum::WeightAhead | Sum::Kinetic => panic!("{sum:?} is taken by Bulk::advance"),
             };
-            self.encode_sum(&mut encoder, source, items, stride, offset, finite, sum);
+            self.encode_sum(&mut encoder, source, items, &m.shapes[sum as usize], finite);
         }
+        match &m.surfaces {
+            Some(s) => {
+                s.encode_forces(gpu, &mut encoder, &self.x, &self.v, factors);
+                for (&(first, end), shapes) in s.ranges.iter().zip(&m.load_shapes) {
+                    for shape in &shapes[..4] {
+                        self.encode_sum(&mut encoder, &s.terms, end - first, shape, false);
+                    }
+                }
+            }
+            None => assert!(factors.is_empty(), "no surface loads on the device"),
+        }
+        // Without surface loads, any f64 array the kernel only reads.
+        let surface = m.surfaces.as_ref().map_or(&self.x, |s| &s.f_surface);
         dispatch(
             gpu,
             &mut encoder,
             &m.compact_kernel,
-            Params { count: count(m.num_listed), flags: 0, pad: [0; 2] },
-            &[&self.x, &self.v, &self.internal, &m.listed, &m.compacted],
+            Params { count: count(m.num_listed), flags: u32::from(m.surfaces.is_some()), pad: [0; 2] },
+            &[&self.x, &self.v, &self.internal, &m.listed, &m.compacted, surface],
         );
         let failed_words = if self.num_joints > 0 { 4 } else { 0 };
         let bytes = submit_and_read(
             gpu,
             encoder,
-            &[(&self.failed_list, 0, failed_words), (&m.compacted, 0, 72 * m.num_listed as u64)],
+            &[(&self.failed_list, 0, failed_words), (&m.compacted, 0, 96 * m.num_listed as u64)],
         );
         let failed = if failed_words > 0 { u32::from_le_bytes(bytes[0][..4].try_into().expect("4 bytes")) } else { 0 };
         let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[1]);
         let listed = numbers
-            .chunks_exact(9)
-            .map(|c| [Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5]), Vec3::new(c[6], c[7], c[8])])
+            .chunks_exact(12)
+            .map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2])))
             .collect();
         (failed, listed)
     }
 
     /// The central-difference update of step `n` over `dt` with the
-    /// internal forces of the last stage 1: `drives[d]` is drive `d`'s
-    /// target velocity and whether it is active; `keep_before` keeps
-    /// `v_{n−½}` for the next dissipation rate. Returns the sums of
-    /// [`Sum`], in its order: gravity's powers and the kinetic energy of
-    /// this update, and those of stage 1 that
-    /// [`Bulk::forces_resident`] was asked for.
-    pub fn advance(&mut self, dt: Real, drives: &[(Vec3, bool)], keep_before: bool) -> [Real; 7] {
+    /// internal and surface-load forces of the last
+    /// [`Bulk::forces_resident`]: `drives[d]` is drive `d`'s target
+    /// velocity and whether it is active; `keep_before` keeps `v_{n−½}` for
+    /// the next dissipation rate. Returns the step's sums ([`Totals`]).
+    pub fn advance(&mut self, dt: Real, drives: &[(Vec3, bool)], keep_before: bool) -> Totals {
         let gpu = &self.gpu;
         let m = self.motion();
         assert_eq!(drives.len(), m.num_drives, "one target per drive");
@@ -178,11 +241,14 @@ impl Bulk {
         write(gpu, &m.drives, &table);
         write(gpu, &m.scalars, &[dt, 0.0]);
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        // Without surface loads, any f64 array the kernel only reads.
+        let surface = m.surfaces.as_ref().map_or(&m.mass, |s| &s.f_surface);
+        let flags = u32::from(keep_before) | (u32::from(m.surfaces.is_some()) << 1);
         dispatch(
             gpu,
             &mut encoder,
             &m.update_kernel,
-            Params { count: count(self.num_nodes), flags: u32::from(keep_before), pad: [0; 2] },
+            Params { count: count(self.num_nodes), flags, pad: [0; 2] },
             &[
                 &self.x,
                 &self.v,
@@ -194,33 +260,44 @@ impl Bulk {
                 &m.drives,
                 &m.scalars,
                 &m.terms,
+                surface,
             ],
         );
-        for (offset, sum) in [(0, Sum::WeightBack), (1, Sum::WeightAhead), (2, Sum::Kinetic)] {
-            self.encode_sum(&mut encoder, &m.terms, self.num_nodes, 3, offset, false, sum);
+        for sum in [Sum::WeightBack, Sum::WeightAhead, Sum::Kinetic] {
+            self.encode_sum(&mut encoder, &m.terms, self.num_nodes, &m.shapes[sum as usize], false);
         }
-        let bytes = submit_and_read(gpu, encoder, &[(&m.totals, 0, 56)]);
+        if let Some(s) = &m.surfaces {
+            s.encode_ahead(gpu, &mut encoder, &self.x, &self.v);
+            for (&(first, end), shapes) in s.ranges.iter().zip(&m.load_shapes) {
+                self.encode_sum(&mut encoder, &s.terms, end - first, &shapes[4], false);
+            }
+        }
+        let loads = m.surfaces.as_ref().map_or(0, Surfaces::len);
+        let bytes = submit_and_read(gpu, encoder, &[(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64)]);
         let t: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
-        std::array::from_fn(|k| t[k])
+        Totals {
+            sums: std::array::from_fn(|k| t[k]),
+            loads: t[FIXED..]
+                .chunks_exact(TERMS)
+                .map(|c| LoadSums { force: Vec3::new(c[0], c[1], c[2]) * 3.0, back: c[3], ahead: c[4] })
+                .collect(),
+        }
     }
 
-    /// A two-pass sum of `input[stride k + offset]`, `k < items`, into
-    /// totals slot `sum`, recorded into `encoder`.
-    #[allow(clippy::too_many_arguments)]
+    /// A two-pass sum of `input[stride k + offset]`, `k < items`, into the
+    /// totals slot, stride and offset of `shape` (`wgsl/reduce.wgsl`),
+    /// recorded into `encoder`.
     fn encode_sum(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         input: &wgpu::Buffer,
         items: usize,
-        stride: u32,
-        offset: u32,
+        shape: &wgpu::Buffer,
         finite: bool,
-        sum: Sum,
     ) {
         let gpu = &self.gpu;
         let m = self.motion();
-        let shape = storage(gpu, "sum shape", &[stride, offset, sum as u32, 0]).expect("16 bytes fit");
-        let buffers = [input, &m.partial, &m.totals, &shape];
+        let buffers = [input, &m.partial, &m.totals, shape];
         let chunks = items.div_ceil(CHUNK);
         let pass = |invocations, flags| Params { count: count(invocations), flags, pad: [count(items), 0] };
         dispatch(gpu, encoder, &m.reduce_kernel, pass(chunks, u32::from(finite)), &buffers);

@@ -1,7 +1,7 @@
 //! The step on a GPU ([`Solver::use_device`](crate::Solver::use_device),
 //! [`Residency`]), run by `femdem-gpu`: here the device's copy of the model
 //! and state ([`OnDevice`]), the stage-1-only path
-//! ([`Residency::ForcesOnly`], or a scene with surface loads), and the
+//! ([`Residency::ForcesOnly`]), and the
 //! bookkeeping of where the state is; the resident step is
 //! `step/resident.rs`.
 //!
@@ -40,8 +40,8 @@ pub(crate) struct OnDevice {
     /// (an intervention, a restore): sent up before the next step.
     pub(crate) edited: bool,
     /// Whether positions and velocities stay on the device between steps
-    /// (the update runs there: scenes without surface loads), or go up
-    /// and down every step.
+    /// (the surface loads and the update run there), or go up and down
+    /// every step.
     pub(crate) resident: bool,
     /// Resident: the nodes whose state stage 4 reads (the drives'), in the
     /// order [`Bulk::listed`] returns them.
@@ -222,11 +222,11 @@ fn chunked<T>(items: &[T], f: impl Fn(&T) -> Real) -> Real {
 /// How much of the step a device takes ([`crate::Solver::use_device`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Residency {
-    /// Stages 1 and 5 and the sums where the scene allows it (no surface
-    /// loads: positions and velocities stay on the device, the host reads
-    /// the drives' nodes, the sums and the failures each step, and the
-    /// positions and velocities on steps that ask for stresses or energies
-    /// or have failures: `step/resident.rs`), else stage 1 alone.
+    /// Stages 1 and 5, the surface loads and the sums (positions and
+    /// velocities stay on the device, the host reads the drives' nodes, the
+    /// sums and the failures each step, and the positions and velocities
+    /// on steps that ask for stresses or energies or have failures:
+    /// `step/resident.rs`).
     Auto,
     /// Stage 1 alone (tets, joints, gather): positions and velocities go up
     /// and forces come down every step.
@@ -253,7 +253,7 @@ impl crate::Solver {
         let device = OnDevice::new(gpu, &self.scene.model, &self.evolving.state.joints)
             .map_err(|e| SolverError::Device(e.to_string()))?;
         self.pipeline.device = Some(device);
-        if residency == Residency::Auto && self.scene.loads.surfaces.is_empty() {
+        if residency == Residency::Auto {
             if let Err(e) = self.make_resident() {
                 // All or nothing: no half-attached device stays behind.
                 self.pipeline.device = None;
@@ -278,8 +278,8 @@ impl crate::Solver {
     pub fn device_stages(&self) -> Option<&'static str> {
         self.pipeline.device.as_ref().map(|d| {
             if d.resident {
-                "stages 1 and 5 (tets, joints, gather, update, the energy sums); failures, drives and the account on \
-                 the CPU"
+                "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, drives and \
+                 the account on the CPU"
             } else {
                 "stage 1 (tets, joints, gather); the rest on the CPU"
             }
@@ -295,9 +295,16 @@ impl crate::Solver {
         match &self.pipeline.device {
             None => 0,
             Some(d) if d.resident => {
-                // Failure count, the seven sums, the listed nodes' state,
-                // the drive table and the step's scalars.
-                4 + 56 + 72 * d.listed.len() as u64 + 32 * self.scene.loads.drives.len() as u64 + 16
+                // Failure count, the seven sums and each surface load's
+                // five, the listed nodes' state, the drive and surface-load
+                // tables and the step's scalars.
+                let surfaces = self.scene.loads.surfaces.len() as u64;
+                4 + 56
+                    + 40 * surfaces
+                    + 96 * d.listed.len() as u64
+                    + 32 * self.scene.loads.drives.len() as u64
+                    + 48 * surfaces
+                    + 16
             }
             Some(_) => bytes_per_step(&self.scene.model, self.scene.viscous),
         }

@@ -1,5 +1,6 @@
-//! `femdem run --device gpu`: the bundled cases without contact on the
-//! device against the CPU, the refusals, and determinism.
+//! `femdem run --device gpu`: the bundled cases without contact and the
+//! README's disc glued to its platens on the device against the CPU, the
+//! refusals, and determinism.
 //!
 //! Where the machine has no Vulkan device with 64-bit floats the device
 //! tests say so and pass, unless `FEMDEM_GPU_REQUIRED` is set (`.ci/run`
@@ -12,7 +13,8 @@
 //! of a whole run then differ by that round-off carried through the steps.
 //! Until the first failure every column is compared against `10⁻⁹` of its
 //! group's scale (displacements against the largest drive displacement,
-//! forces against the largest drive force, work and energies against the
+//! forces and Eq. 21's load against the largest drive force or load, the
+//! strain against the largest strain, work and energies against the
 //! largest external work), which leaves a factor of about 10⁴ over the
 //! per-step round-off of a few thousand steps. The stored elastic energy
 //! and the balance are differences of terms of size `(λ + 2μ) V` (the
@@ -67,7 +69,10 @@ fn group_max(table: &Table, rows: usize, pick: impl Fn(&str) -> bool) -> f64 {
 fn agree(a: &Table, b: &Table, rows: usize) -> f64 {
     assert_eq!(a.columns, b.columns);
     let is_u = |n: &str| n.ends_with("_ux") || n.ends_with("_uy") || n.ends_with("_uz");
-    let is_f = |n: &str| n.ends_with("_fx") || n.ends_with("_fy") || n.ends_with("_fz");
+    // The load-strain columns (Eq. 21) are a force and a displacement over
+    // a length: compared with the forces and with their own scale.
+    let is_f = |n: &str| n.ends_with("_fx") || n.ends_with("_fy") || n.ends_with("_fz") || n == "load";
+    let strain = group_max(a, rows, |n| n == "strain");
     let u = group_max(a, rows, is_u);
     let f = group_max(a, rows, is_f);
     let w = group_max(a, rows, |n| n == "external_work" || n == "kinetic");
@@ -78,6 +83,8 @@ fn agree(a: &Table, b: &Table, rows: usize) -> f64 {
             1e-9 * u
         } else if is_f(name) {
             1e-9 * f
+        } else if name == "strain" {
+            1e-9 * strain
         } else if stored(name) {
             1e-9 * w + 8.0 * a.rows[0][k].abs().max(b.rows[0][k].abs())
         } else if name == "time" || name == "step" || name.starts_with("broken_") {
@@ -107,34 +114,67 @@ fn the_elastic_bar_on_the_device_agrees_with_the_cpu() {
     println!("elastic bar: worst difference {worst:.2e} of its tolerance");
 }
 
-/// The pulled bar (joints that fail): the rows before the first failure
-/// agree to round-off; then the same failures, peak and balance.
-#[test]
-fn the_pulled_bar_on_the_device_fails_as_on_the_cpu() {
-    let Some(gpu) = run("cases/pulled-bar.toml", "gpu", "pulled", &[]) else { return };
-    let cpu = run("cases/pulled-bar.toml", "cpu", "pulled", &[]).unwrap();
+/// `case` on the device and on the CPU, a run whose joints fail: the rows
+/// before the first failure agree to round-off; then the same joints fail
+/// at the same steps in the same modes, and the peak of column `load`, the
+/// failure counts and the balance agree. `extra` are more arguments.
+fn fails_as_on_the_cpu(case: &str, name: &str, load: &str, extra: &[&str]) {
+    let Some(gpu) = run(case, "gpu", name, extra) else { return };
+    let cpu = run(case, "cpu", name, extra).unwrap();
     let (a, b) = (history(&cpu), history(&gpu));
     assert_eq!(a.rows.len(), b.rows.len());
-    let first = femdem_post::failures::Failure::read_all(&cpu).unwrap().iter().map(|f| f.time).fold(f64::MAX, f64::min);
+    let list = |dir: &Path| {
+        let all = femdem_post::failures::Failure::read_all(dir).unwrap();
+        all.iter().map(|f| (f.time, f.joint, f.mode)).collect::<Vec<_>>()
+    };
+    let first = list(&cpu).iter().map(|f| f.0).fold(f64::MAX, f64::min);
     let before = a.rows.iter().take_while(|r| r[0] < first).count();
-    assert!(before > 10, "rows before the first failure: {before}");
+    assert!(before > 10, "{name}: rows before the first failure: {before}");
     let worst = agree(&a, &b, before);
-    assert_eq!(failures(&cpu), failures(&gpu), "failures");
-    assert!(failures(&cpu) > 10, "the pulled bar breaks joints");
+    assert!(failures(&cpu) > 10, "{name}: the run breaks joints");
+    assert_eq!(list(&cpu), list(&gpu), "{name}: the same failures at the same steps in the same modes");
     let last = a.rows.len() - 1;
-    for name in ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"] {
-        assert_eq!(a.rows[last][col(&a, name)], b.rows[last][col(&b, name)], "{name}");
+    for column in ["broken_tensile", "broken_shear", "broken_mixed", "broken_collapsed"] {
+        assert_eq!(a.rows[last][col(&a, column)], b.rows[last][col(&b, column)], "{name}: {column}");
     }
-    let fz = col(&a, "pull_fz");
-    let peak = |t: &Table| t.rows.iter().map(|r| r[fz].abs()).fold(0.0, f64::max);
+    let f = col(&a, load);
+    let peak = |t: &Table| t.rows.iter().map(|r| r[f].abs()).fold(0.0, f64::max);
     let (pa, pb) = (peak(&a), peak(&b));
     let work = a.rows[last][col(&a, "external_work")];
     let (ba, bb) = (a.rows[last][col(&a, "balance")], b.rows[last][col(&b, "balance")]);
     println!(
-        "pulled bar: {before} rows before the first failure, worst {worst:.2e} of the tolerance; peak {pa} N vs {pb} N; balance {ba:e} vs {bb:e} J of {work:e} J"
+        "{name}: {before} rows before the first failure, worst {worst:.2e} of the tolerance; peak {pa} N vs {pb} N; balance {ba:e} vs {bb:e} J of {work:e} J"
     );
-    assert!((pa - pb).abs() <= 1e-6 * pa, "peak {pa} vs {pb}");
-    assert!((ba - bb).abs() <= 1e-6 * work, "balance {ba} vs {bb}");
+    assert!((pa - pb).abs() <= 1e-6 * pa, "{name}: peak {pa} vs {pb}");
+    assert!((ba - bb).abs() <= 1e-6 * work, "{name}: balance {ba} vs {bb}");
+}
+
+/// The pulled bar (joints that fail).
+#[test]
+fn the_pulled_bar_on_the_device_fails_as_on_the_cpu() {
+    fails_as_on_the_cpu("cases/pulled-bar.toml", "pulled", "pull_fz", &[]);
+}
+
+/// The README's Brazilian disc glued to its platens (each platen drives
+/// the disc's nodes on its side of the loaded diameter, `|x| ≤ 0.1 mm`,
+/// `|y| ≥ 19.9 mm`; no contact), to its split: joints, rigid platens,
+/// viscous damping and the load–strain stop, written from
+/// `cases/brazilian-split.toml` by removing `[contact]` and adding the
+/// platens' `drives`.
+#[test]
+fn the_glued_disc_on_the_device_splits_as_on_the_cpu() {
+    let text = std::fs::read_to_string(crate::common::root().join("cases/brazilian-split.toml")).unwrap();
+    let (from, to) = (text.find("[contact]").unwrap(), text.find("[solver]").unwrap());
+    let mut glued = format!("{}{}", &text[..from], &text[to..]);
+    for (side, ys) in [("top", "0.0199, -1.0], max = [1e-4, 1.0"), ("bottom", "-1.0, -1.0], max = [1e-4, -0.0199")] {
+        let platen = format!("[[platens]]\nregion = \"platen_{side}\"\n");
+        assert!(glued.contains(&platen), "the README case's {side} platen");
+        let drives = format!("{platen}drives = {{ group = \"disc.side\", box = {{ min = [-1e-4, {ys}, 1.0] }} }}\n");
+        glued = glued.replace(&platen, &drives);
+    }
+    let case = std::env::temp_dir().join("femdem-device-glued.toml");
+    std::fs::write(&case, glued).unwrap();
+    fails_as_on_the_cpu(case.to_str().unwrap(), "glued", "load", &[]);
 }
 
 /// Two device runs of the same case write the same bytes.

@@ -24,6 +24,10 @@ pub(super) struct External {
     load_forces: Vec<Vec<(u32, Vec3)>>,
     /// Each surface load's power against `v_{n−½}`, `Σ f_n · v_{n−½}`, W.
     load_back: Vec<Real>,
+    /// Each surface load's powers at `t_n`, `(Σ f_n · v_{n−½}, Σ f_n ·
+    /// v_{n+½})` in W, once the update has run ([`External::close_powers`],
+    /// or the device's sums).
+    pub powers: Vec<(Real, Real)>,
     /// Each drive's reaction work over the two halves of the step, J:
     /// `(½ Δt Σ r · v_{n−½}, ½ Δt Σ r · v_{n+½})` (set by
     /// [`External::evaluate`]).
@@ -58,20 +62,20 @@ impl External {
             f_surface: vec![Vec3::zeros(); model.num_nodes()],
             load_forces: vec![Vec::new(); loads.surfaces.len()],
             load_back: vec![0.0; loads.surfaces.len()],
+            powers: vec![(0.0, 0.0); loads.surfaces.len()],
             drive_halves: vec![(0.0, 0.0); loads.drives.len()],
             targets: vec![Vec3::zeros(); loads.drives.len()],
             active: vec![true; loads.drives.len()],
         })
     }
 
-    /// Each surface load's powers at `t_n`, `(Σ f_n · v_{n−½}, Σ f_n ·
-    /// v_{n+½})` in W, given the velocities `v_{n+½}` of the update (the
-    /// first was taken by [`External::evaluate`]), in load order.
-    pub fn surface_powers<'a>(&'a self, v: &'a [Vec3]) -> impl Iterator<Item = (Real, Real)> + 'a {
-        self.load_forces
-            .iter()
-            .zip(&self.load_back)
-            .map(move |(own, &back)| (back, own.iter().map(|&(n, f)| f.dot(&v[n as usize])).sum()))
+    /// Sets each surface load's powers at `t_n` ([`External::powers`])
+    /// given the velocities `v_{n+½}` of the update (the first was taken by
+    /// [`External::evaluate`]).
+    pub fn close_powers(&mut self, v: &[Vec3]) {
+        for ((p, own), &back) in self.powers.iter_mut().zip(&self.load_forces).zip(&self.load_back) {
+            *p = (back, own.iter().map(|&(n, f)| f.dot(&v[n as usize])).sum());
+        }
     }
 
     /// The velocity component `c` of node `i` is given in this step:
@@ -110,8 +114,15 @@ impl External {
         dt: Real,
         record: &mut StepRecord,
     ) {
+        self.evaluate_surfaces(loads, state, record);
+        self.evaluate_drives(model, loads, state, internal, contact, dt, record);
+    }
+
+    /// The surface loads at `t_n` on the current geometry, in a fixed
+    /// order: each node's force, each load's total and its power against
+    /// `v_{n−½}`.
+    fn evaluate_surfaces(&mut self, loads: &Loads, state: &State, record: &mut StepRecord) {
         let t = state.time;
-        // Surface loads at t_n on the current geometry, in a fixed order.
         for &n in &self.surface_nodes {
             self.f_surface[n as usize] = Vec3::zeros();
         }
@@ -129,8 +140,24 @@ impl External {
             record.surface_forces[k] = total;
             self.load_back[k] = back;
         }
+    }
+
+    /// The drives' targets at `t_n + Δt/2`, reactions and displacements,
+    /// given the surface-load forces of `t_n` ([`External::f_surface`] on
+    /// the drives' nodes) and the internal and contact forces.
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate_drives(
+        &mut self,
+        model: &Model,
+        loads: &Loads,
+        state: &State,
+        internal: &[Vec3],
+        contact: Option<&[Vec3]>,
+        dt: Real,
+        record: &mut StepRecord,
+    ) {
         // Reactions of the drives (sequential, small).
-        let t_half = t + 0.5 * dt;
+        let t_half = state.time + 0.5 * dt;
         for (d, drive) in loads.drives.iter().enumerate() {
             let target = drive.velocity * drive.ramp.factor(t_half);
             self.targets[d] = target;

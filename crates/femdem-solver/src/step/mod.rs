@@ -457,6 +457,7 @@ impl Solver {
             dt,
             want.energy,
         );
+        self.pipeline.external.close_powers(&self.evolving.state.v);
         self.account(sums, powers, first_new, t, want);
     }
 
@@ -466,8 +467,7 @@ impl Solver {
         let dt = self.scene.params.dt;
         let ledger = &mut self.evolving.ledger;
         ledger.gravity.book(0.5 * dt * powers.back, 0.5 * dt * powers.ahead);
-        let surface = self.pipeline.external.surface_powers(&self.evolving.state.v);
-        for (term, (back, ahead)) in ledger.surfaces.iter_mut().zip(surface) {
+        for (term, &(back, ahead)) in ledger.surfaces.iter_mut().zip(&self.pipeline.external.powers) {
             term.book(0.5 * dt * back, 0.5 * dt * ahead);
         }
         for (term, &(back, ahead)) in ledger.drives.iter_mut().zip(&self.pipeline.external.drive_halves) {

@@ -1,11 +1,12 @@
 //! The step with positions and velocities resident on a device
-//! ([`crate::Residency::Auto`] on a scene without surface loads or
-//! contact): the same six stages as [`Solver::step`]'s, with stages 1 and
-//! 5 and the sums on the device.
+//! ([`crate::Residency::Auto`] on a scene without contact): the same six
+//! stages as [`Solver::step`]'s, with stage 1, stage 4's surface loads,
+//! stage 5 and the sums on the device.
 //!
 //! Each step reads back one word (how many joints failed) with the drives'
-//! nodes (position, velocity and internal force, for stage 4's reactions
-//! and displacements, computed by the CPU's code), and the seven sums; a
+//! nodes (position, velocity, internal and surface-load force, for stage
+//! 4's reactions and displacements, computed by the CPU's code), the seven
+//! sums and each surface load's total force and two powers; a
 //! step with failures also the failed joints and the positions and
 //! velocities of `t_n` (the record needs the failed joints' geometry), and
 //! a step that asks for stresses or energies the positions and velocities
@@ -15,17 +16,19 @@
 //! come back only with [`Solver::sync_device`].
 
 use femdem_core::Vec3;
-use femdem_gpu::{Evaluate, MotionSetup, Sum};
+use femdem_gpu::{Evaluate, MotionSetup, Sum, SurfaceKind, SurfaceLoad};
 
 use super::Solver;
 use super::external::weight;
 use super::prescribed::Claim;
 use super::update::Powers;
 use crate::forces::{ForceSums, Want};
+use crate::loads;
 
 impl Solver {
     /// Readies the device's update: masses, weights, the prescribed
-    /// components, the drives' nodes; sends the state up.
+    /// components, the drives' nodes, the surface loads; sends the state
+    /// up.
     pub(crate) fn make_resident(&mut self) -> Result<(), femdem_gpu::GpuError> {
         let model = &self.scene.model;
         let loads = &self.scene.loads;
@@ -46,12 +49,24 @@ impl Solver {
         let mut listed: Vec<u32> = loads.drives.iter().flat_map(|d| d.nodes.iter().copied()).collect();
         listed.sort_unstable();
         listed.dedup();
+        let surfaces: Vec<SurfaceLoad<'_>> = loads
+            .surfaces
+            .iter()
+            .map(|l| SurfaceLoad {
+                faces: &l.faces,
+                kind: match l.kind {
+                    loads::SurfaceKind::Pressure(p) => SurfaceKind::Pressure(p),
+                    loads::SurfaceKind::Traction(t) => SurfaceKind::Traction(t),
+                },
+            })
+            .collect();
         let setup = MotionSetup {
             mass: &model.mass,
             weight: &weights,
             claims: &claims,
             drives: loads.drives.len(),
             listed: &listed,
+            surfaces: &surfaces,
         };
         let e = &self.evolving;
         // Failures the last CPU or stage-1 step flagged are not this path's
@@ -78,7 +93,8 @@ impl Solver {
             sums_wanted.extend([Sum::TetEnergy, Sum::JointEnergy, Sum::Fracture]);
         }
         let evaluate = Evaluate { stress: want.stress, energy: want.energy, dissipation: viscous };
-        let (failed, listed) = device.bulk.forces_resident(evaluate, &sums_wanted);
+        let factors: Vec<_> = self.scene.loads.surfaces.iter().map(|l| l.ramp.factor(t)).collect();
+        let (failed, listed) = device.bulk.forces_resident(evaluate, &sums_wanted, &factors);
         device.synced = false;
         self.pipeline.forces_current = true;
         if want.stress {
@@ -91,16 +107,17 @@ impl Solver {
             device.pull_motion(&mut self.evolving.state);
             self.record_failures(t);
         }
-        // 4. External forces: the drives' reactions from their nodes' state,
-        // by the CPU's code (no surface loads here).
+        // 4. External forces: the surface loads on the device (above), the
+        // drives' reactions from their nodes' state by the CPU's code.
         let device = self.pipeline.device.as_ref().expect("a resident device");
         let state = &mut self.evolving.state;
         let internal = &mut self.pipeline.workspace.internal;
-        for (&i, [x, v, f]) in device.listed.iter().zip(listed) {
+        let f_surface = &mut self.pipeline.external.f_surface;
+        for (&i, [x, v, f, s]) in device.listed.iter().zip(listed) {
             let i = i as usize;
-            (state.x[i], state.v[i], internal[i]) = (x, v, f);
+            (state.x[i], state.v[i], internal[i], f_surface[i]) = (x, v, f, s);
         }
-        self.pipeline.external.evaluate(
+        self.pipeline.external.evaluate_drives(
             &self.scene.model,
             &self.scene.loads,
             &self.evolving.state,
@@ -114,7 +131,11 @@ impl Solver {
         let drives: Vec<(Vec3, bool)> = external.targets.iter().copied().zip(external.active.iter().copied()).collect();
         let device = self.pipeline.device.as_mut().expect("a resident device");
         let totals = device.bulk.advance(dt, &drives, viscous);
-        let total = |s: Sum| totals[s as usize];
+        for (k, load) in totals.loads.iter().enumerate() {
+            self.evolving.record.surface_forces[k] = load.force;
+            self.pipeline.external.powers[k] = (load.back, load.ahead);
+        }
+        let total = |s: Sum| totals[s];
         let powers =
             Powers { back: total(Sum::WeightBack), ahead: total(Sum::WeightAhead), kinetic: total(Sum::Kinetic) };
         let mut sums = ForceSums { newly_failed, ..ForceSums::default() };

@@ -17,7 +17,7 @@ use crate::state::State;
 pub(crate) struct Powers {
     /// `Σ m_i g · v_{n−½}` over the nodes: gravity's power against the
     /// velocity before step `n`, W (the surface loads' powers are each
-    /// load's own: `External::surface_powers`).
+    /// load's own: `External::powers`).
     pub back: Real,
     /// `Σ m_i g · v_{n+½}`: against the velocity after it, W.
     pub ahead: Real,

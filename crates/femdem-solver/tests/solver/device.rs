@@ -1,8 +1,8 @@
 //! The step on a device (`Solver::use_device`), both residencies, against
-//! the CPU: a jointed bar pulled to failure under gravity, with a pressure
-//! on its side for the path that keeps only stage 1 on the device, and the
-//! interventions and checkpoints that move the state between host and
-//! device.
+//! the CPU: a jointed bar pulled to failure under gravity, bare and with a
+//! pressure and a traction on two of its sides (faces whose edges are the
+//! pulled ends' nodes too), and the interventions and checkpoints that move
+//! the state between host and device.
 //!
 //! Where no Vulkan device with 64-bit floats exists these tests say so and
 //! pass, unless `FEMDEM_GPU_REQUIRED` is set (CI sets it).
@@ -36,7 +36,7 @@ fn gpu() -> Option<Gpu> {
 
 /// The pulled bar (10 × 10 × 20 mm, viscous, weak joints so that it breaks
 /// within the steps below), under gravity, with a pressure on its x = 0
-/// face when `pressed`.
+/// face and a traction on its y = W face when `pressed`.
 fn bar(pressed: bool) -> Solver {
     let mesh = box_mesh([0.0; 3], [W, W, 0.02], 0.0025, 0.1, true);
     let jointed = insert_joints(&mesh).unwrap();
@@ -55,7 +55,16 @@ fn bar(pressed: bool) -> Solver {
             name: "side".into(),
             faces,
             kind: SurfaceKind::Pressure(2e5),
-            ramp: femdem_solver::Ramp { ramp_time: 5e-5, stop_time: None },
+            ramp: femdem_solver::Ramp { ramp_time: 1e-5, stop_time: None },
+        });
+        let faces = femdem_solver::select::group_faces(&jointed, "ymax").unwrap();
+        loads.surfaces.push(SurfaceLoad {
+            name: "shear".into(),
+            faces,
+            kind: SurfaceKind::Traction(Vec3::new(5e4, -1e5, 2e4)),
+            // Removed within the first 400 steps (Δt ≈ 43 ns): the device's
+            // zero-factor path before the comparison.
+            ramp: femdem_solver::Ramp { ramp_time: 5e-6, stop_time: Some(1.2e-5) },
         });
     }
     let dt = 0.5 * stable(&model, &loads, 300).critical;
@@ -74,7 +83,10 @@ fn run(s: &mut Solver, n: usize) -> usize {
 }
 
 /// Positions and velocities of `a` and `b` within the module's tolerance;
-/// the energies of their last records within `10⁻⁹` of the work.
+/// the energies of their last records, and each surface load's force and
+/// work, within `10⁻⁹` of the work and of the largest load's force: sums
+/// over thousands of terms in different orders (the device sums a load
+/// face by face, the CPU node by node), of terms that agree to round-off.
 fn assert_close(a: &Solver, b: &Solver, what: &str) {
     let dx = a.state().x.iter().zip(&b.state().x).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
     let dv = a.state().v.iter().zip(&b.state().v).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
@@ -91,6 +103,14 @@ fn assert_close(a: &Solver, b: &Solver, what: &str) {
     ] {
         assert!((x - y).abs() <= 1e-9 * scale, "{what}: {name} {x} vs {y}");
     }
+    let (ra, rb) = (a.record(), b.record());
+    let force = ra.surface_forces.iter().map(|f| f.norm()).fold(1e-12, f64::max);
+    for (k, (fa, fb)) in ra.surface_forces.iter().zip(&rb.surface_forces).enumerate() {
+        assert!((fa - fb).norm() <= 1e-9 * force, "{what}: load {k}'s force {fa} vs {fb}");
+    }
+    for (k, (wa, wb)) in ra.surface_work.iter().zip(&rb.surface_work).enumerate() {
+        assert!((wa - wb).abs() <= 1e-9 * scale, "{what}: load {k}'s work {wa} vs {wb}");
+    }
 }
 
 /// Both residencies against the CPU before any failure, then the same
@@ -98,16 +118,21 @@ fn assert_close(a: &Solver, b: &Solver, what: &str) {
 #[test]
 fn the_device_steps_as_the_cpu_with_and_without_surface_loads() {
     let Some(g) = gpu() else { return };
-    for pressed in [false, true] {
+    for (pressed, residency) in [(false, Residency::Auto), (true, Residency::Auto), (true, Residency::ForcesOnly)] {
         let mut cpu = bar(pressed);
         let mut dev = bar(pressed);
-        dev.use_device(&g, Residency::Auto).unwrap();
+        dev.use_device(&g, residency).unwrap();
         let stages = dev.device_stages().unwrap();
-        assert_eq!(stages.starts_with("stages 1 and 5"), !pressed, "{stages}");
+        assert_eq!(stages.starts_with("stages 1 and 5"), residency == Residency::Auto, "{stages}");
         assert_eq!(run(&mut cpu, 400), 0, "no failure yet");
         assert_eq!(run(&mut dev, 400), 0);
         dev.sync_device();
-        assert_close(&cpu, &dev, if pressed { "pressed, stage 1 on the device" } else { "resident" });
+        let what =
+            format!("{residency:?}, {}, t = {:.3e} s", if pressed { "pressed" } else { "bare" }, cpu.record().time);
+        assert_close(&cpu, &dev, &what);
+        let r = cpu.record();
+        assert!(!pressed || r.surface_work.iter().all(|&w| w != 0.0), "the loads work");
+        assert!(!pressed || r.surface_forces[1] == Vec3::zeros(), "the traction is off");
         let (fc, fd) = (run(&mut cpu, 1500), run(&mut dev, 1500));
         assert!(fc > 5, "the bar breaks ({fc})");
         let joints = |s: &Solver| s.failures().iter().map(|f| (f.joint, f.mode)).collect::<Vec<_>>();

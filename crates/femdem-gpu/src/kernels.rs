@@ -33,6 +33,11 @@ pub(crate) fn reduce() -> String {
     [COMMON, include_str!("wgsl/reduce.wgsl")].concat()
 }
 
+/// The potential contact force of Eq. 17 between pairs of tets.
+pub(crate) fn pairs() -> String {
+    [COMMON, include_str!("wgsl/pairs.wgsl")].concat()
+}
+
 /// Surface loads' nodal forces and powers.
 pub(crate) fn surface() -> String {
     [COMMON, include_str!("wgsl/surface.wgsl")].concat()

@@ -21,13 +21,18 @@
 //!   tractions on the current geometry, so that positions and velocities
 //!   stay on the device.
 //!
+//! - [`pairs`]: the potential contact force of Eq. 17 between pairs of
+//!   tets (`femdem_contact::tet_tet_contact` on the device), checked pair
+//!   by pair against the CPU; not yet part of the step.
+//!
 //! The solver's switch to this path is `femdem_solver::Solver::use_device`
 //! (`[solver] device = "gpu"`, `femdem run --device gpu`). Not yet here:
 //! contact (issue 35).
 //!
 //! This crate knows the material law and the tet's reference shape
-//! (`femdem-material`) and nothing of the solver, the case files or
-//! contact.
+//! (`femdem-material`) and nothing of the solver or the case files; of
+//! contact, only the pair force's formula (its tests compare it with
+//! `femdem-contact`'s).
 
 mod buffers;
 pub mod bulk;
@@ -36,6 +41,7 @@ mod joints;
 mod kernels;
 pub mod math;
 pub mod motion;
+pub mod pairs;
 pub mod surface;
 
 pub use bulk::{Bulk, Evaluate, TetMesh};

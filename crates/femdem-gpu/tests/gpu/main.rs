@@ -7,6 +7,7 @@
 
 mod joints;
 mod math;
+mod pairs;
 mod tets;
 
 use femdem_gpu::Gpu;

@@ -1,0 +1,182 @@
+//! The device's pair contact (`femdem_gpu::pairs`, Eq. 17) against
+//! `femdem_contact::tet_tet_contact`, on the pair kinds the CPU kernel's own
+//! property tests use: random pairs from apart to deeply overlapping (flat
+//! and needle-shaped tets among them), face-to-face contacts (the shallow
+//! contact of a broken mesh: nodes shared exactly or moved by 10⁻¹⁷ to
+//! 10⁻³, 10⁻¹⁶ to 0.3 deep or apart, slid along the face) and tets
+//! sharing a vertex or an edge, at sizes 10⁻³ to 10² and up to 10⁵ sizes
+//! from the origin.
+//!
+//! # The tolerance
+//!
+//! The kernel is the CPU's operation for operation, but a driver may fuse
+//! a product and a sum (Vulkan allows it unless told not to), so a
+//! barycentric coordinate may round differently, and a vertex within
+//! rounding of a clipping plane may be kept by one and dropped by the
+//! other. That is the difference `femdem-contact`'s tests bound between its
+//! two clippings: every nodal force within `1024 p L² ε` (`L²` the larger
+//! tet's largest face area, `ε = u (1 + M (R + X))` the rounding of a
+//! computed coordinate: the derivation is in `potential.rs`'s tests, with
+//! the largest difference measured there, 5.1), and the contact centre
+//! within what those force differences allow. The largest difference and
+//! how many pairs agree to the last bit are printed.
+
+use femdem_contact::tet_tet_contact;
+use femdem_core::tet::{FACES, signed_volume, triangle_area};
+use femdem_core::{Mat3, Real, Vec3};
+use femdem_gpu::pairs::pair_contacts;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::gpu;
+
+const PENALTY: Real = 3e10;
+const FORCE_TOLERANCE: Real = 1024.0;
+
+fn point(rng: &mut ChaCha8Rng) -> Vec3 {
+    Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0))
+}
+
+fn positive(mut t: [Vec3; 4]) -> [Vec3; 4] {
+    if signed_volume(&t) < 0.0 {
+        t.swap(1, 2);
+    }
+    t
+}
+
+fn tet(rng: &mut ChaCha8Rng, spread: Real) -> [Vec3; 4] {
+    positive(std::array::from_fn(|_| point(rng) * spread))
+}
+
+/// `10^e` for `e` in `[lo, hi)`, or exactly zero one time in eight.
+fn small(rng: &mut ChaCha8Rng, lo: Real, hi: Real) -> Real {
+    if rng.random_range(0..8) == 0 { 0.0 } else { 10f64.powf(rng.random_range(lo..hi)) }
+}
+
+/// Both tets scaled by 10⁻³, 1 or 10² and moved by up to 0, 1 or 100
+/// times a unit (up to 10⁵ times their size).
+fn place(rng: &mut ChaCha8Rng, pair: ([Vec3; 4], [Vec3; 4])) -> ([Vec3; 4], [Vec3; 4]) {
+    let size = [1e-3, 1.0, 1e2][rng.random_range(0..3)];
+    let offset = point(rng) * [0.0, 1.0, 100.0][rng.random_range(0..3)];
+    let at = |t: [Vec3; 4]| t.map(|p| p * size + offset);
+    (at(pair.0), at(pair.1))
+}
+
+/// Two random tets, apart to deeply overlapping.
+fn random_pair(rng: &mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]) {
+    let a = tet(rng, 1.0);
+    let spread = [0.01, 0.3, 1.0][rng.random_range(0..3)];
+    let shift = point(rng) * rng.random_range(0.0..1.5);
+    let b = tet(rng, spread).map(|p| p + shift);
+    place(rng, (a, positive(b)))
+}
+
+/// `b` built on face `f` of `a`, each node moved by up to `jitter`, slid
+/// along the face and pushed in by `depth` or pulled away.
+fn face_pair(rng: &mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]) {
+    let a = tet(rng, 1.0);
+    let [p0, p1, p2] = FACES[rng.random_range(0..4)].map(|k| a[k]);
+    let n = (p1 - p0).cross(&(p2 - p0)).try_normalize(0.0).unwrap_or(Vec3::x());
+    let apex = point(rng);
+    let top = (p0 + p1 + p2) / 3.0 + n * (0.2 + apex.x.abs()) + (apex - n * apex.dot(&n)) * 0.5;
+    let jitter = small(rng, -17.0, -3.0);
+    let slide = point(rng);
+    let slide_size = if rng.random_bool(0.5) { 0.0 } else { rng.random_range(0.0..0.5) };
+    let depth = small(rng, -16.0, -0.5);
+    let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+    let shift = (slide - n * slide.dot(&n)) * slide_size + n * (sign * depth);
+    let mut b = positive([p0, p2, p1, top]);
+    for p in &mut b {
+        *p += point(rng) * jitter + shift;
+    }
+    place(rng, (a, positive(b)))
+}
+
+/// Tets sharing one or two nodes, each moved by up to `jitter`.
+fn shared_pair(rng: &mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]) {
+    let a = tet(rng, 1.0);
+    let mut b = tet(rng, 1.0);
+    let shared = rng.random_range(1..3);
+    let first = rng.random_range(0..4);
+    let jitter = small(rng, -17.0, -3.0);
+    for (k, node) in b.iter_mut().enumerate().take(shared) {
+        *node = a[(first + k) % 4] + point(rng) * jitter;
+    }
+    place(rng, (a, positive(b)))
+}
+
+/// `ε = u (1 + M (R + X))` of a coordinate of a point of `a` in `b`
+/// (`femdem_contact`'s `Barycentric::rounding`), the larger of both ways.
+fn rounding(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
+    let one = |a: &[Vec3; 4], b: &[Vec3; 4]| {
+        let t = Mat3::from_columns(&[b[1] - b[0], b[2] - b[0], b[3] - b[0]]);
+        t.try_inverse().map_or(0.0, |m| {
+            let m: Real = m.iter().map(|x| x.abs()).sum();
+            let (r, x) =
+                a.iter().fold((0.0, 0.0), |(r, x): (Real, Real), p| (r + (p - b[0]).abs().sum(), x + p.abs().sum()));
+            (Real::EPSILON / 2.0) * (1.0 + m * (r + x))
+        })
+    };
+    one(a, b).max(one(b, a))
+}
+
+fn face_area(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
+    [a, b].iter().flat_map(|t| FACES.map(|f| triangle_area(&t[f[0]], &t[f[1]], &t[f[2]]))).fold(0.0, Real::max)
+}
+
+/// `n` pairs from `make` on the device and on the CPU: every force within
+/// the tolerance, every centre within what the force differences allow.
+fn compare(name: &str, make: fn(&mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]), n: usize, seed: u64) {
+    let Some(g) = gpu() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let pairs: Vec<_> = (0..n).map(|_| make(&mut rng)).collect();
+    let x: Vec<Vec3> = pairs.iter().flat_map(|(a, b)| a.iter().chain(b).copied()).collect();
+    let tets: Vec<[u32; 4]> = (0..2 * n as u32).map(|t| std::array::from_fn(|k| 4 * t + k as u32)).collect();
+    let list: Vec<[u32; 2]> = (0..n as u32).map(|k| [2 * k, 2 * k + 1]).collect();
+    let device = pair_contacts(&g, &x, &tets, &list, PENALTY).unwrap();
+    let (mut touching, mut identical, mut worst_force, mut worst_centre) = (0, 0, 0.0, 0.0);
+    for ((a, b), dev) in pairs.iter().zip(&device) {
+        let cpu = tet_tet_contact(a, b, PENALTY);
+        let unit = PENALTY * face_area(a, b) * rounding(a, b);
+        let forces = cpu.on_a.iter().zip(&dev.on_a).chain(cpu.on_b.iter().zip(&dev.on_b));
+        let force = forces.map(|(x, y)| (x - y).norm() / unit).fold(0.0, Real::max);
+        assert!(force <= FORCE_TOLERANCE, "{name}: force off by {force:e} p L² ε: {a:?} {b:?}");
+        // The centre moves by at most the pieces' changes (up to 32 pieces,
+        // each within the force tolerance) over Σ |F_k| (at least the
+        // largest nodal force) times the pair's extent.
+        let largest = cpu.on_a.iter().chain(&cpu.on_b).map(|f| f.norm()).fold(0.0, Real::max);
+        let extent = a.iter().chain(b).map(|p| (p - a[0]).norm()).fold(0.0, Real::max);
+        let allowed = 32.0 * FORCE_TOLERANCE * unit / largest * 2.0 * extent;
+        let centre = match (cpu.centre, dev.centre) {
+            (Some(x), Some(y)) => (x - y).norm() / allowed,
+            (None, None) => 0.0,
+            _ if allowed >= extent => 0.0,
+            _ => Real::INFINITY,
+        };
+        assert!(centre <= 1.0, "{name}: centre off by {centre:e} of the allowance: {a:?} {b:?}");
+        touching += usize::from(cpu.centre.is_some());
+        identical += usize::from(cpu.on_a == dev.on_a && cpu.on_b == dev.on_b && cpu.centre == dev.centre);
+        worst_force = Real::max(worst_force, force);
+        worst_centre = Real::max(worst_centre, centre);
+    }
+    println!(
+        "{name}: {touching} of {n} touch, {identical} equal to the last bit; largest force difference \
+         {worst_force:.2} p L² ε, centre {worst_centre:.2e} of its allowance"
+    );
+    assert!(touching > n / 10, "{name}: the pairs touch ({touching} of {n})");
+}
+
+#[test]
+fn random_pairs_agree_with_the_cpu() {
+    compare("random", random_pair, 20_000, 1);
+}
+
+#[test]
+fn face_to_face_pairs_agree_with_the_cpu() {
+    compare("face to face", face_pair, 20_000, 2);
+}
+
+#[test]
+fn node_sharing_pairs_agree_with_the_cpu() {
+    compare("sharing nodes", shared_pair, 20_000, 3);
+}

@@ -11,7 +11,7 @@ use femdem_core::{Mat3, Real, Vec3};
 use femdem_fracture::{FailureMode, JointHistory};
 use femdem_material::{Law, Material, TetReference};
 
-use crate::buffers::{Params, dispatch, read, read_words, storage, write, zeroed};
+use crate::buffers::{Params, dispatch, read, read_words, storage, submit_and_read, write, zeroed};
 use crate::device::{Gpu, GpuError};
 use crate::joints::{HISTORY, JointMesh, LAW, mode, pack_history, pack_law, unpack_history};
 use crate::kernels;
@@ -311,6 +311,25 @@ impl Bulk {
     pub fn joint_history(&self) -> Vec<JointHistory> {
         let numbers: Vec<Real> = read(&self.gpu, &self.joint_hist, HISTORY * self.num_joints);
         let flags: Vec<u32> = read(&self.gpu, &self.joint_flags, self.num_joints);
+        unpack_history(&numbers, &flags)
+    }
+
+    /// The histories of joints `joints` (read back in one submission).
+    pub fn joint_histories_of(&self, joints: &[u32]) -> Vec<JointHistory> {
+        if joints.is_empty() {
+            return Vec::new();
+        }
+        let encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let row = (HISTORY * size_of::<Real>()) as u64;
+        let copies: Vec<_> = joints
+            .iter()
+            .flat_map(|&j| [(&self.joint_hist, row * u64::from(j), row), (&self.joint_flags, 4 * u64::from(j), 4)])
+            .collect();
+        let bytes = submit_and_read(&self.gpu, encoder, &copies);
+        let numbers: Vec<Real> =
+            bytes.iter().step_by(2).flat_map(|b| bytemuck::pod_collect_to_vec::<u8, Real>(b)).collect();
+        let flags: Vec<u32> =
+            bytes.iter().skip(1).step_by(2).map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]])).collect();
         unpack_history(&numbers, &flags)
     }
 

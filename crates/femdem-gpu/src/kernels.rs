@@ -43,6 +43,11 @@ pub(crate) fn surface() -> String {
     [COMMON, include_str!("wgsl/surface.wgsl")].concat()
 }
 
+/// Vectors written into a per-node array.
+pub(crate) fn scatter() -> String {
+    [COMMON, include_str!("wgsl/scatter.wgsl")].concat()
+}
+
 /// Listed nodes' state.
 pub(crate) fn compact() -> String {
     [COMMON, include_str!("wgsl/compact.wgsl")].concat()

@@ -27,7 +27,8 @@
 //!
 //! The solver's switch to this path is `femdem_solver::Solver::use_device`
 //! (`[solver] device = "gpu"`, `femdem run --device gpu`). Not yet here:
-//! contact (issue 35).
+//! the contact pass (issue 35: the solver runs it on the CPU beside the
+//! device; [`pairs`] is its first kernel).
 //!
 //! This crate knows the material law and the tet's reference shape
 //! (`femdem-material`) and nothing of the solver or the case files; of

@@ -45,6 +45,9 @@ pub struct Totals {
     pub sums: [Real; 7],
     /// Each surface load's total force and powers, in load order.
     pub loads: Vec<LoadSums>,
+    /// With `read_listed`, the listed nodes' positions `x_{n+1}` and
+    /// velocities `v_{n+½}` after the update, in their order.
+    pub listed: Vec<[Vec3; 2]>,
 }
 
 impl std::ops::Index<Sum> for Totals {
@@ -82,6 +85,10 @@ pub(crate) struct Motion {
     update_kernel: wgpu::ComputePipeline,
     reduce_kernel: wgpu::ComputePipeline,
     compact_kernel: wgpu::ComputePipeline,
+    scatter_kernel: wgpu::ComputePipeline,
+    /// Each node's contact force, N, once [`Bulk::enable_contact_forces`]
+    /// has run.
+    f_contact: Option<wgpu::Buffer>,
     mass: wgpu::Buffer,
     weight: wgpu::Buffer,
     claims: wgpu::Buffer,
@@ -119,6 +126,7 @@ impl Motion {
         let update = gpu.module("update", &kernels::update())?;
         let reduce = gpu.module("reduce", &kernels::reduce())?;
         let compact = gpu.module("compact", &kernels::compact())?;
+        let scatter = gpu.module("scatter", &kernels::scatter())?;
         let weight: Vec<Real> = setup.weight.iter().flat_map(|w| [w.x, w.y, w.z]).collect();
         let surfaces = Surfaces::new(gpu, setup.surfaces, nodes)?;
         let faces = surfaces.as_ref().map_or(0, |s| s.ranges.last().map_or(0, |r| r.1));
@@ -138,6 +146,8 @@ impl Motion {
             update_kernel: gpu.pipeline("update", &update)?,
             reduce_kernel: gpu.pipeline("reduce", &reduce)?,
             compact_kernel: gpu.pipeline("compact", &compact)?,
+            scatter_kernel: gpu.pipeline("scatter", &scatter)?,
+            f_contact: None,
             mass: storage(gpu, "masses", setup.mass)?,
             weight: storage(gpu, "weights", &weight)?,
             claims: storage(gpu, "claims", setup.claims.as_flattened())?,
@@ -172,6 +182,42 @@ impl Bulk {
         self.motion.as_ref().expect("Bulk::enable_motion first")
     }
 
+    /// Adds contact forces to the update: each node's force of the host's
+    /// contact pass, set by [`Bulk::advance`]'s `contact` (zero until
+    /// then).
+    pub fn enable_contact_forces(&mut self) -> Result<(), GpuError> {
+        let f = zeroed::<Real>(&self.gpu, "contact forces", 3 * self.num_nodes)?;
+        self.motion.as_mut().expect("Bulk::enable_motion first").f_contact = Some(f);
+        Ok(())
+    }
+
+    /// Replaces the nodes whose state the host reads every step
+    /// ([`Bulk::forces_resident`], and [`Bulk::advance`] with
+    /// `read_listed`).
+    pub fn set_listed(&mut self, listed: &[u32]) -> Result<(), GpuError> {
+        let gpu = &self.gpu;
+        let m = self.motion.as_mut().expect("Bulk::enable_motion first");
+        m.listed = storage(gpu, "listed nodes", listed)?;
+        m.num_listed = listed.len();
+        m.compacted = zeroed::<Real>(gpu, "listed nodes' state", 12 * listed.len())?;
+        Ok(())
+    }
+
+    /// Records the compact pass of the listed nodes' state (x, v, internal
+    /// and surface-load force, `wgsl/compact.wgsl`).
+    fn encode_compact(&self, encoder: &mut wgpu::CommandEncoder) {
+        let m = self.motion();
+        // Without surface loads, any f64 array the kernel only reads.
+        let surface = m.surfaces.as_ref().map_or(&self.x, |s| &s.f_surface);
+        dispatch(
+            &self.gpu,
+            encoder,
+            &m.compact_kernel,
+            Params { count: count(m.num_listed), flags: u32::from(m.surfaces.is_some()), pad: [0; 2] },
+            &[&self.x, &self.v, &self.internal, &m.listed, &m.compacted, surface],
+        );
+    }
+
     /// Stage 1 ([`Bulk::forces`] with `want`), the sums `sums` of it, the
     /// surface loads at the factors `factors` (one per load: their ramps
     /// at `t_n`) and the listed nodes' position, velocity, internal force
@@ -204,15 +250,7 @@ impl Bulk {
             }
             None => assert!(factors.is_empty(), "no surface loads on the device"),
         }
-        // Without surface loads, any f64 array the kernel only reads.
-        let surface = m.surfaces.as_ref().map_or(&self.x, |s| &s.f_surface);
-        dispatch(
-            gpu,
-            &mut encoder,
-            &m.compact_kernel,
-            Params { count: count(m.num_listed), flags: u32::from(m.surfaces.is_some()), pad: [0; 2] },
-            &[&self.x, &self.v, &self.internal, &m.listed, &m.compacted, surface],
-        );
+        self.encode_compact(&mut encoder);
         let failed_words = if self.num_joints > 0 { 4 } else { 0 };
         let bytes = submit_and_read(
             gpu,
@@ -230,10 +268,21 @@ impl Bulk {
 
     /// The central-difference update of step `n` over `dt` with the
     /// internal and surface-load forces of the last
-    /// [`Bulk::forces_resident`]: `drives[d]` is drive `d`'s target
-    /// velocity and whether it is active; `keep_before` keeps `v_{n−½}` for
-    /// the next dissipation rate. Returns the step's sums ([`Totals`]).
-    pub fn advance(&mut self, dt: Real, drives: &[(Vec3, bool)], keep_before: bool) -> Totals {
+    /// [`Bulk::forces_resident`] and, after
+    /// [`Bulk::enable_contact_forces`], the contact forces: `contact` sets
+    /// the contact force of the nodes it lists (the others keep theirs):
+    /// `drives[d]` is drive `d`'s target velocity and whether it is active;
+    /// `keep_before` keeps `v_{n−½}` for the next dissipation rate;
+    /// `read_listed` reads the listed nodes' new positions and velocities
+    /// back. Returns the step's sums ([`Totals`]).
+    pub fn advance(
+        &mut self,
+        dt: Real,
+        drives: &[(Vec3, bool)],
+        keep_before: bool,
+        contact: &[(u32, Vec3)],
+        read_listed: bool,
+    ) -> Totals {
         let gpu = &self.gpu;
         let m = self.motion();
         assert_eq!(drives.len(), m.num_drives, "one target per drive");
@@ -241,9 +290,21 @@ impl Bulk {
         write(gpu, &m.drives, &table);
         write(gpu, &m.scalars, &[dt, 0.0]);
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        // Without surface loads, any f64 array the kernel only reads.
+        if !contact.is_empty() {
+            let f = m.f_contact.as_ref().expect("Bulk::enable_contact_forces first");
+            let nodes: Vec<u32> = contact.iter().map(|c| c.0).collect();
+            let values: Vec<Real> = contact.iter().flat_map(|c| [c.1.x, c.1.y, c.1.z]).collect();
+            let nodes = storage(gpu, "contact nodes", &nodes).expect("a few bytes a node fit");
+            let values = storage(gpu, "contact node forces", &values).expect("a few bytes a node fit");
+            let params = Params { count: count(contact.len()), flags: 0, pad: [0; 2] };
+            dispatch(gpu, &mut encoder, &m.scatter_kernel, params, &[&nodes, &values, f]);
+        }
+        // Without surface loads or contact, any f64 array the kernel only
+        // reads.
         let surface = m.surfaces.as_ref().map_or(&m.mass, |s| &s.f_surface);
-        let flags = u32::from(keep_before) | (u32::from(m.surfaces.is_some()) << 1);
+        let f_contact = m.f_contact.as_ref().unwrap_or(&m.mass);
+        let flags =
+            u32::from(keep_before) | (u32::from(m.surfaces.is_some()) << 1) | (u32::from(m.f_contact.is_some()) << 2);
         dispatch(
             gpu,
             &mut encoder,
@@ -261,6 +322,7 @@ impl Bulk {
                 &m.scalars,
                 &m.terms,
                 surface,
+                f_contact,
             ],
         );
         for sum in [Sum::WeightBack, Sum::WeightAhead, Sum::Kinetic] {
@@ -272,10 +334,23 @@ impl Bulk {
                 self.encode_sum(&mut encoder, &s.terms, end - first, &shapes[4], false);
             }
         }
+        if read_listed {
+            self.encode_compact(&mut encoder);
+        }
         let loads = m.surfaces.as_ref().map_or(0, Surfaces::len);
-        let bytes = submit_and_read(gpu, encoder, &[(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64)]);
+        let listed_bytes = if read_listed { 96 * m.num_listed as u64 } else { 0 };
+        let bytes = submit_and_read(
+            gpu,
+            encoder,
+            &[(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64), (&m.compacted, 0, listed_bytes)],
+        );
         let t: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
+        let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[1]);
         Totals {
+            listed: numbers
+                .chunks_exact(12)
+                .map(|c| [Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5])])
+                .collect(),
             sums: std::array::from_fn(|k| t[k]),
             loads: t[FIXED..]
                 .chunks_exact(TERMS)

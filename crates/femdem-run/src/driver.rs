@@ -78,12 +78,6 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
             Some(femdem_solver::Gpu::new().map_err(|e| anyhow::anyhow!("{from}: no device for the run: {e}"))?)
         }
     };
-    if let (Some(g), true) = (&gpu, solver.contact().is_some()) {
-        bail!(
-            "{from}: {}: contact runs on the CPU only (contact on the device is not built yet); run this case on the CPU",
-            g.adapter()
-        );
-    }
     let attach = |solver: &mut Solver| -> Result<()> {
         if let Some(g) = &gpu {
             solver.use_device(g, femdem_solver::Residency::Auto).map_err(|e| anyhow::anyhow!("{from}: {e}"))?;

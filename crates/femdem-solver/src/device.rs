@@ -48,6 +48,9 @@ pub(crate) struct OnDevice {
     pub(crate) listed: Vec<u32>,
     /// The joints whose `failed_now` entry the last step set.
     pub(crate) flagged: Vec<u32>,
+    /// Resident with contact: the nodes whose contact force the device
+    /// holds (those the host's last contact pass touched), ascending.
+    pub(crate) touched: Vec<u32>,
 }
 
 /// Bytes one step of stage 1 alone moves between host and device at
@@ -95,19 +98,25 @@ impl OnDevice {
             resident: false,
             listed: Vec::new(),
             flagged: Vec::new(),
+            touched: Vec::new(),
         })
     }
 
     /// Keeps positions and velocities on the device from now on: `setup`
-    /// for the update, `x`, `v`, `v_before` the state to start from.
+    /// for the update, `x`, `v`, `v_before` the state to start from;
+    /// `contact` adds the host's contact forces to the update.
     pub(crate) fn make_resident(
         &mut self,
         setup: MotionSetup<'_>,
         x: &[Vec3],
         v: &[Vec3],
         v_before: &[Vec3],
+        contact: bool,
     ) -> Result<(), GpuError> {
         self.bulk.enable_motion(setup)?;
+        if contact {
+            self.bulk.enable_contact_forces()?;
+        }
         self.listed = setup.listed.to_vec();
         self.bulk.set_state(x, v);
         if !v_before.is_empty() {
@@ -166,6 +175,14 @@ impl OnDevice {
             }
         }
         self.flagged.len()
+    }
+
+    /// The histories of the joints the last step flagged as failed, into
+    /// `joints` (contact reads a failed joint's compression energy).
+    pub(crate) fn pull_failed_histories(&self, joints: &mut [JointHistory]) {
+        for (&j, h) in self.flagged.iter().zip(self.bulk.joint_histories_of(&self.flagged)) {
+            joints[j as usize] = h;
+        }
     }
 
     /// Resident: positions and velocities back to the host.
@@ -239,16 +256,15 @@ impl crate::Solver {
     /// Results agree with the CPU's to round-off (`femdem-gpu`'s tests;
     /// on lavapipe the joints are the CPU's bit for bit).
     ///
+    /// With contact ([`Solver::enable_contact`] first), the contact pass
+    /// stays on the CPU (detection, pair forces, friction, its account):
+    /// resident, each step reads back the positions and velocities of the
+    /// contactable tets' nodes before it and after the update, and sends
+    /// the contact forces of the nodes the pass touches down.
+    ///
     /// # Errors
-    /// A solver with contact ([`SolverError::Device`]: contact on the
-    /// device is not built), or a model the device cannot hold.
+    /// A model the device cannot hold ([`SolverError::Device`]).
     pub fn use_device(&mut self, gpu: &Gpu, residency: Residency) -> Result<(), SolverError> {
-        if self.evolving.contact.is_some() {
-            return Err(SolverError::Device(format!(
-                "{}: contact runs on the CPU only (contact on the device is not built yet); run this case on the CPU",
-                gpu.adapter()
-            )));
-        }
         self.sync_device();
         let device = OnDevice::new(gpu, &self.scene.model, &self.evolving.state.joints)
             .map_err(|e| SolverError::Device(e.to_string()))?;
@@ -277,7 +293,10 @@ impl crate::Solver {
     /// Which stages run on the device (`None` on the CPU).
     pub fn device_stages(&self) -> Option<&'static str> {
         self.pipeline.device.as_ref().map(|d| {
-            if d.resident {
+            if d.resident && self.evolving.contact.is_some() {
+                "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, contact, \
+                 drives and the account on the CPU"
+            } else if d.resident {
                 "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, drives and \
                  the account on the CPU"
             } else {
@@ -296,12 +315,15 @@ impl crate::Solver {
             None => 0,
             Some(d) if d.resident => {
                 // Failure count, the seven sums and each surface load's
-                // five, the listed nodes' state, the drive and surface-load
-                // tables and the step's scalars.
+                // five, the listed nodes' state (twice with contact), the
+                // contact forces of the touched nodes (28 bytes each), the
+                // drive and surface-load tables and the step's scalars.
                 let surfaces = self.scene.loads.surfaces.len() as u64;
+                let reads = if self.evolving.contact.is_some() { 2 } else { 1 };
                 4 + 56
                     + 40 * surfaces
-                    + 96 * d.listed.len() as u64
+                    + 96 * reads * d.listed.len() as u64
+                    + 28 * d.touched.len() as u64
                     + 32 * self.scene.loads.drives.len() as u64
                     + 48 * surfaces
                     + 16

@@ -1,6 +1,7 @@
-//! `femdem run --device gpu`: the bundled cases without contact and the
-//! README's disc glued to its platens on the device against the CPU, the
-//! refusals, and determinism.
+//! `femdem run --device gpu`: the bundled cases without contact, the
+//! README's disc glued to its platens, and the README's run itself
+//! (contact on the CPU beside the device) against the CPU, the refusals,
+//! and determinism.
 //!
 //! Where the machine has no Vulkan device with 64-bit floats the device
 //! tests say so and pass, unless `FEMDEM_GPU_REQUIRED` is set (`.ci/run`
@@ -214,20 +215,26 @@ fn a_device_run_resumes_bit_for_bit() {
     }
 }
 
-/// Cases with contact are refused on the device, naming the reason; an
-/// unknown device is refused naming the key.
+/// The README's run (platens in contact from the first step, a crack
+/// whose faces touch) with the bulk on the device and contact on the CPU,
+/// through its peak (4.09e-4 s) and its first 22 failures: every row
+/// before the first failure within the module's tolerance, then the same
+/// failures, peak and balance as on the CPU; the summary names the stages.
 #[test]
-fn contact_and_unknown_devices_are_refused() {
+fn the_readme_run_on_the_device_splits_as_on_the_cpu() {
+    let args = ["--set", "solver.end_time=4.4e-4"];
+    fails_as_on_the_cpu("cases/brazilian-split.toml", "readme", "load", &args);
+    if let Some(dir) = run("cases/brazilian-split.toml", "gpu", "readme-header", &["--set", "solver.end_time=1e-6"]) {
+        let header = read(&dir, "history.csv");
+        assert!(header.contains("failures, contact, drives and the account on the CPU"), "{header}");
+    }
+}
+
+/// An unknown device is refused naming the key.
+#[test]
+fn unknown_devices_are_refused() {
     let dir = std::env::temp_dir().join("femdem-device-refused");
     let out = dir.to_str().unwrap();
-    let o = femdem(&["run", "cases/brazilian-split.toml", "--out", out, "--overwrite", "--device", "gpu"]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    // Without a device (and not required) the run is refused for that
-    // first; with one, for contact.
-    let no_device = std::env::var_os("FEMDEM_GPU_REQUIRED").is_none() && stderr.contains("no device for the run");
-    assert!(stderr.contains("contact runs on the CPU only") || no_device, "{stderr}");
-    assert!(stderr.contains("--device gpu"), "{stderr}");
     let o = femdem(&["run", "cases/pulled-bar.toml", "--out", out, "--overwrite", "--device", "tpu"]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && stderr.contains("--device: `device`: `tpu` is not one of cpu, gpu"), "{stderr}");

@@ -2,7 +2,9 @@
 // update of `femdem_solver`'s `advance_chunk`,
 //   v_{n+1/2} = v_{n-1/2} + dt (f_int + f_ext) / m   (m > 0; else v unchanged),
 // f_ext = f_surface + w (flag bit 1: the surface loads' nodal forces of
-// surface.wgsl; without it, zero),
+// surface.wgsl; without it, zero), f_int the internal forces plus, with
+// flag bit 2, the contact forces the host's contact pass sent down
+// (`internal + contact`, as the CPU adds them),
 // prescribed components imposed (claims: 0 free, 1 fixed, 2 + d driven by
 // drive d: its target when active, else free), x_{n+1} = x_n + dt v_{n+1/2},
 // v_{n-1/2} kept as the next step's v_{n-3/2} (flag bit 0), and each node's
@@ -22,6 +24,7 @@
 @group(0) @binding(9) var<storage, read> scalars: array<f64>;
 @group(0) @binding(10) var<storage, read_write> terms: array<f64>;
 @group(0) @binding(11) var<storage, read> f_surface: array<f64>;
+@group(0) @binding(12) var<storage, read> f_contact: array<f64>;
 
 fn dot3(a: vec3<f64>, b: vec3<f64>) -> f64 {
     return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -44,7 +47,10 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         f_s = vec3<f64>(f_surface[3u * i], f_surface[3u * i + 1u], f_surface[3u * i + 2u]);
     }
     let f_ext = f_s + w;
-    let f_in = vec3<f64>(internal[3u * i], internal[3u * i + 1u], internal[3u * i + 2u]);
+    var f_in = vec3<f64>(internal[3u * i], internal[3u * i + 1u], internal[3u * i + 2u]);
+    if ((params.flags & 4u) != 0u) {
+        f_in = f_in + vec3<f64>(f_contact[3u * i], f_contact[3u * i + 1u], f_contact[3u * i + 2u]);
+    }
     let old = vec3<f64>(v[3u * i], v[3u * i + 1u], v[3u * i + 2u]);
     var v_new = old;
     if (m > 0.0) {

@@ -425,8 +425,11 @@ impl Solver {
             ),
         };
         self.pipeline.forces_current = true;
-        // 2. Failures, handed to contact.
+        // 2. Failures, handed to contact (which reads their histories).
         let first_new = self.evolving.failures.len();
+        if let (Some(device), Some(_), true) = (&self.pipeline.device, &self.evolving.contact, sums.newly_failed > 0) {
+            device.pull_failed_histories(&mut self.evolving.state.joints);
+        }
         if sums.newly_failed > 0 {
             self.record_failures(t);
         }
@@ -518,10 +521,10 @@ impl Solver {
     /// without the Eq. 18 ramp.
     ///
     /// # Panics
-    /// With the bulk on a device ([`Solver::use_device`]): contact runs on
-    /// the CPU only, and `use_device` refuses a solver with contact.
+    /// With the bulk on a device already ([`Solver::use_device`]): turn
+    /// contact on first.
     pub fn enable_contact(&mut self, settings: ContactSettings, initial: &[(u32, u32)]) {
-        assert!(self.pipeline.device.is_none(), "contact with the bulk on a device is not built (issue 35)");
+        assert!(self.pipeline.device.is_none(), "Solver::enable_contact before Solver::use_device");
         self.evolving.contact = Some(Contact::new(&self.scene.model, settings, initial));
         // A new pass starts a new account (what an earlier one held over is
         // not this pass's).

@@ -1,7 +1,15 @@
 //! The step with positions and velocities resident on a device
-//! ([`crate::Residency::Auto`] on a scene without contact): the same six
-//! stages as [`Solver::step`]'s, with stage 1, stage 4's surface loads,
-//! stage 5 and the sums on the device.
+//! ([`crate::Residency::Auto`]): the same six stages as [`Solver::step`]'s,
+//! with stage 1, stage 4's surface loads, stage 5 and the sums on the
+//! device, and contact (stage 3) on the CPU.
+//!
+//! With contact, the listed nodes are the drives' and the contactable
+//! tets' (what the contact pass reads: detection, pairs, friction); their
+//! positions and velocities come back before the pass and again after the
+//! update (the pass's account books the work against `v_{n+½}`), and the
+//! contact forces of the nodes the pass touched, now or at the pass
+//! before, go down before the update. The list grows when joints fail (a
+//! crack makes tets contactable).
 //!
 //! Each step reads back one word (how many joints failed) with the drives'
 //! nodes (position, velocity, internal and surface-load force, for stage
@@ -22,6 +30,7 @@ use super::Solver;
 use super::external::weight;
 use super::prescribed::Claim;
 use super::update::Powers;
+use crate::contact::Contact;
 use crate::forces::{ForceSums, Want};
 use crate::loads;
 
@@ -46,9 +55,7 @@ impl Solver {
                 })
             })
             .collect();
-        let mut listed: Vec<u32> = loads.drives.iter().flat_map(|d| d.nodes.iter().copied()).collect();
-        listed.sort_unstable();
-        listed.dedup();
+        let listed = self.listed_nodes();
         let surfaces: Vec<SurfaceLoad<'_>> = loads
             .surfaces
             .iter()
@@ -73,7 +80,22 @@ impl Solver {
         // to clear (it clears only what it flags).
         self.pipeline.workspace.failed_now.fill(None);
         let device = self.pipeline.device.as_mut().expect("a device");
-        device.make_resident(setup, &e.state.x, &e.state.v, &e.v_before)
+        device.make_resident(setup, &e.state.x, &e.state.v, &e.v_before, e.contact.is_some())?;
+        device.touched.clear();
+        Ok(())
+    }
+
+    /// The nodes whose state the host reads every step: the drives' and,
+    /// with contact, the contactable tets', ascending.
+    fn listed_nodes(&self) -> Vec<u32> {
+        let model = &self.scene.model;
+        let mut listed: Vec<u32> = self.scene.loads.drives.iter().flat_map(|d| d.nodes.iter().copied()).collect();
+        if let Some(contact) = &self.evolving.contact {
+            listed.extend(contact.contactable().iter().flat_map(|&t| model.tets[t as usize]));
+        }
+        listed.sort_unstable();
+        listed.dedup();
+        listed
     }
 
     /// [`Solver::step`]'s work with the state on the device.
@@ -101,15 +123,6 @@ impl Solver {
             ws.stress.copy_from_slice(&device.bulk.stresses());
         }
         let newly_failed = device.take_failures(&mut ws.failed_now, failed > 0);
-        // 2. Failures: the record reads the failed joints' positions.
-        let first_new = self.evolving.failures.len();
-        if newly_failed > 0 {
-            device.pull_motion(&mut self.evolving.state);
-            self.record_failures(t);
-        }
-        // 4. External forces: the surface loads on the device (above), the
-        // drives' reactions from their nodes' state by the CPU's code.
-        let device = self.pipeline.device.as_ref().expect("a resident device");
         let state = &mut self.evolving.state;
         let internal = &mut self.pipeline.workspace.internal;
         let f_surface = &mut self.pipeline.external.f_surface;
@@ -117,20 +130,62 @@ impl Solver {
             let i = i as usize;
             (state.x[i], state.v[i], internal[i], f_surface[i]) = (x, v, f, s);
         }
+        // 2. Failures: the record reads the failed joints' positions (and
+        // contact, unbonding their tets, every node's).
+        let first_new = self.evolving.failures.len();
+        if newly_failed > 0 {
+            device.pull_motion(&mut self.evolving.state);
+            if self.evolving.contact.is_some() {
+                device.pull_failed_histories(&mut self.evolving.state.joints);
+            }
+            self.record_failures(t);
+            if self.evolving.contact.is_some() {
+                let listed = self.listed_nodes();
+                let device = self.pipeline.device.as_mut().expect("a resident device");
+                if listed != device.listed {
+                    device.bulk.set_listed(&listed).expect("the listed nodes fit where all nodes do");
+                    device.listed = listed;
+                }
+            }
+        }
+        // 3. Contact, on the CPU from the contactable tets' nodes.
+        let mut contact_down = Vec::new();
+        if let Some(contact) = &mut self.evolving.contact {
+            contact.pass(&self.scene.model, &self.evolving.state.x, &self.evolving.state.v, dt);
+            let device = self.pipeline.device.as_mut().expect("a resident device");
+            // The nodes touched now or at the pass before (zero now where
+            // no longer touched), ascending.
+            let mut nodes = std::mem::take(&mut device.touched);
+            nodes.extend_from_slice(contact.touched());
+            nodes.sort_unstable();
+            nodes.dedup();
+            let total = contact.total_force();
+            contact_down = nodes.iter().map(|&n| (n, total[n as usize])).collect();
+            device.touched = contact.touched().to_vec();
+        }
+        let contact_forces = self.evolving.contact.as_ref().map(Contact::total_force);
+        // 4. External forces: the surface loads on the device (above), the
+        // drives' reactions from their nodes' state by the CPU's code.
         self.pipeline.external.evaluate_drives(
             &self.scene.model,
             &self.scene.loads,
             &self.evolving.state,
             &self.pipeline.workspace.internal,
-            None,
+            contact_forces,
             dt,
             &mut self.evolving.record,
         );
-        // 5. The update, on the device; every sum comes back with it.
+        // 5. The update, on the device; every sum comes back with it, and
+        // with contact the listed nodes' new state.
         let external = &self.pipeline.external;
         let drives: Vec<(Vec3, bool)> = external.targets.iter().copied().zip(external.active.iter().copied()).collect();
+        let with_contact = self.evolving.contact.is_some();
         let device = self.pipeline.device.as_mut().expect("a resident device");
-        let totals = device.bulk.advance(dt, &drives, viscous);
+        let totals = device.bulk.advance(dt, &drives, viscous, &contact_down, with_contact);
+        let state = &mut self.evolving.state;
+        for (&i, &[x, v]) in device.listed.iter().zip(&totals.listed) {
+            (state.x[i as usize], state.v[i as usize]) = (x, v);
+        }
         for (k, load) in totals.loads.iter().enumerate() {
             self.evolving.record.surface_forces[k] = load.force;
             self.pipeline.external.powers[k] = (load.back, load.ahead);

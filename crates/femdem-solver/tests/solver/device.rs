@@ -20,7 +20,7 @@
 use femdem_core::Vec3;
 use femdem_material::Law;
 use femdem_mesh::insert_joints;
-use femdem_solver::{Gpu, Model, RegionBehaviour, Residency, Solver, SurfaceKind, SurfaceLoad, Want};
+use femdem_solver::{ContactSettings, Gpu, Model, RegionBehaviour, Residency, Solver, SurfaceKind, SurfaceLoad, Want};
 
 use crate::common::{at_step, box_mesh, joints, pulled_bar_loads, rock, stable};
 
@@ -139,6 +139,60 @@ fn the_device_steps_as_the_cpu_with_and_without_surface_loads() {
         assert_eq!(joints(&cpu), joints(&dev), "the same joints fail the same way");
         assert_eq!(fc, fd);
     }
+}
+
+/// The pulled bar with contact (its outer surface and, as joints fail,
+/// the tets around the cracks; friction 0.5), contact on the CPU beside
+/// both residencies: the same course as the CPU before the first failure,
+/// the same failures after it, and a checkpoint taken on the device
+/// resumed on the CPU and on the device.
+#[test]
+fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
+    let Some(g) = gpu() else { return };
+    let with_contact = || {
+        let mut s = bar(true);
+        s.enable_contact(ContactSettings { friction: 0.5, ..ContactSettings::new(26e9) }, &[]);
+        s
+    };
+    for residency in [Residency::Auto, Residency::ForcesOnly] {
+        let mut cpu = with_contact();
+        let mut dev = with_contact();
+        dev.use_device(&g, residency).unwrap();
+        assert!(dev.device_stages().unwrap().contains("contact") || residency == Residency::ForcesOnly);
+        assert_eq!(run(&mut cpu, 400), 0, "no failure yet");
+        assert_eq!(run(&mut dev, 400), 0);
+        dev.sync_device();
+        assert_close(&cpu, &dev, &format!("{residency:?} with contact"));
+        let (fc, fd) = (run(&mut cpu, 1500), run(&mut dev, 1500));
+        assert!(fc > 5, "the bar breaks ({fc})");
+        let joints = |s: &Solver| s.failures().iter().map(|f| (f.joint, f.mode)).collect::<Vec<_>>();
+        assert_eq!(joints(&cpu), joints(&dev), "{residency:?}: the same joints fail the same way");
+        assert_eq!(fc, fd);
+        let pairs = |s: &Solver| s.contact().map(|c| c.candidates().len()).unwrap();
+        assert!(pairs(&cpu) > 0, "contact has candidates");
+        assert_eq!(pairs(&cpu), pairs(&dev), "{residency:?}: the same candidate pairs");
+        let energy = |s: &Solver| s.contact_energy().unwrap().contact;
+        let scale = cpu.record().energies.external_work.abs();
+        assert!((energy(&cpu) - energy(&dev)).abs() <= 1e-6 * scale, "{residency:?}: contact energy");
+    }
+    // A checkpoint of a device run past its failures, resumed on both.
+    let mut dev = with_contact();
+    dev.use_device(&g, Residency::Auto).unwrap();
+    run(&mut dev, 1200);
+    dev.sync_device();
+    let saved = dev.snapshot();
+    let mut on_cpu = with_contact();
+    on_cpu.restore(&saved).unwrap();
+    let mut again = with_contact();
+    again.use_device(&g, Residency::Auto).unwrap();
+    again.restore(&saved).unwrap();
+    run(&mut dev, 50);
+    run(&mut on_cpu, 50);
+    run(&mut again, 50);
+    dev.sync_device();
+    again.sync_device();
+    assert_close(&on_cpu, &dev, "resumed on the CPU");
+    assert_close(&dev, &again, "resumed on the device");
 }
 
 /// Damping, a kick and joints broken by decree between steps, then a

@@ -48,5 +48,5 @@ pub mod surface;
 pub use bulk::{Bulk, Evaluate, TetMesh};
 pub use device::{Gpu, GpuError};
 pub use joints::JointMesh;
-pub use motion::{MotionSetup, Sum, Totals};
+pub use motion::{MotionSetup, Resident, Sum, Totals};
 pub use surface::{LoadSums, SurfaceKind, SurfaceLoad};

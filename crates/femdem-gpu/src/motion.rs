@@ -1,5 +1,5 @@
-//! The rest of a step on the device, for scenes without contact: the
-//! surface loads ([`crate::surface`]), the update (`wgsl/update.wgsl`),
+//! The rest of a step on the device (contact, where a scene has it, is the
+//! host's: its forces come down, `wgsl/scatter.wgsl`): the surface loads ([`crate::surface`]), the update (`wgsl/update.wgsl`),
 //! the sums the energy account takes (`wgsl/reduce.wgsl`, in the CPU's
 //! chunk order), and the listed nodes' state the host needs for the drives
 //! (`wgsl/compact.wgsl`). With these, positions and velocities stay on the
@@ -45,9 +45,22 @@ pub struct Totals {
     pub sums: [Real; 7],
     /// Each surface load's total force and powers, in load order.
     pub loads: Vec<LoadSums>,
-    /// With `read_listed`, the listed nodes' positions `x_{n+1}` and
-    /// velocities `v_{n+½}` after the update, in their order.
-    pub listed: Vec<[Vec3; 2]>,
+    /// The positions `x_{n+1}` and velocities `v_{n+½}` after the update
+    /// of the nodes [`Bulk::advance`]'s `contact` listed, in its order.
+    pub contact_nodes: Vec<[Vec3; 2]>,
+}
+
+/// What [`Bulk::forces_resident`] reads back.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Resident {
+    /// How many joints failed (their list: [`Bulk::failures`]).
+    pub failed: u32,
+    /// Each listed node's position, velocity, internal and surface-load
+    /// force, in the list's order.
+    pub listed: Vec<[Vec3; 4]>,
+    /// Each watched node's position and velocity ([`Bulk::set_watched`]),
+    /// in the list's order.
+    pub watched: Vec<[Vec3; 2]>,
 }
 
 impl std::ops::Index<Sum> for Totals {
@@ -101,6 +114,11 @@ pub(crate) struct Motion {
     listed: wgpu::Buffer,
     num_listed: usize,
     compacted: wgpu::Buffer,
+    /// The nodes whose positions and velocities the host reads every
+    /// step besides the listed ones, and where they are compacted.
+    watched: wgpu::Buffer,
+    num_watched: usize,
+    watched_out: wgpu::Buffer,
     /// The reduce kernel's shape of each [`Sum`], in its order.
     shapes: Vec<wgpu::Buffer>,
     surfaces: Option<Surfaces>,
@@ -160,6 +178,9 @@ impl Motion {
             listed: storage(gpu, "listed nodes", setup.listed)?,
             num_listed: setup.listed.len(),
             compacted: zeroed::<Real>(gpu, "listed nodes' state", 12 * setup.listed.len())?,
+            watched: zeroed::<u32>(gpu, "watched nodes", 0)?,
+            num_watched: 0,
+            watched_out: zeroed::<Real>(gpu, "watched nodes' state", 0)?,
             shapes,
             surfaces,
             load_shapes,
@@ -191,41 +212,50 @@ impl Bulk {
         Ok(())
     }
 
-    /// Replaces the nodes whose state the host reads every step
-    /// ([`Bulk::forces_resident`], and [`Bulk::advance`] with
-    /// `read_listed`).
-    pub fn set_listed(&mut self, listed: &[u32]) -> Result<(), GpuError> {
+    /// Replaces the nodes whose positions and velocities the host reads
+    /// every step besides the listed ones ([`Bulk::forces_resident`]): the
+    /// nodes its contact pass reads.
+    pub fn set_watched(&mut self, watched: &[u32]) -> Result<(), GpuError> {
         let gpu = &self.gpu;
         let m = self.motion.as_mut().expect("Bulk::enable_motion first");
-        m.listed = storage(gpu, "listed nodes", listed)?;
-        m.num_listed = listed.len();
-        m.compacted = zeroed::<Real>(gpu, "listed nodes' state", 12 * listed.len())?;
+        m.watched = storage(gpu, "watched nodes", watched)?;
+        m.num_watched = watched.len();
+        m.watched_out = zeroed::<Real>(gpu, "watched nodes' state", 6 * watched.len())?;
         Ok(())
     }
 
-    /// Records the compact pass of the listed nodes' state (x, v, internal
-    /// and surface-load force, `wgsl/compact.wgsl`).
-    fn encode_compact(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Records the compact pass (`wgsl/compact.wgsl`) of the `n` nodes in
+    /// `nodes` into `out`: their position, velocity, internal and
+    /// surface-load force, or with `motion_only` their position and
+    /// velocity.
+    fn encode_compact(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        nodes: &wgpu::Buffer,
+        n: usize,
+        out: &wgpu::Buffer,
+        motion_only: bool,
+    ) {
         let m = self.motion();
         // Without surface loads, any f64 array the kernel only reads.
         let surface = m.surfaces.as_ref().map_or(&self.x, |s| &s.f_surface);
+        let flags = u32::from(m.surfaces.is_some()) | (u32::from(motion_only) << 1);
         dispatch(
             &self.gpu,
             encoder,
             &m.compact_kernel,
-            Params { count: count(m.num_listed), flags: u32::from(m.surfaces.is_some()), pad: [0; 2] },
-            &[&self.x, &self.v, &self.internal, &m.listed, &m.compacted, surface],
+            Params { count: count(n), flags, pad: [0; 2] },
+            &[&self.x, &self.v, &self.internal, nodes, out, surface],
         );
     }
 
     /// Stage 1 ([`Bulk::forces`] with `want`), the sums `sums` of it, the
     /// surface loads at the factors `factors` (one per load: their ramps
-    /// at `t_n`) and the listed nodes' position, velocity, internal force
-    /// and surface-load force, in one submission and one read-back: how
-    /// many joints failed (their list: [`Bulk::failures`]) and the listed
-    /// nodes' state. The sums land in the totals that [`Bulk::advance`]
-    /// returns.
-    pub fn forces_resident(&mut self, want: Evaluate, sums: &[Sum], factors: &[Real]) -> (u32, Vec<[Vec3; 4]>) {
+    /// at `t_n`), the listed nodes' position, velocity, internal force
+    /// and surface-load force and the watched nodes' position and
+    /// velocity, in one submission and one read-back ([`Resident`]). The
+    /// sums land in the totals that [`Bulk::advance`] returns.
+    pub fn forces_resident(&mut self, want: Evaluate, sums: &[Sum], factors: &[Real]) -> Resident {
         let gpu = &self.gpu;
         let m = self.motion();
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
@@ -250,20 +280,20 @@ impl Bulk {
             }
             None => assert!(factors.is_empty(), "no surface loads on the device"),
         }
-        self.encode_compact(&mut encoder);
+        self.encode_compact(&mut encoder, &m.listed, m.num_listed, &m.compacted, false);
+        self.encode_compact(&mut encoder, &m.watched, m.num_watched, &m.watched_out, true);
         let failed_words = if self.num_joints > 0 { 4 } else { 0 };
         let bytes = submit_and_read(
             gpu,
             encoder,
-            &[(&self.failed_list, 0, failed_words), (&m.compacted, 0, 96 * m.num_listed as u64)],
+            &[
+                (&self.failed_list, 0, failed_words),
+                (&m.compacted, 0, 96 * m.num_listed as u64),
+                (&m.watched_out, 0, 48 * m.num_watched as u64),
+            ],
         );
         let failed = if failed_words > 0 { u32::from_le_bytes(bytes[0][..4].try_into().expect("4 bytes")) } else { 0 };
-        let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[1]);
-        let listed = numbers
-            .chunks_exact(12)
-            .map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2])))
-            .collect();
-        (failed, listed)
+        Resident { failed, listed: vectors(&bytes[1]), watched: vectors(&bytes[2]) }
     }
 
     /// The central-difference update of step `n` over `dt` with the
@@ -272,17 +302,10 @@ impl Bulk {
     /// [`Bulk::enable_contact_forces`], the contact forces: `contact` sets
     /// the contact force of the nodes it lists (the others keep theirs):
     /// `drives[d]` is drive `d`'s target velocity and whether it is active;
-    /// `keep_before` keeps `v_{n−½}` for the next dissipation rate;
-    /// `read_listed` reads the listed nodes' new positions and velocities
-    /// back. Returns the step's sums ([`Totals`]).
-    pub fn advance(
-        &mut self,
-        dt: Real,
-        drives: &[(Vec3, bool)],
-        keep_before: bool,
-        contact: &[(u32, Vec3)],
-        read_listed: bool,
-    ) -> Totals {
+    /// `keep_before` keeps `v_{n−½}` for the next dissipation rate.
+    /// Returns the step's sums and the new positions and velocities of the
+    /// nodes `contact` lists ([`Totals`]).
+    pub fn advance(&mut self, dt: Real, drives: &[(Vec3, bool)], keep_before: bool, contact: &[(u32, Vec3)]) -> Totals {
         let gpu = &self.gpu;
         let m = self.motion();
         assert_eq!(drives.len(), m.num_drives, "one target per drive");
@@ -290,7 +313,7 @@ impl Bulk {
         write(gpu, &m.drives, &table);
         write(gpu, &m.scalars, &[dt, 0.0]);
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        if !contact.is_empty() {
+        let contact_nodes = (!contact.is_empty()).then(|| {
             let f = m.f_contact.as_ref().expect("Bulk::enable_contact_forces first");
             let nodes: Vec<u32> = contact.iter().map(|c| c.0).collect();
             let values: Vec<Real> = contact.iter().flat_map(|c| [c.1.x, c.1.y, c.1.z]).collect();
@@ -298,7 +321,8 @@ impl Bulk {
             let values = storage(gpu, "contact node forces", &values).expect("a few bytes a node fit");
             let params = Params { count: count(contact.len()), flags: 0, pad: [0; 2] };
             dispatch(gpu, &mut encoder, &m.scatter_kernel, params, &[&nodes, &values, f]);
-        }
+            nodes
+        });
         // Without surface loads or contact, any f64 array the kernel only
         // reads.
         let surface = m.surfaces.as_ref().map_or(&m.mass, |s| &s.f_surface);
@@ -334,23 +358,20 @@ impl Bulk {
                 self.encode_sum(&mut encoder, &s.terms, end - first, &shapes[4], false);
             }
         }
-        if read_listed {
-            self.encode_compact(&mut encoder);
+        // The contact nodes' new state, for the contact pass's account.
+        let after = zeroed::<Real>(gpu, "contact nodes' state", 6 * contact.len()).expect("a few bytes a node fit");
+        if let Some(nodes) = &contact_nodes {
+            self.encode_compact(&mut encoder, nodes, contact.len(), &after, true);
         }
         let loads = m.surfaces.as_ref().map_or(0, Surfaces::len);
-        let listed_bytes = if read_listed { 96 * m.num_listed as u64 } else { 0 };
         let bytes = submit_and_read(
             gpu,
             encoder,
-            &[(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64), (&m.compacted, 0, listed_bytes)],
+            &[(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64), (&after, 0, 48 * contact.len() as u64)],
         );
         let t: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
-        let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[1]);
         Totals {
-            listed: numbers
-                .chunks_exact(12)
-                .map(|c| [Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5])])
-                .collect(),
+            contact_nodes: vectors(&bytes[1]),
             sums: std::array::from_fn(|k| t[k]),
             loads: t[FIXED..]
                 .chunks_exact(TERMS)
@@ -394,6 +415,15 @@ impl Bulk {
     pub fn velocities_before(&self) -> Vec<Vec3> {
         unflat(&read(&self.gpu, &self.v_before, 3 * self.num_nodes))
     }
+}
+
+/// Groups of `N` vectors from read-back bytes.
+fn vectors<const N: usize>(bytes: &[u8]) -> Vec<[Vec3; N]> {
+    let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(bytes);
+    numbers
+        .chunks_exact(3 * N)
+        .map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2])))
+        .collect()
 }
 
 fn unflat(f: &[Real]) -> Vec<Vec3> {

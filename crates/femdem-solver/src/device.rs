@@ -43,14 +43,17 @@ pub(crate) struct OnDevice {
     /// (the surface loads and the update run there), or go up and down
     /// every step.
     pub(crate) resident: bool,
-    /// Resident: the nodes whose state stage 4 reads (the drives'), in the
-    /// order [`Bulk::listed`] returns them.
+    /// Resident: the nodes whose state stage 4 reads (the drives'),
+    /// ascending, the order [`Bulk::forces_resident`] returns them in.
     pub(crate) listed: Vec<u32>,
     /// The joints whose `failed_now` entry the last step set.
     pub(crate) flagged: Vec<u32>,
     /// Resident with contact: the nodes whose contact force the device
     /// holds (those the host's last contact pass touched), ascending.
     pub(crate) touched: Vec<u32>,
+    /// Resident with contact: the nodes whose positions and velocities
+    /// come back every step (the contactable tets'), ascending.
+    pub(crate) watched: Vec<u32>,
 }
 
 /// Bytes one step of stage 1 alone moves between host and device at
@@ -99,6 +102,7 @@ impl OnDevice {
             listed: Vec::new(),
             flagged: Vec::new(),
             touched: Vec::new(),
+            watched: Vec::new(),
         })
     }
 
@@ -127,10 +131,10 @@ impl OnDevice {
     }
 
     /// Sends the host's state up if the host changed it since the last
-    /// step ([`OnDevice::edited`]).
-    pub(crate) fn push_if_edited(&mut self, state: &State, v_before: &[Vec3]) {
+    /// step ([`OnDevice::edited`]); returns whether it did.
+    pub(crate) fn push_if_edited(&mut self, state: &State, v_before: &[Vec3]) -> bool {
         if !self.edited {
-            return;
+            return false;
         }
         self.bulk.set_history(&state.joints);
         if self.resident {
@@ -141,6 +145,7 @@ impl OnDevice {
         }
         self.edited = false;
         self.synced = true;
+        true
     }
 
     /// Brings everything the device holds of the state back to the host.
@@ -315,15 +320,16 @@ impl crate::Solver {
             None => 0,
             Some(d) if d.resident => {
                 // Failure count, the seven sums and each surface load's
-                // five, the listed nodes' state (twice with contact), the
-                // contact forces of the touched nodes (28 bytes each), the
+                // five, the drives' nodes' state, the watched nodes'
+                // positions and velocities, the touched nodes' contact
+                // forces down (28 bytes each) and state back (48), the
                 // drive and surface-load tables and the step's scalars.
                 let surfaces = self.scene.loads.surfaces.len() as u64;
-                let reads = if self.evolving.contact.is_some() { 2 } else { 1 };
                 4 + 56
                     + 40 * surfaces
-                    + 96 * reads * d.listed.len() as u64
-                    + 28 * d.touched.len() as u64
+                    + 96 * d.listed.len() as u64
+                    + 48 * d.watched.len() as u64
+                    + 76 * d.touched.len() as u64
                     + 32 * self.scene.loads.drives.len() as u64
                     + 48 * surfaces
                     + 16

@@ -1,7 +1,9 @@
 // The positions, velocities, internal and surface-load forces of listed
 // nodes, twelve numbers each (x, v, f, f_surface; the last zero without
 // flag bit 0, a scene without surface loads), for the host's stage 4 (the
-// drives' reactions and displacements) without reading whole arrays.
+// drives' reactions and displacements) without reading whole arrays; with
+// flag bit 1, the positions and velocities alone, six numbers each (the
+// nodes the host's contact pass reads).
 
 @group(0) @binding(1) var<storage, read> x: array<f64>;
 @group(0) @binding(2) var<storage, read> v: array<f64>;
@@ -18,6 +20,13 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         return;
     }
     let n = nodes[k];
+    if ((params.flags & 2u) != 0u) {
+        for (var c = 0u; c < 3u; c++) {
+            out[6u * k + c] = x[3u * n + c];
+            out[6u * k + 3u + c] = v[3u * n + c];
+        }
+        return;
+    }
     for (var c = 0u; c < 3u; c++) {
         out[12u * k + c] = x[3u * n + c];
         out[12u * k + 3u + c] = v[3u * n + c];

@@ -1,5 +1,4 @@
-// Stage 5 on the device, for scenes without contact: the central-difference
-// update of `femdem_solver`'s `advance_chunk`,
+// Stage 5 on the device: the central-difference update of `femdem_solver`'s `advance_chunk`,
 //   v_{n+1/2} = v_{n-1/2} + dt (f_int + f_ext) / m   (m > 0; else v unchanged),
 // f_ext = f_surface + w (flag bit 1: the surface loads' nodal forces of
 // surface.wgsl; without it, zero), f_int the internal forces plus, with

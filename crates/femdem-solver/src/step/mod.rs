@@ -397,8 +397,12 @@ impl Solver {
         let t = self.evolving.state.time;
         let want = Want { energy: want.energy || self.evolving.state.step == 0, ..want };
         if let Some(device) = &mut self.pipeline.device {
-            device.push_if_edited(&self.evolving.state, &self.evolving.v_before);
+            let pushed = device.push_if_edited(&self.evolving.state, &self.evolving.v_before);
             if device.resident {
+                if pushed {
+                    // A decree or a restore may have made tets contactable.
+                    self.watch_contactable().expect("the watched nodes fit where all nodes do");
+                }
                 self.advance_resident(want);
                 return;
             }

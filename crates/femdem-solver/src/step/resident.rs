@@ -3,13 +3,14 @@
 //! with stage 1, stage 4's surface loads, stage 5 and the sums on the
 //! device, and contact (stage 3) on the CPU.
 //!
-//! With contact, the listed nodes are the drives' and the contactable
-//! tets' (what the contact pass reads: detection, pairs, friction); their
-//! positions and velocities come back before the pass and again after the
-//! update (the pass's account books the work against `v_{n+½}`), and the
+//! With contact, the positions and velocities of the contactable tets'
+//! nodes (what the contact pass reads: detection, pairs, friction; the
+//! *watched* nodes) come back with the drives' nodes before the pass; the
 //! contact forces of the nodes the pass touched, now or at the pass
-//! before, go down before the update. The list grows when joints fail (a
-//! crack makes tets contactable).
+//! before, go down before the update, and those nodes' new positions and
+//! velocities come back after it (the pass's account books the work
+//! against `v_{n+½}`). The watched list grows when joints fail (a crack
+//! makes tets contactable).
 //!
 //! Each step reads back one word (how many joints failed) with the drives'
 //! nodes (position, velocity, internal and surface-load force, for stage
@@ -55,7 +56,9 @@ impl Solver {
                 })
             })
             .collect();
-        let listed = self.listed_nodes();
+        let mut listed: Vec<u32> = loads.drives.iter().flat_map(|d| d.nodes.iter().copied()).collect();
+        listed.sort_unstable();
+        listed.dedup();
         let surfaces: Vec<SurfaceLoad<'_>> = loads
             .surfaces
             .iter()
@@ -82,20 +85,25 @@ impl Solver {
         let device = self.pipeline.device.as_mut().expect("a device");
         device.make_resident(setup, &e.state.x, &e.state.v, &e.v_before, e.contact.is_some())?;
         device.touched.clear();
-        Ok(())
+        device.watched = Vec::new();
+        self.watch_contactable()
     }
 
-    /// The nodes whose state the host reads every step: the drives' and,
-    /// with contact, the contactable tets', ascending.
-    fn listed_nodes(&self) -> Vec<u32> {
+    /// Has the device send back every step the positions and velocities
+    /// of the contactable tets' nodes (what the contact pass reads), if
+    /// they changed.
+    pub(super) fn watch_contactable(&mut self) -> Result<(), femdem_gpu::GpuError> {
+        let Some(contact) = &self.evolving.contact else { return Ok(()) };
         let model = &self.scene.model;
-        let mut listed: Vec<u32> = self.scene.loads.drives.iter().flat_map(|d| d.nodes.iter().copied()).collect();
-        if let Some(contact) = &self.evolving.contact {
-            listed.extend(contact.contactable().iter().flat_map(|&t| model.tets[t as usize]));
+        let mut watched: Vec<u32> = contact.contactable().iter().flat_map(|&t| model.tets[t as usize]).collect();
+        watched.sort_unstable();
+        watched.dedup();
+        let device = self.pipeline.device.as_mut().expect("a resident device");
+        if watched != device.watched {
+            device.bulk.set_watched(&watched)?;
+            device.watched = watched;
         }
-        listed.sort_unstable();
-        listed.dedup();
-        listed
+        Ok(())
     }
 
     /// [`Solver::step`]'s work with the state on the device.
@@ -116,19 +124,22 @@ impl Solver {
         }
         let evaluate = Evaluate { stress: want.stress, energy: want.energy, dissipation: viscous };
         let factors: Vec<_> = self.scene.loads.surfaces.iter().map(|l| l.ramp.factor(t)).collect();
-        let (failed, listed) = device.bulk.forces_resident(evaluate, &sums_wanted, &factors);
+        let back = device.bulk.forces_resident(evaluate, &sums_wanted, &factors);
         device.synced = false;
         self.pipeline.forces_current = true;
         if want.stress {
             ws.stress.copy_from_slice(&device.bulk.stresses());
         }
-        let newly_failed = device.take_failures(&mut ws.failed_now, failed > 0);
+        let newly_failed = device.take_failures(&mut ws.failed_now, back.failed > 0);
         let state = &mut self.evolving.state;
         let internal = &mut self.pipeline.workspace.internal;
         let f_surface = &mut self.pipeline.external.f_surface;
-        for (&i, [x, v, f, s]) in device.listed.iter().zip(listed) {
+        for (&i, [x, v, f, s]) in device.listed.iter().zip(back.listed) {
             let i = i as usize;
             (state.x[i], state.v[i], internal[i], f_surface[i]) = (x, v, f, s);
+        }
+        for (&i, [x, v]) in device.watched.iter().zip(back.watched) {
+            (state.x[i as usize], state.v[i as usize]) = (x, v);
         }
         // 2. Failures: the record reads the failed joints' positions (and
         // contact, unbonding their tets, every node's).
@@ -139,14 +150,7 @@ impl Solver {
                 device.pull_failed_histories(&mut self.evolving.state.joints);
             }
             self.record_failures(t);
-            if self.evolving.contact.is_some() {
-                let listed = self.listed_nodes();
-                let device = self.pipeline.device.as_mut().expect("a resident device");
-                if listed != device.listed {
-                    device.bulk.set_listed(&listed).expect("the listed nodes fit where all nodes do");
-                    device.listed = listed;
-                }
-            }
+            self.watch_contactable().expect("the watched nodes fit where all nodes do");
         }
         // 3. Contact, on the CPU from the contactable tets' nodes.
         let mut contact_down = Vec::new();
@@ -179,11 +183,10 @@ impl Solver {
         // with contact the listed nodes' new state.
         let external = &self.pipeline.external;
         let drives: Vec<(Vec3, bool)> = external.targets.iter().copied().zip(external.active.iter().copied()).collect();
-        let with_contact = self.evolving.contact.is_some();
         let device = self.pipeline.device.as_mut().expect("a resident device");
-        let totals = device.bulk.advance(dt, &drives, viscous, &contact_down, with_contact);
+        let totals = device.bulk.advance(dt, &drives, viscous, &contact_down);
         let state = &mut self.evolving.state;
-        for (&i, &[x, v]) in device.listed.iter().zip(&totals.listed) {
+        for (&(i, _), &[x, v]) in contact_down.iter().zip(&totals.contact_nodes) {
             (state.x[i as usize], state.v[i as usize]) = (x, v);
         }
         for (k, load) in totals.loads.iter().enumerate() {

@@ -109,7 +109,7 @@ fn cubes_pressed_face_to_face_transmit_the_load() {
 /// A jointed column (10 × 10 × 20 mm, 2.5 mm lattice, damped) pressed by
 /// `P` on its top and settled, with the joints of its mid-plane; contact
 /// with `settings`.
-fn pressed_column(settings: impl FnOnce(ContactSettings) -> ContactSettings) -> (Solver, Vec<u32>) {
+pub(crate) fn pressed_column(settings: impl FnOnce(ContactSettings) -> ContactSettings) -> (Solver, Vec<u32>) {
     let h = 0.0025;
     // Unjittered, so that the mid-plane is a plane of faces.
     let mesh = box_mesh([0.0; 3], [0.01, 0.01, 0.02], h, 0.0, true);

@@ -195,6 +195,35 @@ fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
     assert_close(&dev, &again, "resumed on the device");
 }
 
+/// A pressed column whose closed mid-plane joints are broken by decree
+/// on the device (`contact_pressed.rs`): the mid-plane's tets become
+/// contactable between steps (their nodes are watched from the next step
+/// on), and contact takes the load across the cut as on the CPU. (The
+/// column is settled, so nodes of those tets that are not in contact barely
+/// move: the test would not see them left unwatched.)
+#[test]
+fn joints_broken_by_decree_hand_their_load_to_contact_on_the_device() {
+    let Some(g) = gpu() else { return };
+    let (mut cpu, mid) = crate::contact_pressed::pressed_column(|c| c);
+    let (mut dev, _) = crate::contact_pressed::pressed_column(|c| c);
+    dev.use_device(&g, Residency::Auto).unwrap();
+    let before = dev.contact().unwrap().contactable().len();
+    for s in [&mut cpu, &mut dev] {
+        s.break_joints(&mid);
+        // No output between: nothing brings the whole state back.
+        for _ in 0..300 {
+            s.step(Want::default());
+        }
+    }
+    let after = dev.contact().unwrap().contactable().len();
+    assert!(after > before, "the break makes the mid-plane's tets contactable ({before} -> {after})");
+    dev.sync_device();
+    assert_close(&cpu, &dev, "broken under pressure");
+    let pairs = |s: &Solver| s.contact().unwrap().active_pairs;
+    assert!(pairs(&cpu) > 0, "contact carries the load across the cut");
+    assert_eq!(pairs(&cpu), pairs(&dev), "the same pairs in contact");
+}
+
 /// Damping, a kick and joints broken by decree between steps, then a
 /// checkpoint of the device run resumed on the CPU: the same as the CPU
 /// doing all of it.

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
-# Issue 34, item 5: the intact jointed step on a lent GPU machine, CPU
-# (all its cores) against stage 1 on the GPU, at 1e5 and 1e6 tets.
+# Issue 34, item 5, and issue 35's first numbers, on a lent GPU machine:
+# the intact jointed step at 1e5 and 1e6 tets, CPU (all its cores)
+# against the resident step on the GPU (`gpu_step`); then the README run
+# over its intact phase (platens in contact, contact on the CPU beside the
+# device) and the multi-layer quick case over 100 steps (pre-existing
+# fractures in contact from step 1), `femdem run` on the CPU and with
+# `--device gpu`, each printing its throughput.
 #
-# Prepare here (the device machine has no network and may lack the Vulkan
-# loader):
-#   cargo build --release -p femdem-benches --example gpu_step
-#   mkdir -p target/gpu-carry && cp target/release/examples/gpu_step target/gpu-carry/ \
-#     && cp /usr/lib/x86_64-linux-gnu/libvulkan.so.1 target/gpu-carry/
-# then run `benches/gpu/measure.sh` there with carry = ["target/gpu-carry"].
-# It prints what Vulkan finds and both rates; under ten minutes on an H100
-# machine (the 1e6-tet box takes about a minute to build on 16 cores).
+# Prepare here with benches/gpu/prepare.sh (the device machine has no
+# network and may lack the Vulkan loader), then run `benches/gpu/measure.sh`
+# there with carry = ["target/gpu-carry"]. It prints what Vulkan finds and
+# every rate; under ten minutes on an H100 machine (the 1e6-tet box takes
+# about a minute to build on 16 cores).
 set -u
 cd "$(dirname "$0")/../.."
 carry=target/gpu-carry
@@ -32,4 +34,14 @@ threads=$(nproc)
 for tets in 100000 1000000; do
     echo "== $tets tets, $threads threads"
     RAYON_NUM_THREADS=$threads timeout 280 "$carry/gpu_step" "$tets" 100 2>&1 | grep -v XDG_RUNTIME_DIR
+done
+femdem="$carry/femdem"
+for spec in "cases/brazilian-split.toml solver.end_time=3e-4" "cases/paper/multilayer.toml solver.end_time=5.7e-5"; do
+    set -- $spec
+    for device in cpu gpu; do
+        echo "== femdem run $1 --set $2 --device $device, $threads threads"
+        timeout 150 "$femdem" run "$1" --out "/tmp/measure-$device" --overwrite --device "$device" \
+            --threads "$threads" --set "$2" --set output.interval=1.0 2>&1 \
+            | grep -E "^femdem: |wall time|throughput|bytes a step" | grep -v XDG_RUNTIME_DIR
+    done
 done

@@ -319,10 +319,11 @@ pub struct SolverSpec {
     /// in full from t = 0, the body first put into equilibrium under them
     /// and gravity by an implicit solve, `femdem-static`).
     pub start: Option<String>,
-    /// Where stage 1 of the step (tets, joints, gather) runs: `"cpu"`
-    /// (default) or `"gpu"` (a Vulkan device with 64-bit floats,
-    /// `femdem-gpu`; cases with contact are refused). Results agree to
-    /// round-off.
+    /// Where the step runs: `"cpu"` (default) or `"gpu"` (a Vulkan device
+    /// with 64-bit floats, `femdem-gpu`: the tet and joint passes, the
+    /// gather, the surface loads and the update, the state resident there;
+    /// failures, contact, the drives' reactions and the energy account on
+    /// the CPU). Results agree to round-off.
     pub device: Option<String>,
 }
 

@@ -69,7 +69,7 @@ pub fn start(name: &str) -> Result<Start, String> {
     }
 }
 
-/// Where stage 1 of the step runs (`[solver] device`).
+/// Where the step runs (`[solver] device`; on a GPU, the bulk of it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Device {
     /// On the CPU's threads.
@@ -112,7 +112,7 @@ pub struct Runnable {
     pub probes: Vec<crate::probes::Probe>,
     /// How the run starts.
     pub start: Start,
-    /// Where stage 1 of the step runs, as the case asks.
+    /// Where the step runs, as the case asks.
     pub device: Device,
 }
 

@@ -94,9 +94,10 @@ enum Command {
         /// For tests: the memory available, bytes (instead of MemAvailable).
         #[arg(long, value_name = "BYTES", hide = true)]
         memory_available: Option<f64>,
-        /// Where stage 1 of the step (tets, joints, gather) runs: `cpu` or
-        /// `gpu` (a Vulkan device with 64-bit floats; cases with contact are
-        /// refused). Overrides `[solver] device`.
+        /// Where the step runs: `cpu` or `gpu` (a Vulkan device with 64-bit
+        /// floats runs the tets, joints, surface loads and update; contact,
+        /// failures and the account stay on the CPU). Overrides `[solver]
+        /// device`.
         #[arg(long, value_name = "DEVICE")]
         device: Option<String>,
         /// Remove the results of an earlier run from the output directory

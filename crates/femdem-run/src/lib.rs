@@ -57,8 +57,8 @@ pub struct RunOptions {
     /// `gradient` ([`femdem_solver::ContactModel`]); not a key of the case
     /// format.
     pub contact_model: Option<String>,
-    /// Where stage 1 of the step runs, `cpu` or `gpu` (overrides `[solver]
-    /// device`).
+    /// Where the step runs, `cpu` or `gpu` (overrides `[solver] device`;
+    /// `docs/case-format.md`, "On a GPU").
     pub device: Option<String>,
     /// Remove the results of an earlier run from the output directory
     /// (femdem's own files only) instead of refusing it.

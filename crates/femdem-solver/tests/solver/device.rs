@@ -113,6 +113,17 @@ fn assert_close(a: &Solver, b: &Solver, what: &str) {
     }
 }
 
+/// The checkpoint `saved` resumed on a solver from `make` on the CPU, and
+/// on another with the device attached first.
+fn resumed(g: &Gpu, saved: &[u8], make: impl Fn() -> Solver) -> (Solver, Solver) {
+    let mut on_cpu = make();
+    on_cpu.restore(saved).unwrap();
+    let mut on_device = make();
+    on_device.use_device(g, Residency::Auto).unwrap();
+    on_device.restore(saved).unwrap();
+    (on_cpu, on_device)
+}
+
 /// Both residencies against the CPU before any failure, then the same
 /// failures once the bar breaks.
 #[test]
@@ -180,12 +191,7 @@ fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
     dev.use_device(&g, Residency::Auto).unwrap();
     run(&mut dev, 1200);
     dev.sync_device();
-    let saved = dev.snapshot();
-    let mut on_cpu = with_contact();
-    on_cpu.restore(&saved).unwrap();
-    let mut again = with_contact();
-    again.use_device(&g, Residency::Auto).unwrap();
-    again.restore(&saved).unwrap();
+    let (mut on_cpu, mut again) = resumed(&g, &dev.snapshot(), with_contact);
     run(&mut dev, 50);
     run(&mut on_cpu, 50);
     run(&mut again, 50);
@@ -245,12 +251,7 @@ fn interventions_and_checkpoints_cross_between_host_and_device() {
     assert_eq!(cpu.state().joints.iter().filter(|j| j.failed).count(), 3, "the decreed failures");
     assert_eq!(dev.state().joints.iter().filter(|j| j.failed).count(), 3);
     // A checkpoint of the device run, resumed on the CPU and on the device.
-    let saved = dev.snapshot();
-    let mut back_on_cpu = bar(false);
-    back_on_cpu.restore(&saved).unwrap();
-    let mut again = bar(false);
-    again.use_device(&g, Residency::Auto).unwrap();
-    again.restore(&saved).unwrap();
+    let (mut back_on_cpu, mut again) = resumed(&g, &dev.snapshot(), || bar(false));
     run(&mut cpu, 50);
     run(&mut back_on_cpu, 50);
     run(&mut again, 50);

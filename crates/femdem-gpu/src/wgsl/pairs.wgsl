@@ -294,7 +294,10 @@ fn one_way(tet: array<vec3<f64>, 4>, bary: Bary, penalty: f64, own: u32, other: 
             if (piece.area <= 0.0) {
                 continue;
             }
-            let phi = 4.0 * max(piece.lam[i], 0.0);
+            // Rust's `max(0.0)`: 0 for a NaN too (WGSL's `max` leaves it
+            // unspecified).
+            let li = piece.lam[i];
+            let phi = 4.0 * select(0.0, li, li > 0.0);
             let magnitude = penalty * (piece.area * twice_area) * phi;
             let force = n * -magnitude;
             let m1 = piece.mu.x;

@@ -13,5 +13,7 @@ cargo build --release -p femdem-cli
 mkdir -p target/gpu-carry
 cp target/release/examples/gpu_step target/release/femdem target/gpu-carry/
 strip target/gpu-carry/gpu_step target/gpu-carry/femdem
-cp -L /usr/lib/x86_64-linux-gnu/libvulkan.so.1 target/gpu-carry/
+loader=/usr/lib/x86_64-linux-gnu/libvulkan.so.1
+[ -e "$loader" ] || { echo "no Vulkan loader at $loader: install Debian's libvulkan1" >&2; exit 1; }
+cp -L "$loader" target/gpu-carry/
 du -sh target/gpu-carry

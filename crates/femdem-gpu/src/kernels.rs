@@ -23,7 +23,8 @@ pub(crate) fn joints() -> String {
     [COMMON, MATH, include_str!("wgsl/joints.wgsl")].concat()
 }
 
-/// The update of stage 5 (no contact).
+/// The update of stage 5 (with the contact forces the host sends down,
+/// where a scene has contact).
 pub(crate) fn update() -> String {
     [COMMON, include_str!("wgsl/update.wgsl")].concat()
 }

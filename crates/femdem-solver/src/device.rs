@@ -264,8 +264,9 @@ impl crate::Solver {
     /// With contact ([`Solver::enable_contact`] first), the contact pass
     /// stays on the CPU (detection, pair forces, friction, its account):
     /// resident, each step reads back the positions and velocities of the
-    /// contactable tets' nodes before it and after the update, and sends
-    /// the contact forces of the nodes the pass touches down.
+    /// contactable tets' nodes before it, sends the contact forces of the
+    /// nodes the pass touches (now or at the pass before) down, and reads
+    /// those nodes' new positions and velocities back after the update.
     ///
     /// # Errors
     /// A model the device cannot hold ([`SolverError::Device`]).

@@ -134,6 +134,7 @@ fn compare(name: &str, make: fn(&mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]), n: u
     let tets: Vec<[u32; 4]> = (0..2 * n as u32).map(|t| std::array::from_fn(|k| 4 * t + k as u32)).collect();
     let list: Vec<[u32; 2]> = (0..n as u32).map(|k| [2 * k, 2 * k + 1]).collect();
     let device = pair_contacts(&g, &x, &tets, &list, PENALTY).unwrap();
+    assert_eq!(device.len(), n, "{name}: one contact per pair");
     let (mut touching, mut identical, mut worst_force, mut worst_centre) = (0, 0, 0.0, 0.0);
     for ((a, b), dev) in pairs.iter().zip(&device) {
         let cpu = tet_tet_contact(a, b, PENALTY);

@@ -313,6 +313,7 @@ impl Bulk {
         write(gpu, &m.drives, &table);
         write(gpu, &m.scalars, &[dt, 0.0]);
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        // The contact forces down, and where the nodes' new state will go.
         let contact_nodes = (!contact.is_empty()).then(|| {
             let f = m.f_contact.as_ref().expect("Bulk::enable_contact_forces first");
             let nodes: Vec<u32> = contact.iter().map(|c| c.0).collect();
@@ -321,7 +322,8 @@ impl Bulk {
             let values = storage(gpu, "contact node forces", &values).expect("a few bytes a node fit");
             let params = Params { count: count(contact.len()), flags: 0, pad: [0; 2] };
             dispatch(gpu, &mut encoder, &m.scatter_kernel, params, &[&nodes, &values, f]);
-            nodes
+            let after = zeroed::<Real>(gpu, "contact nodes' state", 6 * contact.len()).expect("a few bytes a node fit");
+            (nodes, after)
         });
         // Without surface loads or contact, any f64 array the kernel only
         // reads.
@@ -359,19 +361,16 @@ impl Bulk {
             }
         }
         // The contact nodes' new state, for the contact pass's account.
-        let after = zeroed::<Real>(gpu, "contact nodes' state", 6 * contact.len()).expect("a few bytes a node fit");
-        if let Some(nodes) = &contact_nodes {
-            self.encode_compact(&mut encoder, nodes, contact.len(), &after, true);
-        }
         let loads = m.surfaces.as_ref().map_or(0, Surfaces::len);
-        let bytes = submit_and_read(
-            gpu,
-            encoder,
-            &[(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64), (&after, 0, 48 * contact.len() as u64)],
-        );
+        let mut copies = vec![(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64)];
+        if let Some((nodes, after)) = &contact_nodes {
+            self.encode_compact(&mut encoder, nodes, contact.len(), after, true);
+            copies.push((after, 0, 48 * contact.len() as u64));
+        }
+        let bytes = submit_and_read(gpu, encoder, &copies);
         let t: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
         Totals {
-            contact_nodes: vectors(&bytes[1]),
+            contact_nodes: bytes.get(1).map_or_else(Vec::new, |b| vectors(b)),
             sums: std::array::from_fn(|k| t[k]),
             loads: t[FIXED..]
                 .chunks_exact(TERMS)

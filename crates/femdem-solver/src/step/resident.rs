@@ -180,7 +180,7 @@ impl Solver {
             &mut self.evolving.record,
         );
         // 5. The update, on the device; every sum comes back with it, and
-        // with contact the listed nodes' new state.
+        // with contact the new state of the nodes whose forces went down.
         let external = &self.pipeline.external;
         let drives: Vec<(Vec3, bool)> = external.targets.iter().copied().zip(external.active.iter().copied()).collect();
         let device = self.pipeline.device.as_mut().expect("a resident device");

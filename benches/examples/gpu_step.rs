@@ -11,7 +11,12 @@
 //! argument, default 100) after 5 steps of warm-up, on the CPU and then
 //! from the same state with the device, and prints both rates in
 //! tet-steps/s, their ratio, and how far the two runs' positions ended
-//! apart (round-off). Without a device it measures the CPU and says why.
+//! apart (round-off), then where the device's step time goes (read-back
+//! round trips, each kernel) and the resident step's rate again, on a
+//! device warm from the first window, with the other way of waiting for
+//! read-backs (polling the device in a loop, the default on a GPU, or
+//! blocking) and with the default. Without a device it measures the CPU
+//! and says why.
 
 use std::time::Instant;
 
@@ -68,4 +73,19 @@ fn main() {
     let apart = cpu.state().x.iter().zip(&dev.state().x).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
     let size = cpu.model().x0.iter().map(|p| p.norm()).fold(0.0, f64::max);
     println!("positions apart {apart:.3e} m after {} steps (coordinates up to {size:.3e} m)", steps + 5);
+    // Where the device's step time goes, and the resident step again with
+    // read-backs polling the device in a loop instead of blocking.
+    for t in dev.device_timings(20).unwrap_or_default() {
+        println!("  {:<34}{:>10.1} µs", t.what, t.seconds * 1e6);
+    }
+    // Then the other way of waiting, and the default again: a GPU's
+    // clocks rise under load, so the first window (after 5 steps) can be
+    // slower than these, taken on a device warm from the others.
+    let spin = gpu.spin_wait();
+    let how = |spin| if spin { "polling" } else { "blocking" };
+    for spin in [!spin, spin] {
+        gpu.set_spin_wait(spin);
+        let warm = rate(&mut dev, steps);
+        println!("gpu, warm, {:<9}{warm:.3e} tet-steps/s ({:.2} of the first)", how(spin), warm / on_gpu);
+    }
 }

@@ -2,10 +2,15 @@
 # Builds what benches/gpu/measure.sh runs on a lent GPU machine (no
 # network there, and maybe no Vulkan loader) into target/gpu-carry:
 # the gpu_step example, the femdem binary (both stripped, to stay within
-# the 64 MiB a run may carry) and the Vulkan loader. Then run
+# the 64 MiB a run may carry) and the Vulkan loader; and fetches Debian's
+# libvulkan1 and libglvnd packages into .gl/ (the NVIDIA driver's Vulkan
+# part needs libGLdispatch; measure.sh unpacks them where missing). Then
+# run
 #   benches/gpu/measure.sh
-# there with carry = ["target/gpu-carry"]. Run from anywhere in the
-# repository.
+# there with carry = ["target/gpu-carry", ".gl"]. With a path as its
+# argument (an earlier build of the gpu_step example), that build is
+# carried as gpu_step_base and measured beside this one. Run from
+# anywhere in the repository.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 cargo build --release -p femdem-benches --example gpu_step
@@ -16,4 +21,18 @@ strip target/gpu-carry/gpu_step target/gpu-carry/femdem
 loader=/usr/lib/x86_64-linux-gnu/libvulkan.so.1
 [ -e "$loader" ] || { echo "no Vulkan loader at $loader: install Debian's libvulkan1" >&2; exit 1; }
 cp -L "$loader" target/gpu-carry/
-du -sh target/gpu-carry
+rm -f target/gpu-carry/gpu_step_base
+if [ $# -gt 0 ]; then
+    cp "$1" target/gpu-carry/gpu_step_base
+    strip target/gpu-carry/gpu_step_base
+fi
+if [ ! -d .gl ]; then
+    grep -qx '/.gl/' .git/info/exclude 2>/dev/null || echo '/.gl/' >> .git/info/exclude
+    mkdir -p .gl /tmp/amd64/partial
+    o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
+    # shellcheck disable=SC2086
+    apt-get $o update > /dev/null
+    # shellcheck disable=SC2086
+    (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+fi
+du -sh target/gpu-carry .gl

@@ -1,6 +1,9 @@
 //! Device buffers: uploads, read-backs, and dispatches over more items than
 //! one dimension of workgroups holds.
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use bytemuck::Pod;
 use wgpu::util::DeviceExt;
 
@@ -75,26 +78,27 @@ pub(crate) fn submit_and_read(
         })
         .collect();
     let total = copies.iter().map(|c| c.2.div_ceil(8) * 8).sum::<u64>().max(8);
-    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read-back"),
-        size: total,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
+    let staging = gpu.take_staging(total);
     for (&(buffer, offset, bytes), &start) in copies.iter().zip(&starts) {
         if bytes > 0 {
             encoder.copy_buffer_to_buffer(buffer, offset, &staging, start, bytes);
         }
     }
     gpu.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("mapping a read-back buffer"));
-    gpu.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
+    let slice = staging.slice(..total);
+    let done = Arc::new(AtomicBool::new(false));
+    let mapped = done.clone();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        r.expect("mapping a read-back buffer");
+        mapped.store(true, Ordering::Release);
+    });
+    gpu.wait(&done);
     let out = {
         let mapped = slice.get_mapped_range();
         copies.iter().zip(&starts).map(|(c, &s)| mapped[s as usize..(s + c.2) as usize].to_vec()).collect()
     };
     staging.unmap();
+    gpu.keep_staging(staging);
     out
 }
 

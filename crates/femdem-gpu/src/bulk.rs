@@ -13,7 +13,7 @@ use femdem_material::{Law, Material, TetReference};
 
 use crate::buffers::{Params, dispatch, read, read_words, storage, submit_and_read, write, zeroed};
 use crate::device::{Gpu, GpuError};
-use crate::joints::{HISTORY, JointMesh, LAW, mode, pack_history, pack_law, unpack_history};
+use crate::joints::{HISTORY, JointMesh, LAW, mode, pack_history, pack_law, rows, unpack_history};
 use crate::kernels;
 
 /// Material index of a rigid tet in the device's table.
@@ -199,12 +199,16 @@ impl Bulk {
 
     /// [`Bulk::forces`]'s passes, recorded into `encoder`.
     pub(crate) fn encode_forces(&self, encoder: &mut wgpu::CommandEncoder, want: Evaluate) {
-        let gpu = &self.gpu;
-        let encoder = &mut *encoder;
-        let (stress, energy) = (want.stress, want.energy);
-        let flags = u32::from(stress) | u32::from(want.dissipation) << 1;
+        self.encode_tets(encoder, want);
+        self.encode_joints(encoder, want.energy);
+        self.encode_gather(encoder);
+    }
+
+    /// The tet pass (`wgsl/tets.wgsl`), recorded into `encoder`.
+    pub(crate) fn encode_tets(&self, encoder: &mut wgpu::CommandEncoder, want: Evaluate) {
+        let flags = u32::from(want.stress) | u32::from(want.dissipation) << 1;
         dispatch(
-            gpu,
+            &self.gpu,
             encoder,
             &self.tets_kernel,
             Params { count: count(self.num_tets), flags, pad: [0; 2] },
@@ -222,32 +226,42 @@ impl Bulk {
                 &self.rate,
             ],
         );
-        if self.num_joints > 0 {
-            encoder.clear_buffer(&self.failed_list, 0, Some(4));
-            dispatch(
-                gpu,
-                encoder,
-                &self.joints_kernel,
-                Params { count: count(self.num_joints), flags: u32::from(energy), pad: [0; 2] },
-                &[
-                    &self.x,
-                    &self.joints,
-                    &self.joint_law,
-                    &self.joint_hist,
-                    &self.joint_flags,
-                    &self.joint_slots,
-                    &self.joint_sums,
-                    &self.joint_failed,
-                    &self.joint_consts,
-                    &self.failed_list,
-                ],
-            );
+    }
+
+    /// The joint pass (`wgsl/joints.wgsl`), with each joint's energies if
+    /// `energy`, recorded into `encoder` (nothing without joints).
+    pub(crate) fn encode_joints(&self, encoder: &mut wgpu::CommandEncoder, energy: bool) {
+        if self.num_joints == 0 {
+            return;
         }
+        encoder.clear_buffer(&self.failed_list, 0, Some(4));
         dispatch(
-            gpu,
+            &self.gpu,
+            encoder,
+            &self.joints_kernel,
+            Params { count: count(self.num_joints), flags: u32::from(energy), pad: [0; 2] },
+            &[
+                &self.x,
+                &self.joints,
+                &self.joint_law,
+                &self.joint_hist,
+                &self.joint_flags,
+                &self.joint_slots,
+                &self.joint_sums,
+                &self.joint_failed,
+                &self.joint_consts,
+                &self.failed_list,
+            ],
+        );
+    }
+
+    /// The gather (`wgsl/gather.wgsl`), recorded into `encoder`.
+    pub(crate) fn encode_gather(&self, encoder: &mut wgpu::CommandEncoder) {
+        dispatch(
+            &self.gpu,
             encoder,
             &self.gather_kernel,
-            Params { count: count(self.num_nodes), flags: 0, pad: [0; 2] },
+            Params { count: count(self.num_nodes), flags: 0, pad: [count(self.num_joints), 0] },
             &[
                 &self.tet_slots,
                 &self.tet_offsets,
@@ -294,8 +308,10 @@ impl Bulk {
 impl Bulk {
     /// Each joint's forces on its six nodes (read back).
     pub fn joint_slots(&self) -> Vec<[Vec3; 6]> {
-        let f: Vec<Real> = read(&self.gpu, &self.joint_slots, 18 * self.num_joints);
-        f.chunks_exact(18).map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2]))).collect()
+        let n = self.num_joints;
+        let f: Vec<Real> = read(&self.gpu, &self.joint_slots, 18 * n);
+        let at = |j: usize, k: usize| f[k * n + j];
+        (0..n).map(|j| std::array::from_fn(|k| Vec3::new(at(j, 3 * k), at(j, 3 * k + 1), at(j, 3 * k + 2)))).collect()
     }
 
     /// Overwrites every joint's history (after the host changed it: joints
@@ -311,7 +327,7 @@ impl Bulk {
     pub fn joint_history(&self) -> Vec<JointHistory> {
         let numbers: Vec<Real> = read(&self.gpu, &self.joint_hist, HISTORY * self.num_joints);
         let flags: Vec<u32> = read(&self.gpu, &self.joint_flags, self.num_joints);
-        unpack_history(&numbers, &flags)
+        unpack_history(&rows(&numbers, self.num_joints, HISTORY), &flags)
     }
 
     /// The histories of joints `joints` (read back in one submission).
@@ -320,16 +336,27 @@ impl Bulk {
             return Vec::new();
         }
         let encoder = self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let row = (HISTORY * size_of::<Real>()) as u64;
+        // Each joint's 24 numbers (one word apart by the joints' count),
+        // then its flags.
+        let n = self.num_joints as u64;
         let copies: Vec<_> = joints
             .iter()
-            .flat_map(|&j| [(&self.joint_hist, row * u64::from(j), row), (&self.joint_flags, 4 * u64::from(j), 4)])
+            .flat_map(|&j| {
+                let j = u64::from(j);
+                (0..HISTORY as u64).map(move |k| (&self.joint_hist, 8 * (k * n + j), 8)).chain(std::iter::once((
+                    &self.joint_flags,
+                    4 * j,
+                    4,
+                )))
+            })
             .collect();
         let bytes = submit_and_read(&self.gpu, encoder, &copies);
-        let numbers: Vec<Real> =
-            bytes.iter().step_by(2).flat_map(|b| bytemuck::pod_collect_to_vec::<u8, Real>(b)).collect();
-        let flags: Vec<u32> =
-            bytes.iter().skip(1).step_by(2).map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]])).collect();
+        let rows = bytes.chunks_exact(HISTORY + 1);
+        let numbers: Vec<Real> = rows
+            .clone()
+            .flat_map(|r| r[..HISTORY].iter().map(|b| Real::from_le_bytes(b[..8].try_into().expect("8 bytes"))))
+            .collect();
+        let flags: Vec<u32> = rows.map(|r| u32::from_le_bytes(r[HISTORY][..4].try_into().expect("4 bytes"))).collect();
         unpack_history(&numbers, &flags)
     }
 

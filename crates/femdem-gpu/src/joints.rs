@@ -1,5 +1,7 @@
 //! The joints' arrays on the device: the law of each joint, its history,
-//! and the packing of both into the flat layouts `wgsl/joints.wgsl` reads.
+//! and the packing of both into the flat layouts `wgsl/joints.wgsl` reads:
+//! number by number (number `k` of joint `j` of `n` at `k n + j`), so that
+//! neighbouring invocations touch neighbouring words.
 
 use femdem_core::Real;
 use femdem_fracture::{Coupling, FailureMode, GfCalibration, Joint, JointHistory, Softened};
@@ -35,9 +37,22 @@ impl JointMesh<'_> {
     }
 }
 
-/// `law[10j..10j+10]` of `wgsl/joints.wgsl`.
+/// Rows of `width` numbers, one per item, laid out number by number
+/// (`[row0[0], row1[0], …, row0[1], row1[1], …]`).
+pub(crate) fn by_number(rows: &[Real], width: usize) -> Vec<Real> {
+    let n = rows.len() / width;
+    (0..width).flat_map(|k| (0..n).map(move |j| rows[j * width + k])).collect()
+}
+
+/// [`by_number`] undone: `n` items' rows of `width` numbers.
+pub(crate) fn rows(numbers: &[Real], n: usize, width: usize) -> Vec<Real> {
+    (0..n).flat_map(|j| (0..width).map(move |k| numbers[k * n + j])).collect()
+}
+
+/// The `law` array of `wgsl/joints.wgsl` (its numbers 0..10 per joint).
 pub(crate) fn pack_law(law: &[Joint]) -> Vec<Real> {
-    law.iter()
+    let rows: Vec<Real> = law
+        .iter()
         .flat_map(|j| {
             let p = &j.params;
             let calibration = match p.calibration {
@@ -62,7 +77,8 @@ pub(crate) fn pack_law(law: &[Joint]) -> Vec<Real> {
                 coupling,
             ]
         })
-        .collect()
+        .collect();
+    by_number(&rows, LAW)
 }
 
 /// `hist` and `flags` of `wgsl/joints.wgsl`.
@@ -80,10 +96,11 @@ pub(crate) fn pack_history(history: &[JointHistory]) -> (Vec<Real>, Vec<u32>) {
         }
         flags.push(f);
     }
-    (numbers, flags)
+    (by_number(&numbers, HISTORY), flags)
 }
 
-/// The histories back from `hist` and `flags`.
+/// The histories back from their rows of [`HISTORY`] numbers (`hist`
+/// through [`rows`]) and `flags`.
 pub(crate) fn unpack_history(numbers: &[Real], flags: &[u32]) -> Vec<JointHistory> {
     numbers
         .chunks_exact(HISTORY)

@@ -44,9 +44,11 @@ pub mod math;
 pub mod motion;
 pub mod pairs;
 pub mod surface;
+pub mod timings;
 
 pub use bulk::{Bulk, Evaluate, TetMesh};
 pub use device::{Gpu, GpuError};
 pub use joints::JointMesh;
 pub use motion::{MotionSetup, Resident, Sum, Totals};
 pub use surface::{LoadSums, SurfaceKind, SurfaceLoad};
+pub use timings::Timing;

@@ -104,6 +104,9 @@ pub(crate) struct Motion {
     f_contact: Option<wgpu::Buffer>,
     mass: wgpu::Buffer,
     weight: wgpu::Buffer,
+    /// Whether any node has weight: without, gravity's two powers are
+    /// sums of zeros, +0 (the totals' slots stay at their zeros).
+    weighed: bool,
     claims: wgpu::Buffer,
     drives: wgpu::Buffer,
     num_drives: usize,
@@ -168,6 +171,7 @@ impl Motion {
             f_contact: None,
             mass: storage(gpu, "masses", setup.mass)?,
             weight: storage(gpu, "weights", &weight)?,
+            weighed: weight.iter().any(|&w| w != 0.0),
             claims: storage(gpu, "claims", setup.claims.as_flattened())?,
             drives: zeroed::<Real>(gpu, "drive targets", 4 * setup.drives)?,
             num_drives: setup.drives,
@@ -351,7 +355,8 @@ impl Bulk {
                 f_contact,
             ],
         );
-        for sum in [Sum::WeightBack, Sum::WeightAhead, Sum::Kinetic] {
+        let gravity: &[Sum] = if m.weighed { &[Sum::WeightBack, Sum::WeightAhead] } else { &[] };
+        for &sum in gravity.iter().chain(&[Sum::Kinetic]) {
             self.encode_sum(&mut encoder, &m.terms, self.num_nodes, &m.shapes[sum as usize], false);
         }
         if let Some(s) = &m.surfaces {
@@ -379,6 +384,15 @@ impl Bulk {
         }
     }
 
+    /// The kinetic-energy sum over the nodes alone, recorded into
+    /// `encoder` (what [`Bulk::timings`] times; `None` before
+    /// [`Bulk::enable_motion`]).
+    pub(crate) fn encode_kinetic_sum(&self, encoder: &mut wgpu::CommandEncoder) -> Option<()> {
+        let m = self.motion.as_ref()?;
+        self.encode_sum(encoder, &m.terms, self.num_nodes, &m.shapes[Sum::Kinetic as usize], false);
+        Some(())
+    }
+
     /// A two-pass sum of `input[stride k + offset]`, `k < items`, into the
     /// totals slot, stride and offset of `shape` (`wgsl/reduce.wgsl`),
     /// recorded into `encoder`.
@@ -393,8 +407,9 @@ impl Bulk {
         let gpu = &self.gpu;
         let m = self.motion();
         let buffers = [input, &m.partial, &m.totals, shape];
+        // One workgroup of 64 per chunk, then one for the chunks' sums.
         let chunks = items.div_ceil(CHUNK);
-        let pass = |invocations, flags| Params { count: count(invocations), flags, pad: [count(items), 0] };
+        let pass = |groups: usize, flags| Params { count: count(64 * groups), flags, pad: [count(items), 0] };
         dispatch(gpu, encoder, &m.reduce_kernel, pass(chunks, u32::from(finite)), &buffers);
         dispatch(gpu, encoder, &m.reduce_kernel, pass(1, 2), &buffers);
     }

@@ -339,6 +339,14 @@ impl crate::Solver {
         }
     }
 
+    /// Where the device's step time goes ([`femdem_gpu::Bulk::timings`],
+    /// `reps` repetitions each), for benchmarks: `None` on the CPU. Call it
+    /// at the end of a measurement: the kernels run again on the current
+    /// state (positions and velocities unchanged).
+    pub fn device_timings(&mut self, reps: usize) -> Option<Vec<femdem_gpu::Timing>> {
+        self.pipeline.device.as_mut().map(|d| d.bulk.timings(reps))
+    }
+
     /// Brings the state the device holds (joint histories; resident, also
     /// positions, velocities and the velocities of the step before) back
     /// into [`Solver::state`] (nothing to do on the CPU). A snapshot needs

@@ -1,8 +1,11 @@
 // The gather: each node's force is the sum of its slots, tet slots first,
 // then joint slots, each in increasing slot order (the CPU's order, so the
 // same slots give the same sums bit for bit). Slot s of a table is
-// element * nodes_per_element + local: index 3s of the flattened slots.
-// Node i's slots are slots[offsets[i]..offsets[i+1]].
+// element * nodes_per_element + local: index 3s of the flattened tet
+// slots.
+// Node i's slots are slots[offsets[i]..offsets[i+1]]. The joint slots are
+// stored number by number (`wgsl/joints.wgsl`): component c of joint j's
+// node k is joint_slots[(3k + c) n + j], n = params.extra joints.
 
 @group(0) @binding(1) var<storage, read> tet_slots: array<f64>;
 @group(0) @binding(2) var<storage, read> tet_offsets: array<u32>;
@@ -24,9 +27,11 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         let s = 3u * tet_table[k];
         sum = sum + vec3<f64>(tet_slots[s], tet_slots[s + 1u], tet_slots[s + 2u]);
     }
+    let n = params.extra;
     for (var k = joint_offsets[i]; k < joint_offsets[i + 1u]; k++) {
-        let s = 3u * joint_table[k];
-        sum = sum + vec3<f64>(joint_slots[s], joint_slots[s + 1u], joint_slots[s + 2u]);
+        let slot = joint_table[k];
+        let s = 3u * (slot % 6u) * n + slot / 6u;
+        sum = sum + vec3<f64>(joint_slots[s], joint_slots[s + n], joint_slots[s + 2u * n]);
     }
     internal[3u * i] = sum.x;
     internal[3u * i + 1u] = sum.y;

@@ -2,16 +2,19 @@
 // comments say what each step is): each intact joint's forces on its six
 // nodes into its own slots, its history updated, and whether it failed.
 //
-// Per joint j:
+// Per joint j of n = params.count (law, history and slots are stored
+// number by number, number k of joint j at k n + j: neighbouring joints'
+// numbers side by side, so that the invocations of a workgroup read and
+// write neighbouring words):
 //   nodes   joints[6j..6j+6]
-//   law     law[10j..10j+10] = penalty, ft, cohesion, Gf shear, h, delta_np,
+//   law     numbers 0..10 = penalty, ft, cohesion, Gf shear, h, delta_np,
 //           delta_nc, tan phi, calibration (0 paper, 1 exact), coupling
 //           (0 printed, 1 multiplicative, 2 capped)
-//   history hist[24j..24j+24] = damage[3], dissipated, released, work,
+//   history numbers 0..24 = damage[3], dissipated, released, work,
 //           last[3][4] (opening, slip xyz), last_stress[3][2] (sigma, tau)
 //   flags   flags[j]: bit 2i softened normal at point i, bit 2i+1 softened
 //           shear, bit 6 failed
-//   slots   slots[18j..18j+18]
+//   slots   numbers 0..18: node k's force, component c, is number 3k + c
 //   sums    sums[2j..2j+2] = stored energy (flag bit 0), fracture
 //           contribution (work of a failed joint, work less stored energy
 //           of an intact one; flag bit 0)
@@ -33,6 +36,11 @@
 // [0]: how many joints failed in this evaluation; [1..]: which (in no
 // particular order: the host sorts them). The host zeroes [0] first.
 @group(0) @binding(10) var<storage, read_write> failed_list: array<atomic<u32>>;
+
+// Where number k of joint j is in law, hist and slots.
+fn at(j: u32, k: u32) -> u32 {
+    return k * params.count + j;
+}
 
 fn report_failure(j: u32) {
     let k = atomicAdd(&failed_list[0], 1u);
@@ -171,17 +179,16 @@ struct Point {
 
 // One integration point (femdem_fracture's `point`: Eq. 5-7, 11-13).
 fn point(j: u32, dn: f64, ds: f64, d_hist: f64, soft_n_in: bool, soft_s_in: bool) -> Point {
-    let b = 10u * j;
-    let penalty = law[b];
-    let ft = law[b + 1u];
-    let cohesion = law[b + 2u];
-    let gf_shear = law[b + 3u];
-    let h = law[b + 4u];
-    let dnp = law[b + 5u];
-    let dnc = law[b + 6u];
-    let tan_phi = law[b + 7u];
-    let exact = law[b + 8u] == 1.0;
-    let coupling = u32(law[b + 9u]);
+    let penalty = law[at(j, 0u)];
+    let ft = law[at(j, 1u)];
+    let cohesion = law[at(j, 2u)];
+    let gf_shear = law[at(j, 3u)];
+    let h = law[at(j, 4u)];
+    let dnp = law[at(j, 5u)];
+    let dnc = law[at(j, 6u)];
+    let tan_phi = law[at(j, 7u)];
+    let exact = law[at(j, 8u)] == 1.0;
+    let coupling = u32(law[at(j, 9u)]);
     let z_hist = z_known(d_hist);
     let rn = dn / dnp;
     var dn_soft: f64 = 0.0;
@@ -291,9 +298,8 @@ fn point(j: u32, dn: f64, ds: f64, d_hist: f64, soft_n_in: bool, soft_s_in: bool
 }
 
 fn point_stored(j: u32, p: Point) -> f64 {
-    let b = 10u * j;
-    let coupling = u32(law[b + 9u]);
-    var s = stored(coupling, law[b + 1u], law[b + 5u], p.rn, p.zd, p.soft_n);
+    let coupling = u32(law[at(j, 9u)]);
+    var s = stored(coupling, law[at(j, 1u)], law[at(j, 5u)], p.rn, p.zd, p.soft_n);
     if (p.fs > 0.0) {
         s = s + stored(coupling, p.fs, p.dsp, p.rs, p.zd, p.soft_s);
     } else {
@@ -308,7 +314,7 @@ const GAUSS = array<vec3<f64>, 3>(vec3<f64>(2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0),
 
 fn zero_slots(j: u32) {
     for (var k = 0u; k < 18u; k++) {
-        slots[18u * j + k] = 0.0;
+        slots[at(j, k)] = 0.0;
     }
 }
 
@@ -320,7 +326,7 @@ fn fail(j: u32, fl: u32, mode: u32, want_energy: bool) {
     report_failure(j);
     zero_slots(j);
     if (want_energy) {
-        sums[2u * j + 1u] = hist[24u * j + 5u];
+        sums[2u * j + 1u] = hist[at(j, 5u)];
     }
 }
 
@@ -332,7 +338,6 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         return;
     }
     let want_energy = (params.flags & 1u) != 0u;
-    let hb = 24u * j;
     failed[j] = 0u;
     sums[2u * j] = 0.0;
     sums[2u * j + 1u] = 0.0;
@@ -341,7 +346,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         // Failed before: no force, all its work lost.
         zero_slots(j);
         if (want_energy) {
-            sums[2u * j + 1u] = hist[hb + 5u];
+            sums[2u * j + 1u] = hist[at(j, 5u)];
         }
         return;
     }
@@ -358,7 +363,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     let twice_area = sqrt(dot(nrm, nrm));
     let len1 = sqrt(dot(e1, e1));
     if (!(twice_area > 0.0) || !(len1 > 0.0) || !(twice_area <= 1.7976931348623157e308)) {
-        hist[hb + 4u] = 0.0;
+        hist[at(j, 4u)] = 0.0;
         fail(j, fl, MODE_COLLAPSED, want_energy);
         return;
     }
@@ -381,17 +386,17 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         let opening = dot(g, zn);
         let slip = g - zn * opening;
         let ds = sqrt(dot(slip, slip));
-        let ps = point(j, opening, ds, hist[hb + i], (fl & (1u << (2u * i))) != 0u,
+        let ps = point(j, opening, ds, hist[at(j, i)], (fl & (1u << (2u * i))) != 0u,
                        (fl & (1u << (2u * i + 1u))) != 0u);
         points[i] = ps;
-        hist[hb + i] = ps.damage;
+        hist[at(j, i)] = ps.damage;
         let soft_bits = (select(0u, 1u, ps.soft_n) | select(0u, 2u, ps.soft_s)) << (2u * i);
         fl = (fl & ~(3u << (2u * i))) | soft_bits;
-        let lb = hb + 6u + 4u * i;
-        let ln = hist[lb];
-        let slip_last = vec3<f64>(hist[lb + 1u], hist[lb + 2u], hist[lb + 3u]);
-        let sigma_last = hist[hb + 18u + 2u * i];
-        let tau_last = hist[hb + 19u + 2u * i];
+        let lb = 6u + 4u * i;
+        let ln = hist[at(j, lb)];
+        let slip_last = vec3<f64>(hist[at(j, lb + 1u)], hist[at(j, lb + 2u)], hist[at(j, lb + 3u)]);
+        let sigma_last = hist[at(j, 18u + 2u * i)];
+        let tau_last = hist[at(j, 19u + 2u * i)];
         let d_slip = slip - slip_last;
         var shear = vec3<f64>(0.0, 0.0, 0.0);
         if (ds > 0.0) {
@@ -403,15 +408,15 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
             traction = traction + slip_last * (tau_last / ds_last);
         }
         let normal_work = 0.5 * (sigma_last + ps.sigma) * (opening - ln);
-        hist[hb + 5u] = hist[hb + 5u] + weight * (normal_work + 0.5 * dot(traction, d_slip));
+        hist[at(j, 5u)] = hist[at(j, 5u)] + weight * (normal_work + 0.5 * dot(traction, d_slip));
         ending = ending + weight * 0.5 * (ps.sigma * (opening - ln) + dot(shear, d_slip));
-        hist[lb] = opening;
-        hist[lb + 1u] = slip.x;
-        hist[lb + 2u] = slip.y;
-        hist[lb + 3u] = slip.z;
-        hist[hb + 18u + 2u * i] = ps.sigma;
-        hist[hb + 19u + 2u * i] = ps.tau;
-        hist[hb + 3u] = hist[hb + 3u] + weight * ps.dissipated;
+        hist[at(j, lb)] = opening;
+        hist[at(j, lb + 1u)] = slip.x;
+        hist[at(j, lb + 2u)] = slip.y;
+        hist[at(j, lb + 3u)] = slip.z;
+        hist[at(j, 18u + 2u * i)] = ps.sigma;
+        hist[at(j, 19u + 2u * i)] = ps.tau;
+        hist[at(j, 3u)] = hist[at(j, 3u)] + weight * ps.dissipated;
         if (ps.damage >= 1.0) {
             broken_points = broken_points + 1u;
         }
@@ -436,8 +441,8 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         }
     }
     if (broken_points >= 2u) {
-        hist[hb + 5u] = hist[hb + 5u] - ending;
-        hist[hb + 4u] = stored_sum;
+        hist[at(j, 5u)] = hist[at(j, 5u)] - ending;
+        hist[at(j, 4u)] = stored_sum;
         if (mode == 0u) {
             mode = MODE_MIXED;
         }
@@ -446,12 +451,12 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     }
     flags[j] = fl;
     for (var k = 0u; k < 6u; k++) {
-        slots[18u * j + 3u * k] = forces[k].x;
-        slots[18u * j + 3u * k + 1u] = forces[k].y;
-        slots[18u * j + 3u * k + 2u] = forces[k].z;
+        slots[at(j, 3u * k)] = forces[k].x;
+        slots[at(j, 3u * k + 1u)] = forces[k].y;
+        slots[at(j, 3u * k + 2u)] = forces[k].z;
     }
     if (want_energy) {
         sums[2u * j] = stored_sum;
-        sums[2u * j + 1u] = hist[hb + 5u] - stored_sum;
+        sums[2u * j + 1u] = hist[at(j, 5u)] - stored_sum;
     }
 }

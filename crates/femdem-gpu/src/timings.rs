@@ -1,0 +1,83 @@
+//! Where a device step's time goes: the round trip of a read-back
+//! (blocking and polling in a loop), the host's cost of recording one
+//! kernel, and each kernel of stage 1 and a sum over the nodes, each timed
+//! over repeated dispatches in one submission (so that the round trip
+//! divides out). A measurement for benchmarks (`gpu_step`), not part of a
+//! step.
+
+use std::time::Instant;
+
+use crate::buffers::submit_and_read;
+use crate::bulk::{Bulk, Evaluate};
+
+/// Records one kernel's pass into an encoder.
+type Encode<'a> = dyn Fn(&mut wgpu::CommandEncoder) + 'a;
+
+/// One line of [`Bulk::timings`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Timing {
+    /// What was timed.
+    pub what: &'static str,
+    /// Mean wall time of one, s.
+    pub seconds: f64,
+}
+
+impl Bulk {
+    /// Times, `reps` times each: an empty submission with an 8-byte
+    /// read-back, blocking and then polling in a loop; recording one tet
+    /// pass on the host; the tet pass, the joint pass, the gather and (once
+    /// the update is enabled) the kinetic-energy sum over the nodes on the
+    /// device. The kernels run on the device's current state: positions
+    /// and velocities are left as they are, joint histories as a repeated
+    /// evaluation at the same positions leaves them. Restores the
+    /// device's wait mode.
+    pub fn timings(&mut self, reps: usize) -> Vec<Timing> {
+        let reps = reps.max(1);
+        let gpu = self.gpu.clone();
+        let spin = gpu.spin_wait();
+        let new_encoder = || gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let read_one = |encoder| {
+            submit_and_read(&gpu, encoder, &[(&self.x, 0, 8)]);
+        };
+        let mut out = Vec::new();
+        for (what, poll) in [("round trip, blocking wait", false), ("round trip, polling in a loop", true)] {
+            gpu.set_spin_wait(poll);
+            read_one(new_encoder());
+            let start = Instant::now();
+            for _ in 0..reps {
+                read_one(new_encoder());
+            }
+            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64 });
+        }
+        gpu.set_spin_wait(spin);
+        let want = Evaluate::default();
+        let mut encoder = new_encoder();
+        let start = Instant::now();
+        for _ in 0..reps {
+            self.encode_tets(&mut encoder, want);
+        }
+        out.push(Timing { what: "host: record one kernel", seconds: start.elapsed().as_secs_f64() / reps as f64 });
+        read_one(encoder);
+        let kernels: [(&'static str, &Encode<'_>); 4] = [
+            ("tet pass (Eq. 1-2)", &|e| self.encode_tets(e, want)),
+            ("joint pass (Eq. 3-13)", &|e| self.encode_joints(e, false)),
+            ("gather", &|e| self.encode_gather(e)),
+            ("sum over the nodes (2 passes)", &|e| {
+                self.encode_kinetic_sum(e);
+            }),
+        ];
+        for (what, encode) in kernels {
+            let mut encoder = new_encoder();
+            encode(&mut encoder);
+            read_one(encoder);
+            let mut encoder = new_encoder();
+            for _ in 0..reps {
+                encode(&mut encoder);
+            }
+            let start = Instant::now();
+            read_one(encoder);
+            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64 });
+        }
+        out
+    }
+}

@@ -1,8 +1,9 @@
 //! Device buffers: uploads, read-backs, and dispatches over more items than
 //! one dimension of workgroups holds.
 
-use std::sync::Arc;
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 
 use bytemuck::Pod;
 use wgpu::util::DeviceExt;
@@ -124,18 +125,52 @@ pub(crate) struct Params {
     pub pad: [u32; 2],
 }
 
-/// A compute pass of `pipeline` over `count` items with `buffers` bound at
-/// `@binding(1)`, `@binding(2)`, …, recorded into `encoder`. The items are
-/// laid out over a two-dimensional grid of workgroups when one dimension
-/// cannot hold them; a kernel numbers them
-/// `(wg.y * nwg.x + wg.x) * 64 + local` (`ITEM` in `common.wgsl`).
-pub(crate) fn dispatch(
+/// The bind groups (each with its parameter uniform) of earlier
+/// dispatches, kept for the same pipeline, parameters and buffers:
+/// making a uniform and a bind group costs the host 10–17 µs a dispatch
+/// on an H100 or H200, several percent of a 10⁶-tet step and a third of a
+/// 10⁵-tet one. A kept group holds its buffers: [`Groups::forget`] a
+/// buffer that is replaced, and at most [`Groups::LIMIT`] groups are kept
+/// (all are dropped when a new one would pass it).
+#[derive(Debug, Default)]
+pub(crate) struct Groups(Mutex<HashMap<GroupKey, wgpu::BindGroup>>);
+
+type GroupKey = (wgpu::ComputePipeline, [u32; 4], Vec<wgpu::Buffer>);
+
+impl Groups {
+    /// The most groups kept.
+    pub(crate) const LIMIT: usize = 256;
+
+    /// Drops the kept groups that bind `buffer`.
+    pub(crate) fn forget(&self, buffer: &wgpu::Buffer) {
+        self.0.lock().expect("the bind groups").retain(|k, _| !k.2.contains(buffer));
+    }
+
+    /// How many groups are kept.
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.0.lock().expect("the bind groups").len()
+    }
+}
+
+/// A bind group of `params` at binding 0 and `buffers` after it for
+/// `pipeline`: from `groups` where kept there, else made (and kept there).
+fn bind_group(
     gpu: &Gpu,
-    encoder: &mut wgpu::CommandEncoder,
+    groups: Option<&Groups>,
     pipeline: &wgpu::ComputePipeline,
     params: Params,
     buffers: &[&wgpu::Buffer],
-) {
+) -> wgpu::BindGroup {
+    let key = groups.map(|_| {
+        let words: [u32; 4] = [params.count, params.flags, params.pad[0], params.pad[1]];
+        (pipeline.clone(), words, buffers.iter().map(|&b| b.clone()).collect::<Vec<_>>())
+    });
+    if let (Some(groups), Some(key)) = (groups, &key)
+        && let Some(group) = groups.0.lock().expect("the bind groups").get(key)
+    {
+        return group.clone();
+    }
     let uniform = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("params"),
         contents: bytemuck::bytes_of(&params),
@@ -150,6 +185,31 @@ pub(crate) fn dispatch(
         layout: &pipeline.get_bind_group_layout(0),
         entries: &entries,
     });
+    if let (Some(groups), Some(key)) = (groups, key) {
+        let mut kept = groups.0.lock().expect("the bind groups");
+        if kept.len() >= Groups::LIMIT {
+            kept.clear();
+        }
+        kept.insert(key, group.clone());
+    }
+    group
+}
+
+/// A compute pass of `pipeline` over `count` items with `buffers` bound at
+/// `@binding(1)`, `@binding(2)`, …, recorded into `encoder`, its bind
+/// group kept in `groups` where given. The items are
+/// laid out over a two-dimensional grid of workgroups when one dimension
+/// cannot hold them; a kernel numbers them
+/// `(wg.y * nwg.x + wg.x) * 64 + local` (`ITEM` in `common.wgsl`).
+pub(crate) fn dispatch(
+    gpu: &Gpu,
+    groups: Option<&Groups>,
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    params: Params,
+    buffers: &[&wgpu::Buffer],
+) {
+    let group = bind_group(gpu, groups, pipeline, params, buffers);
     let groups = params.count.div_ceil(GROUP).max(1);
     let x = groups.min(gpu.max_groups());
     let y = groups.div_ceil(x);
@@ -157,4 +217,47 @@ pub(crate) fn dispatch(
     pass.set_pipeline(pipeline);
     pass.set_bind_group(0, &group, &[]);
     pass.dispatch_workgroups(x, y, 1);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernels;
+
+    /// A dispatch of the same pipeline, parameters and buffers reuses its
+    /// kept group; forgetting a buffer drops the groups that bind it; the
+    /// kept groups never pass the limit; and what a kept group dispatches
+    /// is what a fresh one does.
+    #[test]
+    fn bind_groups_are_kept_forgotten_and_bounded() {
+        let Some(gpu) = Gpu::for_tests() else { return };
+        let module = gpu.module("scatter", &kernels::scatter()).expect("the scatter kernel compiles");
+        let pipeline = gpu.pipeline("scatter", &module).expect("its pipeline");
+        let nodes = storage(&gpu, "nodes", &[1u32, 0]).expect("fits");
+        let values = storage(&gpu, "values", &[1.0f64, 2.0, 3.0, 4.0, 5.0, 6.0]).expect("fits");
+        let dst = zeroed::<f64>(&gpu, "dst", 6).expect("fits");
+        let groups = Groups::default();
+        let params = Params { count: 2, flags: 0, pad: [0; 2] };
+        let run = |groups: Option<&Groups>| {
+            let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+            encoder.clear_buffer(&dst, 0, None);
+            dispatch(&gpu, groups, &mut encoder, &pipeline, params, &[&nodes, &values, &dst]);
+            let bytes = submit_and_read(&gpu, encoder, &[(&dst, 0, 48)]);
+            bytemuck::pod_collect_to_vec::<u8, f64>(&bytes[0])
+        };
+        let fresh = run(None);
+        assert_eq!(fresh, [4.0, 5.0, 6.0, 1.0, 2.0, 3.0], "node 1 gets the first vector, node 0 the second");
+        assert_eq!(run(Some(&groups)), fresh);
+        assert_eq!(run(Some(&groups)), fresh, "the kept group binds the same buffers and parameters");
+        assert_eq!(groups.len(), 1, "one group for one pipeline, parameters and buffers");
+        groups.forget(&values);
+        assert_eq!(groups.len(), 0, "the group that binds a forgotten buffer is dropped");
+        for count in 0..=Groups::LIMIT as u32 {
+            let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+            let params = Params { count: count % 3, flags: count, pad: [0; 2] };
+            dispatch(&gpu, Some(&groups), &mut encoder, &pipeline, params, &[&nodes, &values, &dst]);
+            assert!(groups.len() <= Groups::LIMIT, "at most the limit is kept");
+        }
+        assert!(groups.len() < Groups::LIMIT, "passing the limit drops the kept groups");
+    }
 }

@@ -11,7 +11,7 @@ use femdem_core::{Mat3, Real, Vec3};
 use femdem_fracture::{FailureMode, JointHistory};
 use femdem_material::{Law, Material, TetReference};
 
-use crate::buffers::{Params, dispatch, read, read_words, storage, submit_and_read, write, zeroed};
+use crate::buffers::{Groups, Params, dispatch, read, read_words, storage, submit_and_read, write, zeroed};
 use crate::device::{Gpu, GpuError};
 use crate::joints::{HISTORY, JointMesh, LAW, mode, pack_history, pack_law, rows, unpack_history};
 use crate::kernels;
@@ -91,6 +91,8 @@ pub struct Bulk {
     pub(crate) internal: wgpu::Buffer,
     /// The update's buffers, once [`Bulk::enable_motion`] has run.
     pub(crate) motion: Option<crate::motion::Motion>,
+    /// The bind groups of earlier dispatches.
+    pub(crate) groups: Groups,
 }
 
 /// `[x, y, z, x, y, z, …]` of a slice of vectors.
@@ -170,6 +172,7 @@ impl Bulk {
             joint_table: storage(gpu, "joint gather slots", joints.gather_slots)?,
             internal: zeroed::<Real>(gpu, "internal forces", nodes3)?,
             motion: None,
+            groups: Groups::default(),
             gpu: gpu.clone(),
         })
     }
@@ -209,6 +212,7 @@ impl Bulk {
         let flags = u32::from(want.stress) | u32::from(want.dissipation) << 1;
         dispatch(
             &self.gpu,
+            Some(&self.groups),
             encoder,
             &self.tets_kernel,
             Params { count: count(self.num_tets), flags, pad: [0; 2] },
@@ -237,6 +241,7 @@ impl Bulk {
         encoder.clear_buffer(&self.failed_list, 0, Some(4));
         dispatch(
             &self.gpu,
+            Some(&self.groups),
             encoder,
             &self.joints_kernel,
             Params { count: count(self.num_joints), flags: u32::from(energy), pad: [0; 2] },
@@ -259,6 +264,7 @@ impl Bulk {
     pub(crate) fn encode_gather(&self, encoder: &mut wgpu::CommandEncoder) {
         dispatch(
             &self.gpu,
+            Some(&self.groups),
             encoder,
             &self.gather_kernel,
             Params { count: count(self.num_nodes), flags: 0, pad: [count(self.num_joints), 0] },

@@ -27,7 +27,7 @@ pub fn evaluate(gpu: &Gpu, f: MathFn, input: &[f64]) -> Result<Vec<f64>, GpuErro
         MathFn::Exp => 1,
     };
     let count = u32::try_from(input.len()).expect("at most 2^32 inputs");
-    dispatch(gpu, &mut encoder, &pipeline, Params { count, flags, pad: [0; 2] }, &[&a, &b]);
+    dispatch(gpu, None, &mut encoder, &pipeline, Params { count, flags, pad: [0; 2] }, &[&a, &b]);
     gpu.queue.submit([encoder.finish()]);
     Ok(read(gpu, &b, input.len()))
 }

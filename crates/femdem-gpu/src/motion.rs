@@ -92,6 +92,17 @@ pub enum Sum {
     Dissipation = 6,
 }
 
+/// The nodes whose contact forces [`Bulk::advance`] sends down, their
+/// forces and their new state, kept between steps.
+#[derive(Debug)]
+struct ContactNodes {
+    nodes: wgpu::Buffer,
+    forces: wgpu::Buffer,
+    after: wgpu::Buffer,
+    /// Nodes the buffers hold.
+    capacity: usize,
+}
+
 /// The update's buffers and kernels.
 #[derive(Debug)]
 pub(crate) struct Motion {
@@ -102,6 +113,8 @@ pub(crate) struct Motion {
     /// Each node's contact force, N, once [`Bulk::enable_contact_forces`]
     /// has run.
     f_contact: Option<wgpu::Buffer>,
+    /// The buffers of the nodes whose contact forces go down.
+    contact: ContactNodes,
     mass: wgpu::Buffer,
     weight: wgpu::Buffer,
     /// Whether any node has weight: without, gravity's two powers are
@@ -169,6 +182,12 @@ impl Motion {
             compact_kernel: gpu.pipeline("compact", &compact)?,
             scatter_kernel: gpu.pipeline("scatter", &scatter)?,
             f_contact: None,
+            contact: ContactNodes {
+                nodes: zeroed::<u32>(gpu, "contact nodes", 0)?,
+                forces: zeroed::<Real>(gpu, "contact node forces", 0)?,
+                after: zeroed::<Real>(gpu, "contact nodes' state", 0)?,
+                capacity: 0,
+            },
             mass: storage(gpu, "masses", setup.mass)?,
             weight: storage(gpu, "weights", &weight)?,
             weighed: weight.iter().any(|&w| w != 0.0),
@@ -216,12 +235,36 @@ impl Bulk {
         Ok(())
     }
 
+    /// Makes the buffers of the contact nodes hold at least `n` nodes
+    /// (grown to a power of two, so that a growing contact set remakes
+    /// them seldom).
+    fn hold_contact_nodes(&mut self, n: usize) {
+        let gpu = &self.gpu;
+        let m = self.motion.as_mut().expect("Bulk::enable_motion first");
+        if m.contact.capacity >= n {
+            return;
+        }
+        for old in [&m.contact.nodes, &m.contact.forces, &m.contact.after] {
+            self.groups.forget(old);
+        }
+        let capacity = n.next_power_of_two();
+        let fits = "a few bytes a node fit where all nodes' state does";
+        m.contact = ContactNodes {
+            nodes: zeroed::<u32>(gpu, "contact nodes", capacity).expect(fits),
+            forces: zeroed::<Real>(gpu, "contact node forces", 3 * capacity).expect(fits),
+            after: zeroed::<Real>(gpu, "contact nodes' state", 6 * capacity).expect(fits),
+            capacity,
+        };
+    }
+
     /// Replaces the nodes whose positions and velocities the host reads
     /// every step besides the listed ones ([`Bulk::forces_resident`]): the
     /// nodes its contact pass reads.
     pub fn set_watched(&mut self, watched: &[u32]) -> Result<(), GpuError> {
         let gpu = &self.gpu;
         let m = self.motion.as_mut().expect("Bulk::enable_motion first");
+        self.groups.forget(&m.watched);
+        self.groups.forget(&m.watched_out);
         m.watched = storage(gpu, "watched nodes", watched)?;
         m.num_watched = watched.len();
         m.watched_out = zeroed::<Real>(gpu, "watched nodes' state", 6 * watched.len())?;
@@ -246,6 +289,7 @@ impl Bulk {
         let flags = u32::from(m.surfaces.is_some()) | (u32::from(motion_only) << 1);
         dispatch(
             &self.gpu,
+            Some(&self.groups),
             encoder,
             &m.compact_kernel,
             Params { count: count(n), flags, pad: [0; 2] },
@@ -275,7 +319,7 @@ impl Bulk {
         }
         match &m.surfaces {
             Some(s) => {
-                s.encode_forces(gpu, &mut encoder, &self.x, &self.v, factors);
+                s.encode_forces(gpu, &self.groups, &mut encoder, &self.x, &self.v, factors);
                 for (&(first, end), shapes) in s.ranges.iter().zip(&m.load_shapes) {
                     for shape in &shapes[..4] {
                         self.encode_sum(&mut encoder, &s.terms, end - first, shape, false);
@@ -310,6 +354,9 @@ impl Bulk {
     /// Returns the step's sums and the new positions and velocities of the
     /// nodes `contact` lists ([`Totals`]).
     pub fn advance(&mut self, dt: Real, drives: &[(Vec3, bool)], keep_before: bool, contact: &[(u32, Vec3)]) -> Totals {
+        if !contact.is_empty() {
+            self.hold_contact_nodes(contact.len());
+        }
         let gpu = &self.gpu;
         let m = self.motion();
         assert_eq!(drives.len(), m.num_drives, "one target per drive");
@@ -320,14 +367,14 @@ impl Bulk {
         // The contact forces down, and where the nodes' new state will go.
         let contact_nodes = (!contact.is_empty()).then(|| {
             let f = m.f_contact.as_ref().expect("Bulk::enable_contact_forces first");
+            let c = &m.contact;
             let nodes: Vec<u32> = contact.iter().map(|c| c.0).collect();
             let values: Vec<Real> = contact.iter().flat_map(|c| [c.1.x, c.1.y, c.1.z]).collect();
-            let nodes = storage(gpu, "contact nodes", &nodes).expect("a few bytes a node fit");
-            let values = storage(gpu, "contact node forces", &values).expect("a few bytes a node fit");
+            write(gpu, &c.nodes, &nodes);
+            write(gpu, &c.forces, &values);
             let params = Params { count: count(contact.len()), flags: 0, pad: [0; 2] };
-            dispatch(gpu, &mut encoder, &m.scatter_kernel, params, &[&nodes, &values, f]);
-            let after = zeroed::<Real>(gpu, "contact nodes' state", 6 * contact.len()).expect("a few bytes a node fit");
-            (nodes, after)
+            dispatch(gpu, Some(&self.groups), &mut encoder, &m.scatter_kernel, params, &[&c.nodes, &c.forces, f]);
+            (&c.nodes, &c.after)
         });
         // Without surface loads or contact, any f64 array the kernel only
         // reads.
@@ -337,6 +384,7 @@ impl Bulk {
             u32::from(keep_before) | (u32::from(m.surfaces.is_some()) << 1) | (u32::from(m.f_contact.is_some()) << 2);
         dispatch(
             gpu,
+            Some(&self.groups),
             &mut encoder,
             &m.update_kernel,
             Params { count: count(self.num_nodes), flags, pad: [0; 2] },
@@ -360,7 +408,7 @@ impl Bulk {
             self.encode_sum(&mut encoder, &m.terms, self.num_nodes, &m.shapes[sum as usize], false);
         }
         if let Some(s) = &m.surfaces {
-            s.encode_ahead(gpu, &mut encoder, &self.x, &self.v);
+            s.encode_ahead(gpu, &self.groups, &mut encoder, &self.x, &self.v);
             for (&(first, end), shapes) in s.ranges.iter().zip(&m.load_shapes) {
                 self.encode_sum(&mut encoder, &s.terms, end - first, &shapes[4], false);
             }
@@ -368,7 +416,7 @@ impl Bulk {
         // The contact nodes' new state, for the contact pass's account.
         let loads = m.surfaces.as_ref().map_or(0, Surfaces::len);
         let mut copies = vec![(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64)];
-        if let Some((nodes, after)) = &contact_nodes {
+        if let Some((nodes, after)) = contact_nodes {
             self.encode_compact(&mut encoder, nodes, contact.len(), after, true);
             copies.push((after, 0, 48 * contact.len() as u64));
         }
@@ -410,8 +458,9 @@ impl Bulk {
         // One workgroup of 64 per chunk, then one for the chunks' sums.
         let chunks = items.div_ceil(CHUNK);
         let pass = |groups: usize, flags| Params { count: count(64 * groups), flags, pad: [count(items), 0] };
-        dispatch(gpu, encoder, &m.reduce_kernel, pass(chunks, u32::from(finite)), &buffers);
-        dispatch(gpu, encoder, &m.reduce_kernel, pass(1, 2), &buffers);
+        let groups = Some(&self.groups);
+        dispatch(gpu, groups, encoder, &m.reduce_kernel, pass(chunks, u32::from(finite)), &buffers);
+        dispatch(gpu, groups, encoder, &m.reduce_kernel, pass(1, 2), &buffers);
     }
 
     /// Every node's position (read back).

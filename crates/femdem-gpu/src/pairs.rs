@@ -54,7 +54,7 @@ pub fn pair_contacts(
     let ob = zeroed::<Real>(gpu, "pair contacts", OUT * pairs.len())?;
     let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
     let count = u32::try_from(pairs.len()).expect("at most 2^32 pairs");
-    dispatch(gpu, &mut encoder, &pipeline, Params { count, flags: 0, pad: [0; 2] }, &[&xb, &tb, &pb, &sb, &ob]);
+    dispatch(gpu, None, &mut encoder, &pipeline, Params { count, flags: 0, pad: [0; 2] }, &[&xb, &tb, &pb, &sb, &ob]);
     gpu.queue.submit([encoder.finish()]);
     let out: Vec<Real> = read(gpu, &ob, OUT * pairs.len());
     Ok(out

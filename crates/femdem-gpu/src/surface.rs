@@ -13,7 +13,7 @@
 
 use femdem_core::{Real, Vec3};
 
-use crate::buffers::{Params, dispatch, storage, write, zeroed};
+use crate::buffers::{Groups, Params, dispatch, storage, write, zeroed};
 use crate::device::{Gpu, GpuError};
 use crate::kernels;
 
@@ -122,10 +122,19 @@ impl Surfaces {
         }))
     }
 
-    fn pass(&self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, pass: u32, x: &wgpu::Buffer, v: &wgpu::Buffer) {
+    fn pass(
+        &self,
+        gpu: &Gpu,
+        groups: &Groups,
+        encoder: &mut wgpu::CommandEncoder,
+        pass: u32,
+        x: &wgpu::Buffer,
+        v: &wgpu::Buffer,
+    ) {
         let items = if pass == 1 { self.num_loaded } else { self.num_faces };
         dispatch(
             gpu,
+            Some(groups),
             encoder,
             &self.kernel,
             Params { count: count(items), flags: pass, pad: [0; 2] },
@@ -150,6 +159,7 @@ impl Surfaces {
     pub(crate) fn encode_forces(
         &self,
         gpu: &Gpu,
+        groups: &Groups,
         encoder: &mut wgpu::CommandEncoder,
         x: &wgpu::Buffer,
         v: &wgpu::Buffer,
@@ -166,8 +176,8 @@ impl Surfaces {
             })
             .collect();
         write(gpu, &self.table, &table);
-        self.pass(gpu, encoder, 0, x, v);
-        self.pass(gpu, encoder, 1, x, v);
+        self.pass(gpu, groups, encoder, 0, x, v);
+        self.pass(gpu, groups, encoder, 1, x, v);
     }
 
     /// Records the faces' powers against the velocities in `v` (`v_{n+½}`,
@@ -175,11 +185,12 @@ impl Surfaces {
     pub(crate) fn encode_ahead(
         &self,
         gpu: &Gpu,
+        groups: &Groups,
         encoder: &mut wgpu::CommandEncoder,
         x: &wgpu::Buffer,
         v: &wgpu::Buffer,
     ) {
-        self.pass(gpu, encoder, 2, x, v);
+        self.pass(gpu, groups, encoder, 2, x, v);
     }
 
     /// How many loads there are.

@@ -17,7 +17,7 @@
 set -u
 cd "$(dirname "$0")/../.."
 log=${OUT:-/tmp}/measure.log
-exec > >(tee "$log") 2>&1
+measure() {
 carry=target/gpu-carry
 # Debian's libvulkan1 and libglvnd packages (the NVIDIA Vulkan driver,
 # libGLX_nvidia, needs libGLdispatch), unpacked where the machine lacks them.
@@ -82,3 +82,6 @@ for run in "cases/brazilian-split.toml solver.end_time=3e-4" "cases/paper/brazil
         [ "$status" = 0 ] || echo "femdem run: exit status $status (124: over 30 s)"
     done
 done
+}
+# Everything it prints, also into the log (the pipeline waits for tee).
+measure 2>&1 | tee "$log"

@@ -12,6 +12,8 @@
 # carried as gpu_step_base and measured beside this one. Run from
 # anywhere in the repository.
 set -euo pipefail
+# The baseline's path, made absolute before moving to the repository root.
+base=${1:+$(realpath "$1")}
 cd "$(dirname "$0")/../.."
 cargo build --release -p femdem-benches --example gpu_step
 cargo build --release -p femdem-cli
@@ -22,17 +24,25 @@ loader=/usr/lib/x86_64-linux-gnu/libvulkan.so.1
 [ -e "$loader" ] || { echo "no Vulkan loader at $loader: install Debian's libvulkan1" >&2; exit 1; }
 cp -L "$loader" target/gpu-carry/
 rm -f target/gpu-carry/gpu_step_base
-if [ $# -gt 0 ]; then
-    cp "$1" target/gpu-carry/gpu_step_base
+if [ -n "$base" ]; then
+    cp "$base" target/gpu-carry/gpu_step_base
     strip target/gpu-carry/gpu_step_base
 fi
-if [ ! -d .gl ]; then
-    grep -qx '/.gl/' .git/info/exclude 2>/dev/null || echo '/.gl/' >> .git/info/exclude
-    mkdir -p .gl /tmp/amd64/partial
+# The packages, fetched into a fresh folder and moved into place only when
+# all came (an interrupted fetch leaves no half-filled .gl behind).
+if ! ls .gl/libglvnd0_*.deb > /dev/null 2>&1; then
+    exclude=$(git rev-parse --git-path info/exclude)
+    mkdir -p "$(dirname "$exclude")"
+    grep -qx '/.gl/' "$exclude" 2>/dev/null || echo '/.gl/' >> "$exclude"
+    fetched=$(mktemp -d)
+    mkdir -p /tmp/amd64/partial
     o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
     # shellcheck disable=SC2086
     apt-get $o update > /dev/null
     # shellcheck disable=SC2086
-    (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+    (cd "$fetched" && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+    rm -rf .gl
+    mv "$fetched" .gl
+    chmod 755 .gl
 fi
 du -sh target/gpu-carry .gl

@@ -260,6 +260,13 @@ impl Bulk {
         );
     }
 
+    /// The buffers a joint pass changes besides its slots and sums: the
+    /// histories, flags, failure words and failure list (what
+    /// [`Bulk::timings`] saves and restores).
+    pub(crate) fn joint_state(&self) -> [&wgpu::Buffer; 4] {
+        [&self.joint_hist, &self.joint_flags, &self.joint_failed, &self.failed_list]
+    }
+
     /// The gather (`wgsl/gather.wgsl`), recorded into `encoder`.
     pub(crate) fn encode_gather(&self, encoder: &mut wgpu::CommandEncoder) {
         dispatch(

@@ -58,6 +58,9 @@ pub enum GpuError {
     },
 }
 
+/// The largest read-back buffer [`Gpu::keep_staging`] keeps, bytes.
+pub(crate) const STAGING_KEPT: u64 = 16 << 20;
+
 /// An opened device and its queue.
 #[derive(Clone, Debug)]
 pub struct Gpu {
@@ -163,8 +166,9 @@ impl Gpu {
     /// one (sized to a power of two, so that a few serve every size).
     pub(crate) fn take_staging(&self, bytes: u64) -> wgpu::Buffer {
         let mut kept = self.staging.lock().expect("the read-back pool");
-        if let Some(k) = kept.iter().position(|b| b.size() >= bytes) {
-            return kept.swap_remove(k);
+        // The smallest that fits (kept largest first).
+        if let Some(k) = kept.iter().rposition(|b| b.size() >= bytes) {
+            return kept.remove(k);
         }
         drop(kept);
         self.device.create_buffer(&wgpu::BufferDescriptor {
@@ -175,9 +179,14 @@ impl Gpu {
         })
     }
 
-    /// Keeps an unmapped read-back buffer for [`Gpu::take_staging`] (the
-    /// four largest are kept).
+    /// Keeps an unmapped read-back buffer for [`Gpu::take_staging`]: the
+    /// four largest up to [`STAGING_KEPT`] bytes (a whole-model read-back,
+    /// positions or histories of 10⁶ tets, is made afresh each time rather
+    /// than held in host-visible memory).
     pub(crate) fn keep_staging(&self, buffer: wgpu::Buffer) {
+        if buffer.size() > STAGING_KEPT {
+            return;
+        }
         let mut kept = self.staging.lock().expect("the read-back pool");
         kept.push(buffer);
         kept.sort_by_key(|b| std::cmp::Reverse(b.size()));

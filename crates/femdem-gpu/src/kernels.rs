@@ -36,7 +36,7 @@ pub(crate) fn reduce() -> String {
 
 /// The potential contact force of Eq. 17 between pairs of tets.
 pub(crate) fn pairs() -> String {
-    [COMMON, include_str!("wgsl/pairs.wgsl")].concat()
+    [COMMON, include_str!("wgsl/pairs.wgsl"), include_str!("wgsl/pair_bound.wgsl")].concat()
 }
 
 /// Surface loads' nodal forces and powers.

@@ -274,7 +274,7 @@ impl Bulk {
     /// Records the compact pass (`wgsl/compact.wgsl`) of the `n` nodes in
     /// `nodes` into `out`: their position, velocity, internal and
     /// surface-load force, or with `motion_only` their position and
-    /// velocity.
+    /// velocity; its bind group kept where `keep` (the list stays).
     fn encode_compact(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -282,6 +282,7 @@ impl Bulk {
         n: usize,
         out: &wgpu::Buffer,
         motion_only: bool,
+        keep: bool,
     ) {
         let m = self.motion();
         // Without surface loads, any f64 array the kernel only reads.
@@ -289,7 +290,7 @@ impl Bulk {
         let flags = u32::from(m.surfaces.is_some()) | (u32::from(motion_only) << 1);
         dispatch(
             &self.gpu,
-            Some(&self.groups),
+            keep.then_some(&self.groups),
             encoder,
             &m.compact_kernel,
             Params { count: count(n), flags, pad: [0; 2] },
@@ -328,8 +329,8 @@ impl Bulk {
             }
             None => assert!(factors.is_empty(), "no surface loads on the device"),
         }
-        self.encode_compact(&mut encoder, &m.listed, m.num_listed, &m.compacted, false);
-        self.encode_compact(&mut encoder, &m.watched, m.num_watched, &m.watched_out, true);
+        self.encode_compact(&mut encoder, &m.listed, m.num_listed, &m.compacted, false, true);
+        self.encode_compact(&mut encoder, &m.watched, m.num_watched, &m.watched_out, true, true);
         let failed_words = if self.num_joints > 0 { 4 } else { 0 };
         let bytes = submit_and_read(
             gpu,
@@ -373,7 +374,8 @@ impl Bulk {
             write(gpu, &c.nodes, &nodes);
             write(gpu, &c.forces, &values);
             let params = Params { count: count(contact.len()), flags: 0, pad: [0; 2] };
-            dispatch(gpu, Some(&self.groups), &mut encoder, &m.scatter_kernel, params, &[&c.nodes, &c.forces, f]);
+            // Not kept: the count changes from step to step.
+            dispatch(gpu, None, &mut encoder, &m.scatter_kernel, params, &[&c.nodes, &c.forces, f]);
             (&c.nodes, &c.after)
         });
         // Without surface loads or contact, any f64 array the kernel only
@@ -417,7 +419,8 @@ impl Bulk {
         let loads = m.surfaces.as_ref().map_or(0, Surfaces::len);
         let mut copies = vec![(&m.totals, 0, 8 * (FIXED + TERMS * loads) as u64)];
         if let Some((nodes, after)) = contact_nodes {
-            self.encode_compact(&mut encoder, nodes, contact.len(), after, true);
+            // Not kept: the count changes from step to step.
+            self.encode_compact(&mut encoder, nodes, contact.len(), after, true, false);
             copies.push((after, 0, 48 * contact.len() as u64));
         }
         let bytes = submit_and_read(gpu, encoder, &copies);

@@ -1,10 +1,12 @@
 //! The potential contact force of Eq. 17 between pairs of tets on the
-//! device (`wgsl/pairs.wgsl`): `femdem_contact::tet_tet_contact` (the
-//! reference clipping, no face left out) one pair per invocation, the
-//! first brick of contact on the device (issue 35). What the solver's
-//! contact pass adds to it — friction, the start-at-zero activation, the
-//! skipped and certified pairs, the sum into nodal forces — is not here
-//! yet.
+//! device (`wgsl/pairs.wgsl`), one pair per invocation: the reference
+//! clipping `femdem_contact::tet_tet_contact` ([`pair_contacts`]), and
+//! what the solver's contact pass calls with its `negligible` threshold,
+//! `femdem_contact::tet_tet_contact_within` ([`pair_contacts_within`]:
+//! the pair's bound, `wgsl/pair_bound.wgsl`, and faces left out). The
+//! bricks of contact on the device (issue 35); what the pass adds —
+//! friction, the start-at-zero activation, the certified pairs, the sum
+//! into nodal forces — is not here yet.
 
 use femdem_core::{Real, Vec3};
 
@@ -13,8 +15,9 @@ use crate::device::{Gpu, GpuError};
 use crate::kernels;
 
 /// Numbers the kernel writes per pair: forces on `a`'s and `b`'s nodes,
-/// `Σ |F_k| P_k` and `Σ |F_k|`.
-const OUT: usize = 28;
+/// `Σ |F_k| P_k`, `Σ |F_k|`, the pair's bound and whether it is
+/// negligible.
+const OUT: usize = 30;
 
 /// The contact of one pair of tets, as `femdem_contact::TetTetContact`
 /// has it, with the weight of its centre.
@@ -31,8 +34,22 @@ pub struct PairContact {
     pub weight: Real,
 }
 
+/// What the device found of one pair with a threshold
+/// ([`pair_contacts_within`]), as `femdem_contact::Bounded` has it (and,
+/// like it, unboxed: results come in arrays).
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PairBounded {
+    /// The pair's bound (`femdem_contact::contact_bound`, m²), at most the
+    /// threshold: nothing was clipped.
+    Negligible(Real),
+    /// The pair's contact with faces left out up to the threshold.
+    Contact(PairContact),
+}
+
 /// The contacts of `pairs` (indices into `tets`, whose nodes index `x`)
-/// at penalty `penalty` (Pa), computed on the device in one dispatch.
+/// at penalty `penalty` (Pa), computed on the device in one dispatch:
+/// `femdem_contact::tet_tet_contact` pair by pair.
 ///
 /// # Errors
 /// The kernel refused by the adapter, or arrays larger than one of its
@@ -44,6 +61,42 @@ pub fn pair_contacts(
     pairs: &[[u32; 2]],
     penalty: Real,
 ) -> Result<Vec<PairContact>, GpuError> {
+    let out = run(gpu, x, tets, pairs, None, penalty)?;
+    Ok(out.chunks_exact(OUT).map(contact_of).collect())
+}
+
+/// [`pair_contacts`] with a threshold `omits[k]` (m²) for pair `k`:
+/// `femdem_contact::tet_tet_contact_within(a, b, penalty, omits[k], _)`
+/// pair by pair (the pair's bound first; negligible where it is at most
+/// the threshold; else faces left out while their bounds fit in it).
+///
+/// # Errors
+/// As [`pair_contacts`].
+pub fn pair_contacts_within(
+    gpu: &Gpu,
+    x: &[Vec3],
+    tets: &[[u32; 4]],
+    pairs: &[[u32; 2]],
+    omits: &[Real],
+    penalty: Real,
+) -> Result<Vec<PairBounded>, GpuError> {
+    assert_eq!(omits.len(), pairs.len(), "one threshold per pair");
+    let out = run(gpu, x, tets, pairs, Some(omits), penalty)?;
+    Ok(out
+        .chunks_exact(OUT)
+        .map(|c| if c[29] == 1.0 { PairBounded::Negligible(c[28]) } else { PairBounded::Contact(contact_of(c)) })
+        .collect())
+}
+
+/// The kernel's numbers of every pair, with thresholds where given.
+fn run(
+    gpu: &Gpu,
+    x: &[Vec3],
+    tets: &[[u32; 4]],
+    pairs: &[[u32; 2]],
+    omits: Option<&[Real]>,
+    penalty: Real,
+) -> Result<Vec<Real>, GpuError> {
     let module = gpu.module("pairs", &kernels::pairs())?;
     let pipeline = gpu.pipeline("pairs", &module)?;
     let flat: Vec<Real> = x.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
@@ -52,22 +105,23 @@ pub fn pair_contacts(
     let pb = storage(gpu, "contact pairs", pairs.as_flattened())?;
     let sb = storage(gpu, "contact penalty", &[penalty])?;
     let ob = zeroed::<Real>(gpu, "pair contacts", OUT * pairs.len())?;
+    let mb = storage(gpu, "contact thresholds", omits.unwrap_or(&[]))?;
     let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
     let count = u32::try_from(pairs.len()).expect("at most 2^32 pairs");
-    dispatch(gpu, None, &mut encoder, &pipeline, Params { count, flags: 0, pad: [0; 2] }, &[&xb, &tb, &pb, &sb, &ob]);
+    let params = Params { count, flags: u32::from(omits.is_some()), pad: [0; 2] };
+    dispatch(gpu, None, &mut encoder, &pipeline, params, &[&xb, &tb, &pb, &sb, &ob, &mb]);
     gpu.queue.submit([encoder.finish()]);
-    let out: Vec<Real> = read(gpu, &ob, OUT * pairs.len());
-    Ok(out
-        .chunks_exact(OUT)
-        .map(|c| {
-            let v = |k: usize| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2]);
-            let (moment, weight) = (v(8), c[27]);
-            PairContact {
-                on_a: std::array::from_fn(v),
-                on_b: std::array::from_fn(|k| v(4 + k)),
-                centre: (weight > 0.0).then(|| moment / weight),
-                weight,
-            }
-        })
-        .collect())
+    Ok(read(gpu, &ob, OUT * pairs.len()))
+}
+
+/// A pair's contact from its numbers.
+fn contact_of(c: &[Real]) -> PairContact {
+    let v = |k: usize| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2]);
+    let (moment, weight) = (v(8), c[27]);
+    PairContact {
+        on_a: std::array::from_fn(v),
+        on_b: std::array::from_fn(|k| v(4 + k)),
+        centre: (weight > 0.0).then(|| moment / weight),
+        weight,
+    }
 }

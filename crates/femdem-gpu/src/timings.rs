@@ -27,13 +27,29 @@ impl Bulk {
     /// read-back, blocking and then polling in a loop; recording one tet
     /// pass on the host; the tet pass, the joint pass, the gather and (once
     /// the update is enabled) the kinetic-energy sum over the nodes on the
-    /// device. The kernels run on the device's current state: positions
-    /// and velocities are left as they are, joint histories as a repeated
-    /// evaluation at the same positions leaves them. Restores the
-    /// device's wait mode.
+    /// device. The kernels run on the device's current state; positions,
+    /// velocities and the joints' histories, flags and failures are as
+    /// before afterwards (the histories are saved and restored: the joint
+    /// pass would advance them), and so is the device's wait mode. The
+    /// forces and energies of the last evaluation are not: the next step
+    /// computes them afresh.
     pub fn timings(&mut self, reps: usize) -> Vec<Timing> {
         let reps = reps.max(1);
         let gpu = self.gpu.clone();
+        let saved = self.joint_state().map(|b| {
+            let copy = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("saved joint state"),
+                size: b.size(),
+                usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            (b, copy)
+        });
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        for (b, copy) in &saved {
+            encoder.copy_buffer_to_buffer(b, 0, copy, 0, b.size());
+        }
+        gpu.queue.submit([encoder.finish()]);
         let spin = gpu.spin_wait();
         let new_encoder = || gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let read_one = |encoder| {
@@ -66,7 +82,9 @@ impl Bulk {
                 self.encode_kinetic_sum(e);
             }),
         ];
-        for (what, encode) in kernels {
+        // No sum to time before the update is enabled.
+        let kernels = &kernels[..if self.motion.is_some() { 4 } else { 3 }];
+        for &(what, encode) in kernels {
             let mut encoder = new_encoder();
             encode(&mut encoder);
             read_one(encoder);
@@ -78,6 +96,11 @@ impl Bulk {
             read_one(encoder);
             out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64 });
         }
+        let mut encoder = new_encoder();
+        for (b, copy) in &saved {
+            encoder.copy_buffer_to_buffer(copy, 0, b, 0, b.size());
+        }
+        read_one(encoder);
         out
     }
 }

@@ -341,10 +341,15 @@ impl crate::Solver {
 
     /// Where the device's step time goes ([`femdem_gpu::Bulk::timings`],
     /// `reps` repetitions each), for benchmarks: `None` on the CPU. Call it
-    /// at the end of a measurement: the kernels run again on the current
-    /// state (positions and velocities unchanged).
+    /// between steps: the kernels run again on the current state, which
+    /// they leave as it was (positions, velocities, joint histories).
     pub fn device_timings(&mut self, reps: usize) -> Option<Vec<femdem_gpu::Timing>> {
-        self.pipeline.device.as_mut().map(|d| d.bulk.timings(reps))
+        self.pipeline.device.as_mut().map(|d| {
+            // What the device holds is read afresh by the next sync (it
+            // should be what it was: the timings restore it).
+            d.synced = false;
+            d.bulk.timings(reps)
+        })
     }
 
     /// Brings the state the device holds (joint histories; resident, also

@@ -13,15 +13,29 @@
 // has force -p A φ(P) n, on the face's nodes by P's coordinates in the face
 // and, opposite, on the other tet's nodes by P's λ.
 //
-// out[28 k ..]: forces on a's four nodes (12), on b's (12), the pieces'
-// Σ |F| P (3) and Σ |F| (1): the contact centre is their quotient.
+// out[30 k ..]: forces on a's four nodes (12), on b's (12), the pieces'
+// Σ |F| P (3) and Σ |F| (1): the contact centre is their quotient; then
+// the pair's bound and 1 where it is negligible (below).
 // pairs[2 k], pairs[2 k + 1]: the tets; scalars[0]: the penalty p, Pa.
+//
+// With flag bit 0, `femdem_contact::tet_tet_contact_within` with
+// omit = omits[k] (m²): the pair's bound first (`wgsl/pair_bound.wgsl`);
+// a pair bounded by at most omit is negligible (no forces, its bound in
+// out[30 k + 28], 1 in out[30 k + 29]); otherwise faces are left out while
+// the bounds on their pieces fit in a budget of p · omit
+// (`femdem-contact/src/potential.rs`, "Faces left out"). The CPU's
+// `clip_first` only orders its work (the same result bit for bit), so
+// the device always bounds first.
 
 @group(0) @binding(1) var<storage, read> x: array<f64>;
 @group(0) @binding(2) var<storage, read> tets: array<u32>;
 @group(0) @binding(3) var<storage, read> pairs: array<u32>;
 @group(0) @binding(4) var<storage, read> scalars: array<f64>;
 @group(0) @binding(5) var<storage, read_write> out: array<f64>;
+@group(0) @binding(6) var<storage, read> omits: array<f64>;
+
+// Numbers written per pair.
+const OUT: u32 = 30u;
 
 // At most 16 vertices (a triangle clipped by 4 planes, then 3: at most 10,
 // with room for the duplicates a vertex on a plane makes).
@@ -40,6 +54,8 @@ var<private> bufs: array<Polygon, 3>;
 var<private> forces: array<vec3<f64>, 8>;
 var<private> moment: vec3<f64>;
 var<private> weight: f64;
+// What is left of the budget of the faces left out, m² (0: none left out).
+var<private> budget: f64;
 
 // The faces of a tet, outward normals (femdem_core::tet::FACES).
 const FACES = array<vec3<u32>, 4>(vec3<u32>(1u, 2u, 3u), vec3<u32>(0u, 3u, 2u), vec3<u32>(0u, 1u, 3u),
@@ -126,6 +142,42 @@ struct Piece {
     area: f64,
     mu: vec2<f64>,
     lam: vec4<f64>,
+}
+
+// Area in μ of bufs[b] (a fan from the first vertex, as area_centroid).
+fn area(b: u32) -> f64 {
+    var sum: f64 = 0.0;
+    let m0 = bufs[b].mu[0];
+    let n = bufs[b].n;
+    for (var k = 1u; k + 1u < n; k++) {
+        let m1 = bufs[b].mu[k];
+        let m2 = bufs[b].mu[k + 1u];
+        sum = sum + 0.5 * ((m1.x - m0.x) * (m2.y - m0.y) - (m1.y - m0.y) * (m2.x - m0.x));
+    }
+    return sum;
+}
+
+// Whether the face inside the other tet (bufs[b]) is left out: its
+// pieces' Σ |F| / p is at most A · 4 min_j max λ_j, and that fits in what
+// is left of the budget, which it then uses up.
+fn left_out(b: u32, twice_area: f64) -> bool {
+    if (!(budget > 0.0)) {
+        return false;
+    }
+    var highest = infinity();
+    for (var j = 0u; j < 4u; j++) {
+        var top = -infinity();
+        for (var k = 0u; k < bufs[b].n; k++) {
+            top = rmax(top, bufs[b].lam[k][j]);
+        }
+        highest = rmin(highest, top);
+    }
+    let bound = rmax(area(b), 0.0) * twice_area * 4.0 * rmax(highest, 0.0);
+    if (bound <= budget) {
+        budget = budget - bound;
+        return true;
+    }
+    return false;
 }
 
 fn area_centroid(b: u32) -> Piece {
@@ -255,7 +307,7 @@ fn one_way(tet: array<vec3<f64>, 4>, bary: Bary, penalty: f64, own: u32, other: 
                 spare = s;
             }
         }
-        if (bufs[ins].n < 3u) {
+        if (bufs[ins].n < 3u || left_out(ins, twice_area)) {
             continue;
         }
         for (var i = 0u; i < 4u; i++) {
@@ -336,16 +388,31 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     }
     moment = vec3<f64>(0.0, 0.0, 0.0);
     weight = 0.0;
+    budget = 0.0;
     let penalty = scalars[0];
-    one_way(a, barycentric(b), penalty, 0u, 4u);
-    one_way(b, barycentric(a), penalty, 4u, 0u);
-    for (var c = 0u; c < 8u; c++) {
-        out[28u * k + 3u * c] = forces[c].x;
-        out[28u * k + 3u * c + 1u] = forces[c].y;
-        out[28u * k + 3u * c + 2u] = forces[c].z;
+    let in_a = barycentric(a);
+    let in_b = barycentric(b);
+    var bound = Bound(false, 0.0);
+    var negligible = false;
+    if ((params.flags & 1u) != 0u) {
+        budget = omits[k];
+        bound = pair_bound(a, b, in_a, in_b);
+        negligible = bound.ok && bound.value <= budget;
     }
-    out[28u * k + 24u] = moment.x;
-    out[28u * k + 25u] = moment.y;
-    out[28u * k + 26u] = moment.z;
-    out[28u * k + 27u] = weight;
+    if (!negligible) {
+        one_way(a, in_b, penalty, 0u, 4u);
+        one_way(b, in_a, penalty, 4u, 0u);
+    }
+    let o = OUT * k;
+    for (var c = 0u; c < 8u; c++) {
+        out[o + 3u * c] = forces[c].x;
+        out[o + 3u * c + 1u] = forces[c].y;
+        out[o + 3u * c + 2u] = forces[c].z;
+    }
+    out[o + 24u] = moment.x;
+    out[o + 25u] = moment.y;
+    out[o + 26u] = moment.z;
+    out[o + 27u] = weight;
+    out[o + 28u] = select(0.0, bound.value, bound.ok);
+    out[o + 29u] = select(f64(0.0), f64(1.0), negligible);
 }

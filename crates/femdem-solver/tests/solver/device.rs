@@ -147,6 +147,12 @@ fn the_device_steps_as_the_cpu_with_and_without_surface_loads() {
             assert!(!pressed || r.surface_work.iter().all(|&w| w != 0.0), "the loads work");
             assert!(!pressed || (r.surface_forces[1] != Vec3::zeros()) == traction_on, "the traction at {t:e} s");
         }
+        // The kernels' timings leave the device's state as it was.
+        dev.sync_device();
+        let (joints, x) = (dev.state().joints.clone(), dev.state().x.clone());
+        assert!(dev.device_timings(2).is_some_and(|t| t.len() >= 6), "timings of the round trips and kernels");
+        dev.sync_device();
+        assert!(dev.state().joints == joints && dev.state().x == x, "{residency:?}: the timings change nothing");
         let (fc, fd) = (run(&mut cpu, 1500), run(&mut dev, 1500));
         assert!(fc > 5, "the bar breaks ({fc})");
         let joints = |s: &Solver| s.failures().iter().map(|f| (f.joint, f.mode)).collect::<Vec<_>>();
@@ -182,6 +188,12 @@ fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
         assert_eq!(run(&mut dev, 400), 0);
         dev.sync_device();
         assert_close(&cpu, &dev, &format!("{residency:?} with contact"));
+        // The kernels' timings leave the device's state as it was.
+        dev.sync_device();
+        let (joints, x) = (dev.state().joints.clone(), dev.state().x.clone());
+        assert!(dev.device_timings(2).is_some_and(|t| t.len() >= 6), "timings of the round trips and kernels");
+        dev.sync_device();
+        assert!(dev.state().joints == joints && dev.state().x == x, "{residency:?}: the timings change nothing");
         let (fc, fd) = (run(&mut cpu, 1500), run(&mut dev, 1500));
         assert!(fc > 5, "the bar breaks ({fc})");
         let joints = |s: &Solver| s.failures().iter().map(|f| (f.joint, f.mode)).collect::<Vec<_>>();

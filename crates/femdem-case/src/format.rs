@@ -321,9 +321,10 @@ pub struct SolverSpec {
     pub start: Option<String>,
     /// Where the step runs: `"cpu"` (default) or `"gpu"` (a Vulkan device
     /// with 64-bit floats, `femdem-gpu`: the tet and joint passes, the
-    /// gather, the surface loads and the update, the state resident there;
-    /// failures, contact, the drives' reactions and the energy account on
-    /// the CPU). Results agree to round-off.
+    /// gather, the surface loads, the update and the contact pairs' Eq. 17,
+    /// the state resident there; failures, the rest of contact, the
+    /// drives' reactions and the energy account on the CPU). Results agree
+    /// to round-off.
     pub device: Option<String>,
 }
 

@@ -66,7 +66,7 @@ pub struct Bulk {
     pub(crate) num_nodes: usize,
     pub(crate) x: wgpu::Buffer,
     pub(crate) v: wgpu::Buffer,
-    tets: wgpu::Buffer,
+    pub(crate) tets: wgpu::Buffer,
     refs: wgpu::Buffer,
     tet_mat: wgpu::Buffer,
     materials: wgpu::Buffer,
@@ -93,6 +93,8 @@ pub struct Bulk {
     pub(crate) motion: Option<crate::motion::Motion>,
     /// The bind groups of earlier dispatches.
     pub(crate) groups: Groups,
+    /// The contact pairs' buffers, once [`Bulk::pair_geometry`] has run.
+    pub(crate) pair_buffers: Option<crate::pairs::PairBuffers>,
 }
 
 /// `[x, y, z, x, y, z, …]` of a slice of vectors.
@@ -173,6 +175,7 @@ impl Bulk {
             internal: zeroed::<Real>(gpu, "internal forces", nodes3)?,
             motion: None,
             groups: Groups::default(),
+            pair_buffers: None,
             gpu: gpu.clone(),
         })
     }

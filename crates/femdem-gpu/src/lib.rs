@@ -22,13 +22,16 @@
 //!   stay on the device.
 //!
 //! - [`pairs`]: the potential contact force of Eq. 17 between pairs of
-//!   tets (`femdem_contact::tet_tet_contact` on the device), checked pair
-//!   by pair against the CPU; not yet part of the step.
+//!   tets (`femdem_contact::tet_tet_contact` and, with a threshold,
+//!   `tet_tet_contact_within` on the device), checked pair by pair against
+//!   the CPU; `Bulk::pair_geometry` computes it at the device's positions
+//!   for the solver's contact pass.
 //!
 //! The solver's switch to this path is `femdem_solver::Solver::use_device`
 //! (`[solver] device = "gpu"`, `femdem run --device gpu`). Not yet here:
-//! the contact pass (issue 35: the solver runs it on the CPU beside the
-//! device; [`pairs`] is its first kernel).
+//! the rest of the contact pass (issue 35: detection, friction, the
+//! activation and the sums into nodal forces run on the CPU beside the
+//! device).
 //!
 //! This crate knows the material law and the tet's reference shape
 //! (`femdem-material`) and nothing of the solver or the case files; of

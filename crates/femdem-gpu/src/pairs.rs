@@ -10,7 +10,7 @@
 
 use femdem_core::{Real, Vec3};
 
-use crate::buffers::{Params, dispatch, read, storage, zeroed};
+use crate::buffers::{Params, dispatch, read, storage, submit_and_read, write, zeroed};
 use crate::device::{Gpu, GpuError};
 use crate::kernels;
 
@@ -82,10 +82,7 @@ pub fn pair_contacts_within(
 ) -> Result<Vec<PairBounded>, GpuError> {
     assert_eq!(omits.len(), pairs.len(), "one threshold per pair");
     let out = run(gpu, x, tets, pairs, Some(omits), penalty)?;
-    Ok(out
-        .chunks_exact(OUT)
-        .map(|c| if c[29] == 1.0 { PairBounded::Negligible(c[28]) } else { PairBounded::Contact(contact_of(c)) })
-        .collect())
+    Ok(out.chunks_exact(OUT).map(|c| bounded_of(c, true)).collect())
 }
 
 /// The kernel's numbers of every pair, with thresholds where given.
@@ -124,4 +121,79 @@ fn contact_of(c: &[Real]) -> PairContact {
         centre: (weight > 0.0).then(|| moment / weight),
         weight,
     }
+}
+
+/// The pairs [`Bulk::pair_geometry`] evaluates and where their results go,
+/// kept between calls (grown to a power of two).
+#[derive(Debug)]
+pub(crate) struct PairBuffers {
+    pipeline: wgpu::ComputePipeline,
+    pairs: wgpu::Buffer,
+    omits: wgpu::Buffer,
+    out: wgpu::Buffer,
+    penalty: wgpu::Buffer,
+    capacity: usize,
+}
+
+impl crate::Bulk {
+    /// The Eq. 17 contacts of `pairs` (tet indices) at the device's
+    /// current positions, penalty `penalty` (Pa): with `omits` (m², one per
+    /// pair) as [`pair_contacts_within`], without as [`pair_contacts`]
+    /// (wrapped in [`PairBounded::Contact`]). One upload of the pairs, one
+    /// dispatch and one read-back of 240 bytes a pair.
+    ///
+    /// # Errors
+    /// The kernel refused by the adapter, or more pairs than one storage
+    /// binding holds.
+    pub fn pair_geometry(
+        &mut self,
+        pairs: &[[u32; 2]],
+        omits: Option<&[Real]>,
+        penalty: Real,
+    ) -> Result<Vec<PairBounded>, GpuError> {
+        if pairs.is_empty() {
+            return Ok(Vec::new());
+        }
+        if let Some(o) = omits {
+            assert_eq!(o.len(), pairs.len(), "one threshold per pair");
+        }
+        let gpu = self.gpu.clone();
+        let fits = self.pair_buffers.as_ref().is_some_and(|b| b.capacity >= pairs.len());
+        if !fits {
+            let capacity = pairs.len().next_power_of_two();
+            let pipeline = match self.pair_buffers.take() {
+                Some(b) => b.pipeline,
+                None => gpu.pipeline("pairs", &gpu.module("pairs", &kernels::pairs())?)?,
+            };
+            self.pair_buffers = Some(PairBuffers {
+                pipeline,
+                pairs: zeroed::<u32>(&gpu, "contact pairs", 2 * capacity)?,
+                omits: zeroed::<Real>(&gpu, "contact thresholds", capacity)?,
+                out: zeroed::<Real>(&gpu, "pair contacts", OUT * capacity)?,
+                penalty: zeroed::<Real>(&gpu, "contact penalty", 1)?,
+                capacity,
+            });
+        }
+        let b = self.pair_buffers.as_ref().expect("made above");
+        write(&gpu, &b.pairs, pairs.as_flattened());
+        write(&gpu, &b.penalty, &[penalty]);
+        if let Some(o) = omits {
+            write(&gpu, &b.omits, o);
+        }
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let count = u32::try_from(pairs.len()).expect("at most 2^32 pairs");
+        let params = Params { count, flags: u32::from(omits.is_some()), pad: [0; 2] };
+        let buffers = [&self.x, &self.tets, &b.pairs, &b.penalty, &b.out, &b.omits];
+        // Not kept: the count changes from pass to pass.
+        dispatch(&gpu, None, &mut encoder, &b.pipeline, params, &buffers);
+        let bytes = submit_and_read(&gpu, encoder, &[(&b.out, 0, (8 * OUT * pairs.len()) as u64)]);
+        let out: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
+        Ok(out.chunks_exact(OUT).map(|c| bounded_of(c, omits.is_some())).collect())
+    }
+}
+
+/// A pair's result from its numbers: negligible where the kernel says so
+/// (only with thresholds), else its contact.
+fn bounded_of(c: &[Real], within: bool) -> PairBounded {
+    if within && c[29] == 1.0 { PairBounded::Negligible(c[28]) } else { PairBounded::Contact(contact_of(c)) }
 }

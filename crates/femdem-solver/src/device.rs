@@ -22,6 +22,7 @@ use femdem_fracture::{FailureMode, JointHistory};
 use femdem_gpu::{Bulk, Evaluate, Gpu, GpuError, JointMesh, MotionSetup, TetMesh};
 
 use crate::SolverError;
+use crate::contact::Contact;
 use crate::forces::{CHUNK, Dissipation, ForceSums, Want, Workspace};
 use crate::model::Model;
 use crate::state::State;
@@ -300,8 +301,8 @@ impl crate::Solver {
     pub fn device_stages(&self) -> Option<&'static str> {
         self.pipeline.device.as_ref().map(|d| {
             if d.resident && self.evolving.contact.is_some() {
-                "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, contact, \
-                 drives and the account on the CPU"
+                "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums) and the contact pairs' \
+                 Eq. 17; failures, the rest of contact, drives and the account on the CPU"
             } else if d.resident {
                 "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, drives and \
                  the account on the CPU"
@@ -322,11 +323,15 @@ impl crate::Solver {
             Some(d) if d.resident => {
                 // Failure count, the seven sums and each surface load's
                 // five, the drives' nodes' state, the watched nodes'
-                // positions and velocities, the touched nodes' contact
-                // forces down (28 bytes each) and state back (48), the
-                // drive and surface-load tables and the step's scalars.
+                // positions and velocities, the candidate pairs up (8
+                // bytes, 8 more for the threshold) and their contacts back
+                // (240), the touched nodes' contact forces down (28 bytes
+                // each) and state back (48), the drive and surface-load
+                // tables and the step's scalars.
                 let surfaces = self.scene.loads.surfaces.len() as u64;
+                let pairs = self.evolving.contact.as_ref().map_or(0, Contact::pairs_for_geometry) as u64;
                 4 + 56
+                    + 256 * pairs
                     + 40 * surfaces
                     + 96 * d.listed.len() as u64
                     + 48 * d.watched.len() as u64

@@ -76,6 +76,13 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
 use crate::model::Model;
+
+/// Where [`Contact::pass_with`] gets the candidate pairs' Eq. 17 contacts:
+/// given the pairs, their `negligible` thresholds (m², where the settings
+/// have one) and the penalty (Pa), one result per pair, or `None` to
+/// compute them on the CPU after all.
+pub(crate) type Geometry<'a> =
+    dyn FnMut(&[[u32; 2]], Option<&[Real]>, Real) -> Option<Vec<femdem_contact::Bounded>> + 'a;
 use certify::{Certificates, Verdict};
 use detection::Update;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
@@ -404,6 +411,13 @@ impl Contact {
         self.pending.dedup();
     }
 
+    /// How many candidate pairs a pass with [`Contact::pass_with`] sends
+    /// to its geometry: the candidates with the potential model, none with
+    /// the gradient one (computed on the CPU).
+    pub(crate) fn pairs_for_geometry(&self) -> usize {
+        if self.settings.model == ContactModel::Potential { self.candidates.len() } else { 0 }
+    }
+
     /// The nodes the last pass put a force on, ascending.
     pub fn touched(&self) -> &[u32] {
         &self.touched
@@ -519,6 +533,25 @@ impl Contact {
     /// are [`Contact::touched`]). `v` (velocities) and `dt` drive the
     /// friction springs (see `pair::evaluate`).
     pub fn pass(&mut self, model: &Model, x: &[Vec3], v: &[Vec3], dt: Real) {
+        self.pass_with(model, x, v, dt, None);
+    }
+
+    /// [`Contact::pass`] with the candidate pairs' Eq. 17 contacts from
+    /// `geometry` (given the pairs, each one's `negligible` threshold in m²
+    /// where the settings have one, and the penalty; `None` back: computed
+    /// here after all), for [`ContactModel::Potential`]: the pair kernel on
+    /// a device ([`femdem_gpu::Bulk::pair_geometry`], operation for
+    /// operation the CPU's). Everything else — detection, certificates,
+    /// the boxes' early-out, the Eq. 18 ramp, the start-at-zero offsets,
+    /// friction, the sums into nodal forces — is the CPU's as in `pass`.
+    pub(crate) fn pass_with(
+        &mut self,
+        model: &Model,
+        x: &[Vec3],
+        v: &[Vec3],
+        dt: Real,
+        geometry: Option<&mut Geometry<'_>>,
+    ) {
         for &n in &self.touched {
             self.force[n as usize] = Vec3::zeros();
             self.friction_force[n as usize] = Vec3::zeros();
@@ -550,6 +583,18 @@ impl Contact {
             self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
         }
         let sizes = &self.sizes;
+        let precomputed = match geometry {
+            Some(g) if self.settings.model == ContactModel::Potential && !self.candidates.is_empty() => {
+                let pairs: Vec<[u32; 2]> = self.candidates.iter().map(|&(a, b)| [a, b]).collect();
+                // As `pair::evaluate` computes it: `negligible · ℓ²`.
+                let negligible = self.settings.negligible;
+                let omit = |&(a, b): &(u32, u32)| negligible * sizes[a as usize].min(sizes[b as usize]).powi(2);
+                let omits = (negligible > 0.0).then(|| self.candidates.iter().map(omit).collect::<Vec<_>>());
+                g(&pairs, omits.as_deref(), self.settings.penalty)
+            }
+            _ => None,
+        };
+        let precomputed = precomputed.as_deref();
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
         let (negligible, activation, contact_model) =
@@ -558,9 +603,10 @@ impl Contact {
         let anchor = &self.certificates.anchor;
         self.candidates
             .par_iter()
+            .enumerate()
             .zip(self.certificates.cached.par_iter())
             .zip(self.was_in_contact.par_iter())
-            .map(|((&(a, b), &radius), &clip_first)| {
+            .map(|(((k, &(a, b)), &radius), &clip_first)| {
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
                 let nodes = [ta, tb];
                 let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
@@ -598,6 +644,7 @@ impl Contact {
                         couple: newly.is_some_and(|n| n.is_couple(a, b)),
                         activation,
                         started,
+                        geometry: precomputed.map(|p| p[k]),
                     },
                     &mut negligible_bound,
                 );

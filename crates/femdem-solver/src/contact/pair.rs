@@ -136,6 +136,11 @@ pub(crate) struct PairInput<'a> {
     pub couple: bool,
     pub activation: Activation,
     pub started: &'a PairMap<Real>,
+    /// The pair's Eq. 17 contact (with [`ContactModel::Potential`]: what
+    /// `tet_tet_contact_within` or, without a `negligible` threshold,
+    /// `tet_tet_contact` gives) computed elsewhere — on a device
+    /// (`Contact::pass_with`) — or `None` to compute it here.
+    pub geometry: Option<Bounded>,
 }
 
 /// The barycentric coordinates of `q` in the tet `p` (`None` if flat).
@@ -199,6 +204,14 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         let g = tet_tet_gradient(pa, pb, input.penalty);
         energy = g.energy;
         g.contact
+    } else if let Some(geometry) = input.geometry {
+        match geometry {
+            Bounded::Negligible(bound) => {
+                *negligible_bound = Some(bound);
+                return None;
+            }
+            Bounded::Contact(c) => c,
+        }
     } else if input.negligible > 0.0 {
         // Forces up to negligible · p · ℓ², ℓ³ = V the smaller tet's volume,
         // are left out: the whole pair when its bound shows them all below

@@ -1,7 +1,9 @@
 //! The step with positions and velocities resident on a device
 //! ([`crate::Residency::Auto`]): the same six stages as [`Solver::step`]'s,
 //! with stage 1, stage 4's surface loads, stage 5 and the sums on the
-//! device, and contact (stage 3) on the CPU.
+//! device, and contact (stage 3) on the CPU but for the candidate pairs'
+//! Eq. 17 contacts (with the potential model), which the device computes
+//! at the pass's request (`Contact::pass_with`, one more read-back).
 //!
 //! With contact, the positions and velocities of the contactable tets'
 //! nodes (what the contact pass reads: detection, pairs, friction; the
@@ -155,7 +157,15 @@ impl Solver {
         // 3. Contact, on the CPU from the contactable tets' nodes.
         let mut contact_down = Vec::new();
         if let Some(contact) = &mut self.evolving.contact {
-            contact.pass(&self.scene.model, &self.evolving.state.x, &self.evolving.state.v, dt);
+            // The pairs' Eq. 17 contacts on the device, at its x_n (the
+            // watched nodes' positions the pass reads are those).
+            let bulk = &mut self.pipeline.device.as_mut().expect("a resident device").bulk;
+            let mut geometry = |pairs: &[[u32; 2]], omits: Option<&[f64]>, penalty: f64| {
+                let found = bulk.pair_geometry(pairs, omits, penalty).ok()?;
+                Some(found.into_iter().map(bounded).collect())
+            };
+            let (x, v) = (&self.evolving.state.x, &self.evolving.state.v);
+            contact.pass_with(&self.scene.model, x, v, dt, Some(&mut geometry));
             let device = self.pipeline.device.as_mut().expect("a resident device");
             // The nodes touched now or at the pass before (zero now where
             // no longer touched), ascending.
@@ -211,5 +221,18 @@ impl Solver {
         }
         // 6. The account and the record, as on the CPU.
         self.account(sums, powers, first_new, t, want);
+    }
+}
+
+/// The device's pair result as `femdem_contact`'s.
+fn bounded(p: femdem_gpu::pairs::PairBounded) -> femdem_contact::Bounded {
+    use femdem_gpu::pairs::PairBounded;
+    match p {
+        PairBounded::Negligible(bound) => femdem_contact::Bounded::Negligible(bound),
+        PairBounded::Contact(c) => femdem_contact::Bounded::Contact(femdem_contact::TetTetContact {
+            on_a: c.on_a,
+            on_b: c.on_b,
+            centre: c.centre,
+        }),
     }
 }

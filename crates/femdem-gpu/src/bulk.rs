@@ -93,7 +93,9 @@ pub struct Bulk {
     pub(crate) motion: Option<crate::motion::Motion>,
     /// The bind groups of earlier dispatches.
     pub(crate) groups: Groups,
-    /// The contact pairs' buffers, once [`Bulk::pair_geometry`] has run.
+    /// The contact pairs' kernel and buffers, once [`Bulk::pair_geometry`]
+    /// has run.
+    pub(crate) pair_kernel: Option<crate::pairs::PairKernel>,
     pub(crate) pair_buffers: Option<crate::pairs::PairBuffers>,
 }
 
@@ -175,6 +177,7 @@ impl Bulk {
             internal: zeroed::<Real>(gpu, "internal forces", nodes3)?,
             motion: None,
             groups: Groups::default(),
+            pair_kernel: None,
             pair_buffers: None,
             gpu: gpu.clone(),
         })

@@ -124,15 +124,23 @@ fn contact_of(c: &[Real]) -> PairContact {
 }
 
 /// The pairs [`Bulk::pair_geometry`] evaluates and where their results go,
-/// kept between calls (grown to a power of two).
+/// kept between calls (grown to a power of two, up to what one binding
+/// holds).
 #[derive(Debug)]
 pub(crate) struct PairBuffers {
-    pipeline: wgpu::ComputePipeline,
     pairs: wgpu::Buffer,
     omits: wgpu::Buffer,
     out: wgpu::Buffer,
     penalty: wgpu::Buffer,
     capacity: usize,
+}
+
+/// The pair kernel of a [`crate::Bulk`]: compiled once, or the reason the
+/// adapter refused it (then every call is refused at once).
+#[derive(Debug)]
+pub(crate) enum PairKernel {
+    Ready(wgpu::ComputePipeline),
+    Refused(String),
 }
 
 impl crate::Bulk {
@@ -143,8 +151,8 @@ impl crate::Bulk {
     /// dispatch and one read-back of 240 bytes a pair.
     ///
     /// # Errors
-    /// The kernel refused by the adapter, or more pairs than one storage
-    /// binding holds.
+    /// The kernel refused by the adapter (once compiled or refused, the
+    /// answer is kept), or more pairs than one storage binding holds.
     pub fn pair_geometry(
         &mut self,
         pairs: &[[u32; 2]],
@@ -158,15 +166,25 @@ impl crate::Bulk {
             assert_eq!(o.len(), pairs.len(), "one threshold per pair");
         }
         let gpu = self.gpu.clone();
-        let fits = self.pair_buffers.as_ref().is_some_and(|b| b.capacity >= pairs.len());
-        if !fits {
-            let capacity = pairs.len().next_power_of_two();
-            let pipeline = match self.pair_buffers.take() {
-                Some(b) => b.pipeline,
-                None => gpu.pipeline("pairs", &gpu.module("pairs", &kernels::pairs())?)?,
-            };
+        if self.pair_kernel.is_none() {
+            let made = gpu.module("pairs", &kernels::pairs()).and_then(|m| gpu.pipeline("pairs", &m));
+            self.pair_kernel = Some(match made {
+                Ok(p) => PairKernel::Ready(p),
+                Err(e) => PairKernel::Refused(e.to_string()),
+            });
+        }
+        let pipeline = match self.pair_kernel.as_ref().expect("set above") {
+            PairKernel::Ready(p) => p.clone(),
+            PairKernel::Refused(reason) => {
+                return Err(GpuError::Kernel { kernel: "pairs", adapter: gpu.adapter(), reason: reason.clone() });
+            }
+        };
+        if self.pair_buffers.as_ref().is_none_or(|b| b.capacity < pairs.len()) {
+            // A power of two where one binding holds it, else just enough.
+            let most = usize::try_from(gpu.max_binding() / (8 * OUT as u64)).unwrap_or(usize::MAX);
+            let capacity = pairs.len().next_power_of_two().min(most).max(pairs.len());
+            self.pair_buffers = None;
             self.pair_buffers = Some(PairBuffers {
-                pipeline,
                 pairs: zeroed::<u32>(&gpu, "contact pairs", 2 * capacity)?,
                 omits: zeroed::<Real>(&gpu, "contact thresholds", capacity)?,
                 out: zeroed::<Real>(&gpu, "pair contacts", OUT * capacity)?,
@@ -185,7 +203,7 @@ impl crate::Bulk {
         let params = Params { count, flags: u32::from(omits.is_some()), pad: [0; 2] };
         let buffers = [&self.x, &self.tets, &b.pairs, &b.penalty, &b.out, &b.omits];
         // Not kept: the count changes from pass to pass.
-        dispatch(&gpu, None, &mut encoder, &b.pipeline, params, &buffers);
+        dispatch(&gpu, None, &mut encoder, &pipeline, params, &buffers);
         let bytes = submit_and_read(&gpu, encoder, &[(&b.out, 0, (8 * OUT * pairs.len()) as u64)]);
         let out: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
         Ok(out.chunks_exact(OUT).map(|c| bounded_of(c, omits.is_some())).collect())

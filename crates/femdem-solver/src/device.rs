@@ -300,9 +300,13 @@ impl crate::Solver {
     /// Which stages run on the device (`None` on the CPU).
     pub fn device_stages(&self) -> Option<&'static str> {
         self.pipeline.device.as_ref().map(|d| {
-            if d.resident && self.evolving.contact.is_some() {
+            let contact = self.evolving.contact.as_ref();
+            if d.resident && contact.is_some_and(Contact::geometry_elsewhere) {
                 "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums) and the contact pairs' \
                  Eq. 17; failures, the rest of contact, drives and the account on the CPU"
+            } else if d.resident && contact.is_some() {
+                "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, contact, \
+                 drives and the account on the CPU"
             } else if d.resident {
                 "stages 1 and 5 (tets, joints, gather, surface loads, update, the energy sums); failures, drives and \
                  the account on the CPU"
@@ -325,13 +329,13 @@ impl crate::Solver {
                 // five, the drives' nodes' state, the watched nodes'
                 // positions and velocities, the candidate pairs up (8
                 // bytes, 8 more for the threshold) and their contacts back
-                // (240), the touched nodes' contact forces down (28 bytes
+                // (240) with the potential model, the touched nodes' contact forces down (28 bytes
                 // each) and state back (48), the drive and surface-load
                 // tables and the step's scalars.
                 let surfaces = self.scene.loads.surfaces.len() as u64;
-                let pairs = self.evolving.contact.as_ref().map_or(0, Contact::pairs_for_geometry) as u64;
+                let pairs = self.evolving.contact.as_ref().map_or(0, Contact::geometry_bytes) as u64;
                 4 + 56
-                    + 256 * pairs
+                    + pairs
                     + 40 * surfaces
                     + 96 * d.listed.len() as u64
                     + 48 * d.watched.len() as u64

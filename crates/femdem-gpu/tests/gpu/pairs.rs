@@ -46,6 +46,8 @@ use femdem_contact::{Bounded, tet_tet_contact, tet_tet_contact_within};
 use femdem_core::tet::{FACES, signed_volume, triangle_area};
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_gpu::pairs::{PairBounded, pair_contacts, pair_contacts_within};
+use femdem_gpu::{Bulk, JointMesh, TetMesh};
+use femdem_material::TetReference;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -261,4 +263,50 @@ fn pairs_with_a_threshold_agree_with_the_cpu() {
     compare_within("random", random_pair, 10_000, 4);
     compare_within("face to face", face_pair, 10_000, 5);
     compare_within("sharing nodes", shared_pair, 10_000, 6);
+}
+
+/// A maker of pairs of tets.
+type Maker = fn(&mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]);
+
+/// `Bulk::pair_geometry`, the solver's way in (pairs of the model's tets at
+/// the device's positions, buffers kept from call to call), gives what
+/// `pair_contacts_within` and `pair_contacts` give for the same pairs: with
+/// thresholds, then fewer pairs (buffers reused), then without thresholds,
+/// then more pairs (buffers grown).
+#[test]
+fn a_bulk_computes_its_pairs_as_the_pair_kernel_does() {
+    let Some(g) = gpu() else { return };
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let makers: [Maker; 3] = [random_pair, face_pair, shared_pair];
+    let pairs: Vec<_> = (0..3000).map(|k| makers[k % 3](&mut rng)).collect();
+    let omits: Vec<Real> = pairs.iter().map(|(a, b)| small(&mut rng, -14.0, -1.0) * face_area(a, b)).collect();
+    let x: Vec<Vec3> = pairs.iter().flat_map(|(a, b)| a.iter().chain(b).copied()).collect();
+    let n = pairs.len();
+    let tets: Vec<[u32; 4]> = (0..2 * n as u32).map(|t| std::array::from_fn(|k| 4 * t + k as u32)).collect();
+    let list: Vec<[u32; 2]> = (0..n as u32).map(|k| [2 * k, 2 * k + 1]).collect();
+    // The tet pass is not run: any reference and no material will do.
+    let unit = TetReference::new(&[Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()]).unwrap();
+    let (refs, material) = (vec![unit; tets.len()], vec![None; tets.len()]);
+    let offsets = vec![0u32; x.len() + 1];
+    let mesh = TetMesh {
+        tets: &tets,
+        refs: &refs,
+        material: &material,
+        materials: &[],
+        num_nodes: x.len(),
+        gather_offsets: &offsets,
+        gather_slots: &[],
+    };
+    let mut bulk = Bulk::new(&g, mesh, JointMesh::none(&offsets)).unwrap();
+    bulk.set_state(&x, &vec![Vec3::zeros(); x.len()]);
+    let within = pair_contacts_within(&g, &x, &tets, &list, &omits, PENALTY).unwrap();
+    let plain: Vec<PairBounded> =
+        pair_contacts(&g, &x, &tets, &list, PENALTY).unwrap().into_iter().map(PairBounded::Contact).collect();
+    assert!(within.iter().any(|r| matches!(r, PairBounded::Negligible(_))), "some pairs are negligible");
+    assert_eq!(bulk.pair_geometry(&list, Some(&omits), PENALTY).unwrap(), within);
+    let few = n / 3;
+    assert_eq!(bulk.pair_geometry(&list[..few], Some(&omits[..few]), PENALTY).unwrap(), within[..few]);
+    assert_eq!(bulk.pair_geometry(&list[..few], None, PENALTY).unwrap(), plain[..few]);
+    assert_eq!(bulk.pair_geometry(&list, None, PENALTY).unwrap(), plain);
+    assert_eq!(bulk.pair_geometry(&[], None, PENALTY).unwrap(), []);
 }

@@ -411,11 +411,21 @@ impl Contact {
         self.pending.dedup();
     }
 
-    /// How many candidate pairs a pass with [`Contact::pass_with`] sends
-    /// to its geometry: the candidates with the potential model, none with
-    /// the gradient one (computed on the CPU).
-    pub(crate) fn pairs_for_geometry(&self) -> usize {
-        if self.settings.model == ContactModel::Potential { self.candidates.len() } else { 0 }
+    /// Whether [`Contact::pass_with`] asks its geometry for the pairs'
+    /// contacts: with the potential model (the gradient one is the CPU's).
+    pub(crate) fn geometry_elsewhere(&self) -> bool {
+        self.settings.model == ContactModel::Potential
+    }
+
+    /// Bytes a pass with [`Contact::pass_with`] moves to and from a device
+    /// for its geometry: per candidate pair 8 up (and 8 for its threshold
+    /// where `negligible` is set), 240 back.
+    pub(crate) fn geometry_bytes(&self) -> usize {
+        if !self.geometry_elsewhere() {
+            return 0;
+        }
+        let up = if self.settings.negligible > 0.0 { 16 } else { 8 };
+        self.candidates.len() * (up + 240)
     }
 
     /// The nodes the last pass put a force on, ascending.
@@ -540,8 +550,8 @@ impl Contact {
     /// `geometry` (given the pairs, each one's `negligible` threshold in m²
     /// where the settings have one, and the penalty; `None` back: computed
     /// here after all), for [`ContactModel::Potential`]: the pair kernel on
-    /// a device ([`femdem_gpu::Bulk::pair_geometry`], operation for
-    /// operation the CPU's). Everything else — detection, certificates,
+    /// a device ([`femdem_gpu::Bulk::pair_geometry`]: the CPU's operations,
+    /// results to round-off, a driver may fuse a product and a sum). Everything else — detection, certificates,
     /// the boxes' early-out, the Eq. 18 ramp, the start-at-zero offsets,
     /// friction, the sums into nodal forces — is the CPU's as in `pass`.
     pub(crate) fn pass_with(
@@ -584,7 +594,7 @@ impl Contact {
         }
         let sizes = &self.sizes;
         let precomputed = match geometry {
-            Some(g) if self.settings.model == ContactModel::Potential && !self.candidates.is_empty() => {
+            Some(g) if self.geometry_elsewhere() && !self.candidates.is_empty() => {
                 let pairs: Vec<[u32; 2]> = self.candidates.iter().map(|&(a, b)| [a, b]).collect();
                 // As `pair::evaluate` computes it: `negligible · ℓ²`.
                 let negligible = self.settings.negligible;

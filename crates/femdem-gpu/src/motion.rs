@@ -244,9 +244,7 @@ impl Bulk {
         if m.contact.capacity >= n {
             return;
         }
-        for old in [&m.contact.nodes, &m.contact.forces, &m.contact.after] {
-            self.groups.forget(old);
-        }
+        // (Their dispatches keep no bind group: nothing to forget.)
         let capacity = n.next_power_of_two();
         let fits = "a few bytes a node fit where all nodes' state does";
         m.contact = ContactNodes {

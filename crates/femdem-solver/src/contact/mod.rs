@@ -64,6 +64,7 @@
 mod certify;
 mod depth;
 mod detection;
+mod geometry;
 mod incremental;
 mod pair;
 mod saved;
@@ -76,15 +77,9 @@ use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
 
 use crate::model::Model;
-
-/// Where [`Contact::pass_with`] gets the candidate pairs' Eq. 17 contacts:
-/// given the pairs, their `negligible` thresholds (m², where the settings
-/// have one) and the penalty (Pa), one result per pair, or `None` to
-/// compute them on the CPU after all.
-pub(crate) type Geometry<'a> =
-    dyn FnMut(&[[u32; 2]], Option<&[Real]>, Real) -> Option<Vec<femdem_contact::Bounded>> + 'a;
 use certify::{Certificates, Verdict};
 use detection::Update;
+pub(crate) use geometry::Geometry;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 pub(crate) use saved::SavedContact;
 use settings::FrictionTable;
@@ -411,23 +406,6 @@ impl Contact {
         self.pending.dedup();
     }
 
-    /// Whether [`Contact::pass_with`] asks its geometry for the pairs'
-    /// contacts: with the potential model (the gradient one is the CPU's).
-    pub(crate) fn geometry_elsewhere(&self) -> bool {
-        self.settings.model == ContactModel::Potential
-    }
-
-    /// Bytes a pass with [`Contact::pass_with`] moves to and from a device
-    /// for its geometry: per candidate pair 8 up (and 8 for its threshold
-    /// where `negligible` is set), 240 back.
-    pub(crate) fn geometry_bytes(&self) -> usize {
-        if !self.geometry_elsewhere() {
-            return 0;
-        }
-        let up = if self.settings.negligible > 0.0 { 16 } else { 8 };
-        self.candidates.len() * (up + 240)
-    }
-
     /// The nodes the last pass put a force on, ascending.
     pub fn touched(&self) -> &[u32] {
         &self.touched
@@ -592,19 +570,9 @@ impl Contact {
             while last.next_if(|&p| p < c).is_some() {}
             self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
         }
-        let sizes = &self.sizes;
-        let precomputed = match geometry {
-            Some(g) if self.geometry_elsewhere() && !self.candidates.is_empty() => {
-                let pairs: Vec<[u32; 2]> = self.candidates.iter().map(|&(a, b)| [a, b]).collect();
-                // As `pair::evaluate` computes it: `negligible · ℓ²`.
-                let negligible = self.settings.negligible;
-                let omit = |&(a, b): &(u32, u32)| negligible * sizes[a as usize].min(sizes[b as usize]).powi(2);
-                let omits = (negligible > 0.0).then(|| self.candidates.iter().map(omit).collect::<Vec<_>>());
-                g(&pairs, omits.as_deref(), self.settings.penalty)
-            }
-            _ => None,
-        };
+        let precomputed = geometry.and_then(|g| self.ask_geometry(g));
         let precomputed = precomputed.as_deref();
+        let sizes = &self.sizes;
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
         let (negligible, activation, contact_model) =

@@ -122,6 +122,12 @@ pub struct ContactSpec {
     /// `"ramp"` (Eq. 18 for every such pair). See
     /// `femdem_solver::Activation`.
     pub activation: Option<String>,
+    /// The normal force: `"potential"` (the default: Eq. 17 as printed) or
+    /// `"gradient"` (the exact gradient of Eq. 17's overlap energy, with
+    /// energy-consistent kicks: contact gives back what it took over a
+    /// closed cycle; 4–10 times Eq. 17's cost). See
+    /// `femdem_solver::ContactModel`.
+    pub model: Option<String>,
     /// What the run guard does when the normal contact forces have given
     /// back more than `energy_tolerance` of the run's energy scale beyond
     /// what they absorbed: `"warn"` (default: a warning of the run, once),

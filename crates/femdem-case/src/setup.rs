@@ -411,13 +411,28 @@ pub fn activation_name(activation: Activation) -> &'static str {
     ACTIVATIONS.iter().find(|(_, a)| *a == activation).map_or("?", |(n, _)| n)
 }
 
+/// The case file's names of `[contact] model`'s options.
+const CONTACT_MODELS: [(&str, ContactModel); 2] =
+    [("potential", ContactModel::Potential), ("gradient", ContactModel::Gradient)];
+
+/// The case file's name of a contact model.
+pub fn contact_model_name(model: ContactModel) -> &'static str {
+    CONTACT_MODELS.iter().find(|(_, m)| *m == model).map_or("?", |(n, _)| n)
+}
+
+/// The contact model named `name` (`[contact] model`, `--contact-model`);
+/// `None` for an unknown name.
+pub fn contact_model(name: &str) -> Option<ContactModel> {
+    CONTACT_MODELS.iter().find(|(n, _)| *n == name).map(|&(_, m)| m)
+}
+
 /// Builds the contact settings of the case's `[contact]`, if any.
 ///
 /// # Errors
 /// A located [`CaseError`] for a penalty that is not positive, a friction
 /// coefficient that is negative or not finite, a negative buffer, a
-/// `negligible` outside `[0, 1e-3)`, or an
-/// unknown region in `[[contact.pairs]]`.
+/// `negligible` outside `[0, 1e-3)`, an unknown `activation` or `model`,
+/// or an unknown region in `[[contact.pairs]]`.
 pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSettings>, CaseError> {
     let Some(c) = &case.case.contact else { return Ok(None) };
     let spec = c.get_ref();
@@ -442,6 +457,12 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
             at(format!("activation `{name}` is not {} or {last}", rest.join(", ")))
         })?,
     };
+    let model = match spec.model.as_deref() {
+        None => ContactModel::default(),
+        Some(name) => {
+            contact_model(name).ok_or_else(|| at(format!("model `{name}` is not `potential` or `gradient`")))?
+        }
+    };
     let mut settings = ContactSettings {
         activation,
         penalty: spec.penalty,
@@ -453,7 +474,7 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         incremental: true,
         certify: true,
         negligible: spec.negligible,
-        model: ContactModel::Potential,
+        model,
     };
     for (i, p) in spec.pairs.iter().enumerate() {
         let pair = p.get_ref();

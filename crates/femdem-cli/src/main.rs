@@ -82,12 +82,6 @@ enum Command {
         /// (when stderr is not a terminal; default 10).
         #[arg(long, value_name = "SECONDS", hide = true)]
         progress_interval: Option<f64>,
-        /// For measurement: the normal contact force, `potential` (Eq. 17,
-        /// what the case format runs) or `gradient` (energy-conserving; not
-        /// in the case format, as it misses its closed-cycle goal:
-        /// docs/fidelity.md section 12).
-        #[arg(long, value_name = "MODEL", hide = true, conflicts_with = "resume")]
-        contact_model: Option<String>,
         /// Run even if the mesh's estimated memory exceeds what is available.
         #[arg(long)]
         force: bool,
@@ -144,7 +138,6 @@ fn main() -> ExitCode {
             stop_after_steps,
             pause_checkpoint,
             progress_interval,
-            contact_model,
             force,
             memory_available,
             device,
@@ -157,7 +150,6 @@ fn main() -> ExitCode {
                 resume,
                 stop_after_steps,
                 pause_checkpoint,
-                contact_model,
                 device,
                 overwrite,
             };

@@ -27,8 +27,7 @@ use crate::{Observer, PastPeak, RunOptions, Status, Summary, outdir};
 /// written; and the run guard's verdict (after writing the state that
 /// shows the trouble).
 pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut dyn Observer) -> Result<Summary> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, contact_model, device, overwrite } =
-        options;
+    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, device, overwrite } = options;
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     // The output directory is checked before the mesh is built: a refusal
@@ -51,15 +50,6 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     let checkpoints = spec.checkpoint;
     let identity = Identity::of(&prepared.case, &prepared.jointed.mesh);
     let solver = &mut run.solver;
-    if let Some(name) = &contact_model {
-        let model = match name.as_str() {
-            "potential" => femdem_solver::ContactModel::Potential,
-            "gradient" => femdem_solver::ContactModel::Gradient,
-            other => bail!("--contact-model `{other}` is not `potential` or `gradient`"),
-        };
-        solver.set_contact_model(model).map_err(|e| anyhow::anyhow!("--contact-model: {e}"))?;
-        observer.note(&format!("contact model `{name}` (--contact-model, for measurement)"));
-    }
     // The device is opened before anything is written (a missing one
     // refuses the run at once) and takes the state once it is final: after
     // a restore or a static start.

@@ -53,10 +53,6 @@ pub struct RunOptions {
     /// For tests: the checkpoint of this step pauses before its rename
     /// ([`checkpoint::write`]).
     pub pause_checkpoint: Option<u64>,
-    /// For measurement: the normal contact force, `potential` or
-    /// `gradient` ([`femdem_solver::ContactModel`]); not a key of the case
-    /// format.
-    pub contact_model: Option<String>,
     /// Where the step runs, `cpu` or `gpu` (overrides `[solver] device`;
     /// `docs/case-format.md`, "On a GPU").
     pub device: Option<String>,

@@ -52,7 +52,9 @@ use crate::step::{Solver, StepRecord};
 /// 9: serde (postcard) instead of a hand-written layout; one ledger of
 /// every work term (gravity's, each load's, each drive's, a static start's
 /// and the kicks', contact's), from which the external work is summed.
-pub const SNAPSHOT_VERSION: u32 = 9;
+/// 10: the energy-conserving contact's pairs in contact with their forces
+/// and energies, for its energy-consistent kicks (`contact/onset.rs`).
+pub const SNAPSHOT_VERSION: u32 = 10;
 
 /// A snapshot as written: the evolving state, borrowed.
 #[derive(Serialize)]

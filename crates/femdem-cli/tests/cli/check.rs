@@ -212,6 +212,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
             ":20:1:",
             "contact.activation `gradual` is not `couple`, `offset`, `paper`, `ramp` or `settle`",
         ),
+        ("contact_unknown_model.toml", ":20:1:", "contact.model `conserving` is not `potential` or `gradient`"),
         ("contact_unknown_energy_check.toml", ":20:1:", "contact.energy_check `ignore` is not `stop`, `warn` or `off`"),
         ("contact_energy_tolerance_zero.toml", ":20:1:", "contact.energy_tolerance must lie in (0, 1]"),
         ("load_strain_unknown_platen.toml", ":23:1:", "output.load_strain.upper: `platen_top` is not a platen"),

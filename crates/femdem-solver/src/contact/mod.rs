@@ -66,6 +66,7 @@ mod depth;
 mod detection;
 mod geometry;
 mod incremental;
+mod onset;
 mod pair;
 mod saved;
 mod settings;
@@ -137,6 +138,41 @@ impl ContactEnergy {
     pub fn handed(&self) -> Real {
         self.released.clamp(0.0, self.held.max(0.0))
     }
+}
+
+/// `force` (candidate pair `tets`' result at this pass) with the
+/// energy-consistent correction of its normal force (`onset.rs`) and what
+/// it leaves for the next pass, where its force is the gradient of its
+/// energy or it is out of contact with a debt left; `held` what the last
+/// pass left, `x` the pair's nodes' positions, `v` the velocities that
+/// moved them over the step `dt`, `primed` whether a pass ran before.
+#[allow(clippy::too_many_arguments)]
+fn corrected(
+    force: Option<PairForce>,
+    tets: [u32; 2],
+    held: &PairMap<onset::Held>,
+    x: &[[Vec3; 4]; 2],
+    nodes: &[[u32; 4]; 2],
+    v: &[Vec3],
+    dt: Real,
+    primed: bool,
+) -> Option<PairForce> {
+    let before = held.get(&spring_key(tets[0], tets[1]));
+    let now = match &force {
+        None => None,
+        Some(f) if f.exact => Some((&f.normal, f.energy)),
+        // Not the gradient of its energy: dropped with its debt.
+        Some(_) => return force,
+    };
+    if before.is_none() && now.is_none() {
+        return None;
+    }
+    let dx = nodes.map(|t| t.map(|n| v[n as usize] * dt));
+    let (kick, next) = onset::step(before, now, x, &dx, primed)?;
+    Some(match force {
+        Some(f) => PairForce { kick, onset: Some(next), ..f },
+        None => PairForce { onset: Some(next), ..PairForce::kick_only(tets, kick) },
+    })
 }
 
 /// The contact pass's state.
@@ -228,6 +264,13 @@ pub struct Contact {
     /// Each tet's `ℓ = V^{1/3}` (reference volume), m: derived from the
     /// model.
     sizes: Vec<Real>,
+    /// With [`ContactModel::Gradient`]: each pair in contact at the last
+    /// pass with its force and energy, for the energy-consistent kicks
+    /// (`onset.rs`).
+    held: PairMap<onset::Held>,
+    held_next: PairMap<onset::Held>,
+    /// Whether a pass has run (the first has no interval before it).
+    primed: bool,
     /// Scratch: for each candidate, whether it was in contact at the last
     /// pass (then clipped before it is bounded: the order of work only,
     /// `femdem_contact::tet_tet_contact_within`).
@@ -291,6 +334,9 @@ impl Contact {
             started_force: vec![Vec3::zeros(); model.num_nodes()],
             in_contact: Vec::new(),
             sizes: model.tet_ref.iter().map(|r| r.volume.cbrt()).collect(),
+            held: PairMap::default(),
+            held_next: PairMap::default(),
+            primed: false,
             was_in_contact: Vec::new(),
         };
         // A pre-existing fracture face activates its vertices as a failed
@@ -579,6 +625,7 @@ impl Contact {
             (self.settings.negligible, self.settings.activation, self.settings.model);
         let newly = self.newly.any().then_some(&self.newly);
         let anchor = &self.certificates.anchor;
+        let (held, onsets, primed) = (&self.held, contact_model == ContactModel::Gradient, self.primed);
         self.candidates
             .par_iter()
             .enumerate()
@@ -626,6 +673,7 @@ impl Contact {
                     },
                     &mut negligible_bound,
                 );
+                let force = if onsets { corrected(force, [a, b], held, &xs, &nodes, v, dt, primed) } else { force };
                 // An overlapping pair shown negligible: certified unless it
                 // is marked bounded for this epoch.
                 if certifying && negligible_bound.is_some_and(|b| b > 0.0) {
@@ -643,14 +691,20 @@ impl Contact {
         if certifying {
             self.certificates.book(&self.candidates, self.results.iter().map(|r| r.1));
         }
+        let orphans = if contact_model == ContactModel::Gradient { self.orphans(model, x, v, dt) } else { Vec::new() };
         self.active_pairs = 0;
         self.spring_energy = 0.0;
         self.potential = 0.0;
         self.in_contact.clear();
-        for r in self.results.iter().filter_map(|r| r.0.as_deref()) {
-            self.active_pairs += 1;
+        for r in self.results.iter().filter_map(|r| r.0.as_deref()).chain(&orphans) {
             let [a, b] = r.tets;
-            self.in_contact.push((a, b));
+            if let Some(held) = r.onset {
+                self.held_next.insert(spring_key(a, b), held);
+            }
+            if r.touching {
+                self.active_pairs += 1;
+                self.in_contact.push((a, b));
+            }
             if r.friction != Vec3::zeros() || r.spring_energy > 0.0 {
                 self.stick_next.insert(spring_key(a, b), r.spring);
                 self.spring_energy += r.spring_energy;
@@ -669,7 +723,7 @@ impl Contact {
                         self.is_touched[n] = true;
                         self.touched.push(n as u32);
                     }
-                    self.force[n] += r.normal[side][k];
+                    self.force[n] += r.normal[side][k] + r.kick[side][k];
                     self.friction_force[n] += r.friction * (r.weights[side][k] * sign);
                     if r.started.is_some() {
                         self.started_force[n] += r.normal[side][k];
@@ -696,7 +750,35 @@ impl Contact {
         self.stick_next.clear();
         std::mem::swap(&mut self.started, &mut self.started_next);
         self.started_next.clear();
+        std::mem::swap(&mut self.held, &mut self.held_next);
+        self.held_next.clear();
+        self.primed = true;
         self.newly.clear();
+    }
+
+    /// The corrections (`onset.rs`) of the pairs the last pass left a debt
+    /// to that are no longer candidates (detection drops pairs that have
+    /// separated), in ascending pair order: out of contact, they carry
+    /// only their corrections until the debt is paid.
+    fn orphans(&self, model: &Model, x: &[Vec3], v: &[Vec3], dt: Real) -> Vec<PairForce> {
+        let mut keys: Vec<(u32, u32)> =
+            self.held.keys().copied().filter(|k| self.candidates.binary_search(k).is_err()).collect();
+        keys.sort_unstable();
+        keys.into_iter()
+            .filter_map(|(a, b)| {
+                let nodes = [model.tets[a as usize], model.tets[b as usize]];
+                let xs = nodes.map(|t| t.map(|n| x[n as usize]));
+                corrected(None, [a, b], &self.held, &xs, &nodes, v, dt, self.primed)
+            })
+            .collect()
+    }
+
+    /// With [`ContactModel::Gradient`]: the pairs the last pass left
+    /// something for the next one's energy-consistent kick (`onset.rs`):
+    /// those in contact, and those that have separated with a debt still
+    /// to pay.
+    pub fn kicked_pairs(&self) -> usize {
+        self.held.len()
     }
 
     /// The pairs in contact now that started overlapped (see

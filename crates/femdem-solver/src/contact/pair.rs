@@ -36,6 +36,39 @@ pub(crate) struct PairForce {
     /// Whether the pair is newly allowed to touch and overlaps: it starts
     /// overlapped now.
     pub fresh: bool,
+    /// With [`ContactModel::Gradient`]: whether `normal` is `−∂W/∂x` of
+    /// `energy` (no Eq. 18 ramp, no offset, not started overlapped).
+    pub exact: bool,
+    /// The energy-consistent correction of the normal force's kick
+    /// (`onset.rs`), N, on each tet's nodes (zero but with
+    /// [`ContactModel::Gradient`]): added to `normal` in the nodal sums.
+    pub kick: [[Vec3; 4]; 2],
+    /// Whether the pair is in contact; `false` for a pair that has
+    /// separated and carries only its `kick`.
+    pub touching: bool,
+    /// What the correction leaves for the next pass (`onset.rs`).
+    pub onset: Option<super::onset::Held>,
+}
+
+impl PairForce {
+    /// A pair that has separated: no force but the correction `kick`.
+    pub(crate) fn kick_only(tets: [u32; 2], kick: [[Vec3; 4]; 2]) -> PairForce {
+        PairForce {
+            tets,
+            normal: [[Vec3::zeros(); 4]; 2],
+            friction: Vec3::zeros(),
+            weights: [[0.25; 4]; 2],
+            spring: Vec3::zeros(),
+            spring_energy: 0.0,
+            energy: 0.0,
+            started: None,
+            fresh: false,
+            exact: false,
+            kick,
+            touching: false,
+            onset: None,
+        }
+    }
 }
 
 /// A set of tet pairs keyed by [`spring_key`] (see [`PairHasher`]).
@@ -288,6 +321,10 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         energy: energy * scale,
         started,
         fresh,
+        exact: input.model == ContactModel::Gradient && scale == 1.0 && started.is_none(),
+        kick: [[Vec3::zeros(); 4]; 2],
+        touching: true,
+        onset: None,
     };
     let mu = input.friction.get(input.regions[a as usize], input.regions[b as usize]);
     if mu > 0.0 && n_mag > 0.0 {

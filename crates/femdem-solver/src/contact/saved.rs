@@ -6,6 +6,7 @@ use femdem_core::{Real, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::Contact;
+use super::onset::Held;
 use crate::SolverError;
 use crate::model::Model;
 use crate::snapshot::{expect_count, snapshot_error};
@@ -20,7 +21,8 @@ type Key = (u32, u32);
 /// counters, the friction springs, the Eq. 18 ramp counters, the pairs that
 /// started overlapped with their offsets, what cracks newly allowed to
 /// touch since the last pass, and the negligible pairs' certificates
-/// (`certify.rs`). Maps are written sorted by key, so that a snapshot is a
+/// (`certify.rs`), and the gradient model's pairs in contact with their
+/// forces and energies (`onset.rs`). Maps are written sorted by key, so that a snapshot is a
 /// function of the state alone. Not in it: the settings and the model's
 /// fixed tables (the solver is built again from the same input), scratch
 /// buffers every pass overwrites before reading (NBS, spheres, pair
@@ -61,6 +63,10 @@ pub(crate) struct SavedContact {
     to_anchor: Vec<u32>,
     age: u32,
     bounded: u64,
+    /// With `ContactModel::Gradient`: the pairs in contact with their
+    /// forces and energies (`onset.rs`), and whether a pass has run.
+    held: Vec<(Key, Held)>,
+    primed: bool,
 }
 
 /// A map's entries sorted by key.
@@ -117,6 +123,8 @@ impl Contact {
             to_anchor: cert.to_anchor.clone(),
             age: cert.age,
             bounded: cert.bounded,
+            held: sorted(&self.held),
+            primed: self.primed,
         }
     }
 
@@ -214,6 +222,12 @@ impl Contact {
         cert.bounded = s.bounded;
         cert.cache(&c.candidates);
         cert.count_certified();
+        c.held.clear();
+        c.held_next.clear();
+        for ((a, b), h) in s.held {
+            c.held.insert((tet(a)?, tet(b)?), h);
+        }
+        c.primed = s.primed;
         // Written by every pass before its booking reads it.
         c.started_force.fill(Vec3::zeros());
         Ok(c)

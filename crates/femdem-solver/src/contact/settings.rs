@@ -87,9 +87,13 @@ pub struct ContactSettings {
 ///   (`docs/fidelity.md`, section 10).
 /// * [`ContactModel::Gradient`]: `f = −∂W/∂x` on all eight nodes exactly
 ///   (`femdem_contact::tet_tet_gradient`): the same energy and the same
-///   resultant on each tet, with nodal forces that conserve energy. About
-///   eight clippings where Eq. 17 needs two, and no bound to skip
-///   negligible pairs ([`ContactSettings::negligible`] is not read).
+///   resultant on each tet, with nodal forces that conserve energy, and
+///   each pair's kick corrected where the leapfrog's trapezoid misses the
+///   change of `W` (its onset, where `W`'s curvature jumps: `onset.rs`), so
+///   that a closed cycle gives back what it took to round-off
+///   (`docs/fidelity.md` §12). About eight clippings where Eq. 17 needs
+///   two, and no bound to skip negligible pairs
+///   ([`ContactSettings::negligible`] is not read).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ContactModel {
     /// Eq. 17 as printed.

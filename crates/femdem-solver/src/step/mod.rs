@@ -277,9 +277,8 @@ impl Solver {
     }
 
     /// Chooses the normal contact force ([`ContactModel`]) before the first
-    /// step (no state depends on it then). For measurement: the
-    /// energy-conserving model is not in the case format (`docs/fidelity.md`
-    /// section 12 says why).
+    /// step (no state depends on it then), instead of the one
+    /// [`ContactSettings::model`] gave.
     ///
     /// # Errors
     /// Without contact, or after the first step.

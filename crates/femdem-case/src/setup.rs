@@ -415,14 +415,9 @@ pub fn activation_name(activation: Activation) -> &'static str {
 const CONTACT_MODELS: [(&str, ContactModel); 2] =
     [("potential", ContactModel::Potential), ("gradient", ContactModel::Gradient)];
 
-/// The case file's name of a contact model.
-pub fn contact_model_name(model: ContactModel) -> &'static str {
-    CONTACT_MODELS.iter().find(|(_, m)| *m == model).map_or("?", |(n, _)| n)
-}
-
-/// The contact model named `name` (`[contact] model`, `--contact-model`);
-/// `None` for an unknown name.
-pub fn contact_model(name: &str) -> Option<ContactModel> {
+/// The contact model named `name` (`[contact] model`); `None` for an
+/// unknown name.
+fn contact_model(name: &str) -> Option<ContactModel> {
     CONTACT_MODELS.iter().find(|(n, _)| *n == name).map(|&(_, m)| m)
 }
 

@@ -52,8 +52,9 @@ use crate::step::{Solver, StepRecord};
 /// 9: serde (postcard) instead of a hand-written layout; one ledger of
 /// every work term (gravity's, each load's, each drive's, a static start's
 /// and the kicks', contact's), from which the external work is summed.
-/// 10: the energy-conserving contact's pairs in contact with their forces
-/// and energies, for its energy-consistent kicks (`contact/onset.rs`).
+/// 10: what the energy-conserving contact's followed pairs leave for its
+/// energy-consistent kicks (applied forces, energies, debts;
+/// `contact/onset.rs`).
 pub const SNAPSHOT_VERSION: u32 = 10;
 
 /// A snapshot as written: the evolving state, borrowed.

@@ -143,9 +143,11 @@ impl ContactEnergy {
 /// `force` (candidate pair `tets`' result at this pass) with the
 /// energy-consistent correction of its normal force (`onset.rs`) and what
 /// it leaves for the next pass, where its force is the gradient of its
-/// energy or it is out of contact with a debt left; `held` what the last
-/// pass left, `x` the pair's nodes' positions, `v` the velocities that
-/// moved them over the step `dt`, `primed` whether a pass ran before.
+/// energy or it is out of contact with a debt left (a pair in contact
+/// whose force is not the gradient is only marked as followed); `held`
+/// what the last pass left, `x` the pair's nodes' positions, `v` the
+/// velocities that moved them over the step `dt`, `primed` whether a pass
+/// ran before.
 #[allow(clippy::too_many_arguments)]
 fn corrected(
     force: Option<PairForce>,
@@ -161,8 +163,10 @@ fn corrected(
     let now = match &force {
         None => None,
         Some(f) if f.exact => Some((&f.normal, f.energy)),
-        // Not the gradient of its energy: dropped with its debt.
-        Some(_) => return force,
+        // Not the gradient of its energy: followed, not corrected (its
+        // debt, if it had one, dropped), so that it starts afresh once it
+        // is.
+        Some(f) => return Some(PairForce { onset: Some(onset::Held::untracked()), ..*f }),
     };
     if before.is_none() && now.is_none() {
         return None;
@@ -172,6 +176,24 @@ fn corrected(
     Some(match force {
         Some(f) => PairForce { kick, onset: Some(next), ..f },
         None => PairForce { onset: Some(next), ..PairForce::kick_only(tets, kick) },
+    })
+}
+
+/// The candidates' results (ascending pairs) and the orphans' (ascending,
+/// none a candidate: `Contact::orphans`) merged in ascending pair order, so
+/// that a pair's forces are summed at the same place whether detection
+/// still lists it or not (the sums' bits do not depend on the buffer or on
+/// when detection ran).
+fn by_pair<'a>(
+    results: impl Iterator<Item = &'a PairForce>,
+    orphans: &'a [PairForce],
+) -> impl Iterator<Item = &'a PairForce> {
+    let key = |r: &PairForce| spring_key(r.tets[0], r.tets[1]);
+    let (mut results, mut orphans) = (results.peekable(), orphans.iter().peekable());
+    std::iter::from_fn(move || match (results.peek(), orphans.peek()) {
+        (Some(&r), Some(&o)) if key(o) < key(r) => orphans.next(),
+        (Some(_), _) => results.next(),
+        (None, _) => orphans.next(),
     })
 }
 
@@ -264,9 +286,11 @@ pub struct Contact {
     /// Each tet's `ℓ = V^{1/3}` (reference volume), m: derived from the
     /// model.
     sizes: Vec<Real>,
-    /// With [`ContactModel::Gradient`]: each pair in contact at the last
-    /// pass with its force and energy, for the energy-consistent kicks
-    /// (`onset.rs`).
+    /// With [`ContactModel::Gradient`]: what each pair the last pass
+    /// followed leaves for the energy-consistent kicks (`onset.rs`): the
+    /// pairs in contact (their applied force, energy and debt, or only the
+    /// mark of a pair whose force is not the gradient of its energy), and
+    /// those that have separated with a debt still to pay.
     held: PairMap<onset::Held>,
     held_next: PairMap<onset::Held>,
     /// Whether a pass has run (the first has no interval before it).
@@ -696,7 +720,7 @@ impl Contact {
         self.spring_energy = 0.0;
         self.potential = 0.0;
         self.in_contact.clear();
-        for r in self.results.iter().filter_map(|r| r.0.as_deref()).chain(&orphans) {
+        for r in by_pair(self.results.iter().filter_map(|r| r.0.as_deref()), &orphans) {
             let [a, b] = r.tets;
             if let Some(held) = r.onset {
                 self.held_next.insert(spring_key(a, b), held);
@@ -773,10 +797,9 @@ impl Contact {
             .collect()
     }
 
-    /// With [`ContactModel::Gradient`]: the pairs the last pass left
-    /// something for the next one's energy-consistent kick (`onset.rs`):
-    /// those in contact, and those that have separated with a debt still
-    /// to pay.
+    /// With [`ContactModel::Gradient`]: the pairs the last pass followed
+    /// for the energy-consistent kicks (`onset.rs`): those in contact, and
+    /// those that have separated with a debt still to pay.
     pub fn kicked_pairs(&self) -> usize {
         self.held.len()
     }

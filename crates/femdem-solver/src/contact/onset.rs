@@ -47,13 +47,24 @@
 //! angular momentum are kept.
 //!
 //! A pair is corrected only while its force is the gradient of its energy
-//! (no Eq. 18 ramp, no offset of a pair that started overlapped;
-//! `PairForce::exact`; a pair that stops being one is dropped with its
-//! debt), only where `E` exceeds the round-off of the largest energy the
+//! (no Eq. 18 ramp, and not a pair that started overlapped, whatever its
+//! offset, until it separates; `PairForce::exact`): a pair in contact
+//! whose force is not is followed without a debt (`Held::tracked`), and
+//! starts with none and no correction once it is, as every pair at the
+//! first pass (a pair that stops being one drops its debt), only where `E` exceeds the round-off of the largest energy the
 //! pair has held (a pair resting in contact, barely moving, would
-//! otherwise divide round-off by a vanishing `|d|²`), and never by more
-//! than four times the largest force it has carried (a safety net: `|E|`
-//! is of the order of `|g| |d|`, and the debt carries what is not paid).
+//! otherwise divide round-off by a vanishing `|d|²`), only where `|d|` is
+//! more than round-off of `|Δx|`, and never by more than four times the
+//! largest force it has carried (a safety net: `|E|` is of the order of
+//! `|g| |d|`, and the debt carries what is not paid).
+//!
+//! The debt assumes `Δx_n = Δt v_{n+½}` over the interval, which the
+//! account booked half of at the last pass: an intervention between the
+//! steps that changes velocities or the step (`Solver::damp`,
+//! `Solver::kick`, `Solver::set_params`) leaves the debts off by
+//! `½ Δt F_n · (v_old − v_new)` of that half, and contact's own account
+//! no longer closes exactly (the energy balance, which books the
+//! intervention, is unaffected).
 //! The first pass has no interval before it: its pairs start with no
 //! debt and no correction.
 
@@ -73,8 +84,23 @@ pub(crate) struct Held {
     /// The largest energy scale of the pair's terms so far, J: what `E`
     /// is compared with.
     pub scale: Real,
-    /// The largest `|g|` (over the eight nodes) so far, N: the cap.
+    /// The largest `|g|` so far (the norm of the eight nodes' forces as
+    /// one vector of 24), N: the cap.
     pub largest: Real,
+    /// Whether the pair is corrected: `false` for a pair in contact whose
+    /// force is not the gradient of its energy (everything else zero), which
+    /// starts with no debt and no correction once it is (as at the first
+    /// pass), not as a pair coming into contact.
+    pub tracked: bool,
+}
+
+impl Held {
+    /// The mark of a pair in contact whose force is not the gradient of its
+    /// energy.
+    pub(crate) fn untracked() -> Held {
+        let zero = [[Vec3::zeros(); 4]; 2];
+        Held { force: zero, energy: 0.0, debt: 0.0, scale: 0.0, largest: 0.0, tracked: false }
+    }
 }
 
 /// The pair's gradient force on each tet's nodes and its energy at
@@ -96,13 +122,15 @@ pub(crate) fn step(
     primed: bool,
 ) -> Option<([[Vec3; 4]; 2], Held)> {
     let zero = [[Vec3::zeros(); 4]; 2];
-    let start = Held { force: zero, energy: 0.0, debt: 0.0, scale: 0.0, largest: 0.0 };
-    let before = before.unwrap_or(&start);
+    let start = Held { tracked: true, ..Held::untracked() };
+    // A pair followed but not corrected so far starts as at the first pass.
+    let fresh_start = !primed || before.is_some_and(|h| !h.tracked);
+    let before = before.filter(|h| h.tracked).unwrap_or(&start);
     let (g, w) = now.unwrap_or((&zero, 0.0));
     let norm = |f: &[[Vec3; 4]; 2]| f.iter().flatten().map(Vec3::norm_squared).sum::<Real>().sqrt();
     let largest = before.largest.max(norm(g));
-    if !primed {
-        let held = Held { force: *g, energy: w, debt: 0.0, scale: w.abs(), largest };
+    if fresh_start {
+        let held = Held { force: *g, energy: w, debt: 0.0, scale: w.abs(), largest, tracked: true };
         return now.map(|_| (zero, held));
     }
     let dot = |f: &[[Vec3; 4]; 2]| -> (Real, Real) {
@@ -120,15 +148,14 @@ pub(crate) fn step(
     let mut kick = zero;
     if e.abs() > 1e-13 * scale && e.is_finite() {
         let d = deformation(x, dx);
-        let norm2: Real = d.iter().flatten().map(Vec3::norm_squared).sum();
-        if norm2 > 0.0 && norm2.is_finite() {
-            let half = e / norm2;
-            kick = d.map(|side| side.map(|di| di * half));
-            let size = norm(&kick);
-            if size > 4.0 * largest {
-                let shrink = 4.0 * largest / size;
-                kick = kick.map(|side| side.map(|k| k * shrink));
-            }
+        let size = d.iter().flatten().map(Vec3::norm_squared).sum::<Real>().sqrt();
+        // A deformation of round-off size (the pair moving as one body) is
+        // none: nothing to correct along.
+        if size > 64.0 * Real::EPSILON * norm(dx) && size.is_finite() {
+            // |½ c| = |E| / |d|, capped before dividing.
+            let magnitude = (e.abs() / size).min(4.0 * largest);
+            let along = magnitude.copysign(e) / size;
+            kick = d.map(|side| side.map(|di| di * along));
         }
     } else if now.is_none() {
         // Out of contact with the debt paid to round-off.
@@ -142,7 +169,7 @@ pub(crate) fn step(
     if now.is_none() && kick == zero {
         return None;
     }
-    Some((kick, Held { force, energy: w, debt, scale, largest }))
+    Some((kick, Held { force, energy: w, debt, scale, largest, tracked: true }))
 }
 
 /// `dx` less its least-squares rigid motion (a translation and a small

@@ -84,7 +84,8 @@ pub(crate) type PairMap<V> = std::collections::HashMap<(u32, u32), V, std::hash:
 /// (8% of a fragmented step went to the bonded-pair lookups of detection).
 /// The keys are tet indices of the model, not input an adversary chooses.
 /// Nothing depends on the maps' iteration order: snapshots write them
-/// sorted, and the pass only looks keys up or retains by value.
+/// sorted, and the pass only looks keys up, retains by value, or sorts the
+/// keys it collects.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct PairHasher(u64);
 

@@ -21,8 +21,8 @@ type Key = (u32, u32);
 /// counters, the friction springs, the Eq. 18 ramp counters, the pairs that
 /// started overlapped with their offsets, what cracks newly allowed to
 /// touch since the last pass, and the negligible pairs' certificates
-/// (`certify.rs`), and the gradient model's pairs in contact with their
-/// forces and energies (`onset.rs`). Maps are written sorted by key, so that a snapshot is a
+/// (`certify.rs`), and what the gradient model's followed pairs leave for
+/// its kicks (applied forces, energies, debts: `onset.rs`). Maps are written sorted by key, so that a snapshot is a
 /// function of the state alone. Not in it: the settings and the model's
 /// fixed tables (the solver is built again from the same input), scratch
 /// buffers every pass overwrites before reading (NBS, spheres, pair
@@ -63,8 +63,9 @@ pub(crate) struct SavedContact {
     to_anchor: Vec<u32>,
     age: u32,
     bounded: u64,
-    /// With `ContactModel::Gradient`: the pairs in contact with their
-    /// forces and energies (`onset.rs`), and whether a pass has run.
+    /// With `ContactModel::Gradient`: what the followed pairs (in contact,
+    /// or separated with a debt) leave for the kicks (`onset.rs`), and
+    /// whether a pass has run.
     held: Vec<(Key, Held)>,
     primed: bool,
 }

@@ -1,8 +1,8 @@
 //! `cargo xtask tradeoff [--quick] [--out DIR]`: the speed–accuracy trade
 //! of the Brazilian disc (Guo et al. §3.1), measured. Runs the disc over
 //! the knobs that trade speed for accuracy — element size, loading rate,
-//! joint penalty p0/E, time-step safety, mass scaling, contact buffer — one
-//! knob at a time from a reference, plus a few combinations, and the
+//! joint penalty p0/E, time-step safety, mass scaling, contact buffer, the
+//! contact model — one knob at a time from a reference, plus a few combinations, and the
 //! anchor (the finest mesh at the slowest rate) every error is measured
 //! against. Writes `tradeoff.csv`, `report.md` and `tradeoff.png` (error
 //! against wall time, Pareto front marked) to DIR (default
@@ -161,14 +161,14 @@ fn points(rows: &[Row]) -> Vec<(f64, f64)> {
 /// The rows as CSV, one per run.
 fn csv(rows: &[Row]) -> String {
     let mut s = String::from(
-        "knob,setting,h_m,velocity_m_s,penalty_over_E,safety,mass_scaling,buffer_m,tets,steps,tet_steps,wall_s,\
+        "knob,setting,h_m,velocity_m_s,penalty_over_E,safety,mass_scaling,buffer_m,contact_model,tets,steps,tet_steps,wall_s,\
          peak_N,fbt_over_ft,vs_reference,error_vs_anchor,on_diameter,central_tensile,modes,energy_error,passed_peak\n",
     );
     for r in rows {
         let g = &r.setting;
         let _ = writeln!(
             s,
-            "{},{}{},{},{},{},{},{},{},{},{},{},{:.3},{},{},{},{},{},{},{},{},{}",
+            "{},{}{},{},{},{},{},{},{},{},{},{},{},{:.3},{},{},{},{},{},{},{},{},{}",
             r.knob.name(),
             g.key(),
             if r.anchor { " (anchor)" } else { "" },
@@ -178,6 +178,7 @@ fn csv(rows: &[Row]) -> String {
             g.safety,
             g.mass_scaling,
             g.buffer,
+            if g.gradient { "gradient" } else { "potential" },
             r.tets,
             r.steps,
             r.tets * r.steps,
@@ -204,7 +205,8 @@ fn report(rows: &[Row], front: &[usize], plan: &Plan, profile: &str, wall: f64, 
          (1-minute load average {load}; reused runs keep the wall time of the run that made them).\n\n\
          Reference: `{}`. Anchor (finest mesh, slowest rate): `{}`. \
          h: in-plane element size (mm), V: platen speed (m/s), p: p0/E, s: time-step safety, \
-         m: mass scaling, b: contact buffer (mm). *vs ref*: peak load against the reference's; \
+         m: mass scaling, b: contact buffer (mm), `gradient`: the energy-conserving contact \
+         (`[contact] model`; Eq. 17's otherwise). *vs ref*: peak load against the reference's; \
          *error*: |peak − anchor's| / anchor's, the accuracy measure of the figure. \
          *diam.*: share of failures within 5 mm of the loaded diameter; *centre T*: tensile share \
          of the central fracture; *energy*: largest |balance| / work.\n\n",

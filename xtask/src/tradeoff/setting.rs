@@ -24,6 +24,9 @@ pub struct Setting {
     pub mass_scaling: f64,
     /// `[contact] buffer`, m.
     pub buffer: f64,
+    /// `[contact] model = "gradient"` (the energy-conserving contact)
+    /// instead of Eq. 17's `"potential"`.
+    pub gradient: bool,
 }
 
 /// What a run varies, for the report's grouping.
@@ -43,6 +46,8 @@ pub enum Knob {
     MassScaling,
     /// Contact buffer.
     Buffer,
+    /// The normal contact force (`[contact] model`).
+    ContactModel,
     /// Several knobs at once.
     Combination,
 }
@@ -58,6 +63,7 @@ impl Knob {
             Knob::Safety => "time-step safety",
             Knob::MassScaling => "mass scaling",
             Knob::Buffer => "contact buffer",
+            Knob::ContactModel => "contact model",
             Knob::Combination => "combination",
         }
     }
@@ -65,16 +71,18 @@ impl Knob {
 
 impl Setting {
     /// A short label of the setting, e.g. `h4 V0.1 p10 s0.9 m1 b0.2`
-    /// (h and b in mm), also the name of its run directory.
+    /// (h and b in mm; ` gradient` appended for the energy-conserving
+    /// contact), also the name of its run directory.
     pub fn key(&self) -> String {
         format!(
-            "h{} V{} p{} s{} m{} b{}",
+            "h{} V{} p{} s{} m{} b{}{}",
             1e3 * self.h,
             self.velocity,
             self.penalty,
             self.safety,
             self.mass_scaling,
-            1e3 * self.buffer
+            1e3 * self.buffer,
+            if self.gradient { " gradient" } else { "" }
         )
     }
 
@@ -92,6 +100,9 @@ impl Setting {
         base.case(&title, mesh, self.velocity, &|t: &mut Table| {
             set_material(t, "penalty", Value::Float(s.penalty * young));
             set_contact(t, "buffer", Value::Float(s.buffer));
+            if s.gradient {
+                set_contact(t, "model", Value::String("gradient".into()));
+            }
             if let Some(solver) = t.get_mut("solver").and_then(Value::as_table_mut) {
                 solver.insert("safety".into(), s.safety.into());
                 solver.insert("mass_scaling".into(), s.mass_scaling.into());
@@ -125,7 +136,15 @@ impl Plan {
         // 3 mm mesh at the reference's rate only.
         let (sizes, h_ref, h_fine): (&[f64], f64, f64) =
             if quick { (&[6.0e-3, 5.0e-3, 3.0e-3], 4.0e-3, 4.0e-3) } else { (&[4.0e-3, 2.0e-3], 3.0e-3, 2.0e-3) };
-        let r = Setting { h: h_ref, velocity: 0.1, penalty: 10.0, safety: 0.9, mass_scaling: 1.0, buffer: 2.0e-4 };
+        let r = Setting {
+            h: h_ref,
+            velocity: 0.1,
+            penalty: 10.0,
+            safety: 0.9,
+            mass_scaling: 1.0,
+            buffer: 2.0e-4,
+            gradient: false,
+        };
         let anchor = Setting { h: h_fine, velocity: 0.01, ..r };
         let mut runs = vec![(Knob::Reference, r)];
         let mut add = |knob: Knob, s: Setting| {
@@ -151,6 +170,7 @@ impl Plan {
         for buffer in [0.0, 8.0e-4] {
             add(Knob::Buffer, Setting { buffer, ..r });
         }
+        add(Knob::ContactModel, Setting { gradient: true, ..r });
         let coarse = sizes[0];
         // The cheapest corner; a slow rate bought back with mass scaling
         // (V/10 with 100× the mass takes the reference's step count); a
@@ -182,6 +202,7 @@ mod tests {
                     s.safety != r.safety,
                     s.mass_scaling != r.mass_scaling,
                     s.buffer != r.buffer,
+                    s.gradient != r.gradient,
                 ]
                 .iter()
                 .filter(|c| **c)
@@ -204,7 +225,15 @@ mod tests {
 
     #[test]
     fn layers_follow_the_element_size() {
-        let s = |h| Setting { h, velocity: 0.1, penalty: 10.0, safety: 0.9, mass_scaling: 1.0, buffer: 2.0e-4 };
+        let s = |h| Setting {
+            h,
+            velocity: 0.1,
+            penalty: 10.0,
+            safety: 0.9,
+            mass_scaling: 1.0,
+            buffer: 2.0e-4,
+            gradient: false,
+        };
         assert_eq!(s(4.0e-3).layers(0.015), 4);
         assert_eq!(s(2.0e-3).layers(0.015), 8);
         assert_eq!(s(6.0e-3).layers(0.015), 3);

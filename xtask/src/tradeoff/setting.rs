@@ -70,6 +70,13 @@ impl Knob {
 }
 
 impl Setting {
+    /// The reference setting at element size `h`: the paper's fastest rate
+    /// (0.1 m/s), p0 = 10 E, safety 0.9, no mass scaling, a 0.2 mm buffer,
+    /// Eq. 17's contact.
+    pub fn reference(h: f64) -> Setting {
+        Setting { h, velocity: 0.1, penalty: 10.0, safety: 0.9, mass_scaling: 1.0, buffer: 2.0e-4, gradient: false }
+    }
+
     /// A short label of the setting, e.g. `h4 V0.1 p10 s0.9 m1 b0.2`
     /// (h and b in mm; ` gradient` appended for the energy-conserving
     /// contact), also the name of its run directory.
@@ -136,15 +143,7 @@ impl Plan {
         // 3 mm mesh at the reference's rate only.
         let (sizes, h_ref, h_fine): (&[f64], f64, f64) =
             if quick { (&[6.0e-3, 5.0e-3, 3.0e-3], 4.0e-3, 4.0e-3) } else { (&[4.0e-3, 2.0e-3], 3.0e-3, 2.0e-3) };
-        let r = Setting {
-            h: h_ref,
-            velocity: 0.1,
-            penalty: 10.0,
-            safety: 0.9,
-            mass_scaling: 1.0,
-            buffer: 2.0e-4,
-            gradient: false,
-        };
+        let r = Setting::reference(h_ref);
         let anchor = Setting { h: h_fine, velocity: 0.01, ..r };
         let mut runs = vec![(Knob::Reference, r)];
         let mut add = |knob: Knob, s: Setting| {
@@ -225,15 +224,7 @@ mod tests {
 
     #[test]
     fn layers_follow_the_element_size() {
-        let s = |h| Setting {
-            h,
-            velocity: 0.1,
-            penalty: 10.0,
-            safety: 0.9,
-            mass_scaling: 1.0,
-            buffer: 2.0e-4,
-            gradient: false,
-        };
+        let s = Setting::reference;
         assert_eq!(s(4.0e-3).layers(0.015), 4);
         assert_eq!(s(2.0e-3).layers(0.015), 8);
         assert_eq!(s(6.0e-3).layers(0.015), 3);

@@ -130,8 +130,8 @@ pub struct ContactSpec {
     pub model: Option<String>,
     /// What the run guard does when the normal contact forces have given
     /// back more than `energy_tolerance` of the run's energy scale beyond
-    /// what they absorbed: `"warn"` (default: a warning of the run, once),
-    /// `"stop"` or `"off"`.
+    /// what they absorbed: `"stop"` (default: the run stops), `"warn"` (a
+    /// warning of the run, once) or `"off"` (`crate::setup::contact_check`).
     pub energy_check: Option<String>,
     /// That tolerance, a fraction of the run's energy scale in (0, 1]
     /// (default `femdem_solver::CONTACT_ENERGY_TOLERANCE`, 0.05).

@@ -62,6 +62,7 @@
 //! spinning body.
 
 mod certify;
+mod debts;
 mod depth;
 mod detection;
 mod geometry;
@@ -72,6 +73,7 @@ mod saved;
 mod settings;
 mod stars;
 mod start;
+mod sums;
 
 use femdem_contact::Nbs;
 use femdem_core::{Real, Vec3};
@@ -79,6 +81,7 @@ use rayon::prelude::*;
 
 use crate::model::Model;
 use certify::{Certificates, Verdict};
+use debts::corrected;
 use detection::Update;
 pub(crate) use geometry::Geometry;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
@@ -138,63 +141,6 @@ impl ContactEnergy {
     pub fn handed(&self) -> Real {
         self.released.clamp(0.0, self.held.max(0.0))
     }
-}
-
-/// `force` (candidate pair `tets`' result at this pass) with the
-/// energy-consistent correction of its normal force (`onset.rs`) and what
-/// it leaves for the next pass, where its force is the gradient of its
-/// energy or it is out of contact with a debt left (a pair in contact
-/// whose force is not the gradient is only marked as followed); `held`
-/// what the last pass left, `x` the pair's nodes' positions, `v` the
-/// velocities that moved them over the step `dt`, `primed` whether a pass
-/// ran before.
-#[allow(clippy::too_many_arguments)]
-fn corrected(
-    force: Option<PairForce>,
-    tets: [u32; 2],
-    held: &PairMap<onset::Held>,
-    x: &[[Vec3; 4]; 2],
-    nodes: &[[u32; 4]; 2],
-    v: &[Vec3],
-    dt: Real,
-    primed: bool,
-) -> Option<PairForce> {
-    let before = held.get(&spring_key(tets[0], tets[1]));
-    let now = match &force {
-        None => None,
-        Some(f) if f.exact => Some((&f.normal, f.energy)),
-        // Not the gradient of its energy: followed, not corrected (its
-        // debt, if it had one, dropped), so that it starts afresh once it
-        // is.
-        Some(f) => return Some(PairForce { onset: Some(onset::Held::untracked()), ..*f }),
-    };
-    if before.is_none() && now.is_none() {
-        return None;
-    }
-    let dx = nodes.map(|t| t.map(|n| v[n as usize] * dt));
-    let (kick, next) = onset::step(before, now, x, &dx, primed)?;
-    Some(match force {
-        Some(f) => PairForce { kick, onset: Some(next), ..f },
-        None => PairForce { onset: Some(next), ..PairForce::kick_only(tets, kick) },
-    })
-}
-
-/// The candidates' results (ascending pairs) and the orphans' (ascending,
-/// none a candidate: `Contact::orphans`) merged in ascending pair order, so
-/// that a pair's forces are summed at the same place whether detection
-/// still lists it or not (the sums' bits do not depend on the buffer or on
-/// when detection ran).
-fn by_pair<'a>(
-    results: impl Iterator<Item = &'a PairForce>,
-    orphans: &'a [PairForce],
-) -> impl Iterator<Item = &'a PairForce> {
-    let key = |r: &PairForce| spring_key(r.tets[0], r.tets[1]);
-    let (mut results, mut orphans) = (results.peekable(), orphans.iter().peekable());
-    std::iter::from_fn(move || match (results.peek(), orphans.peek()) {
-        (Some(&r), Some(&o)) if key(o) < key(r) => orphans.next(),
-        (Some(_), _) => results.next(),
-        (None, _) => orphans.next(),
-    })
 }
 
 /// The contact pass's state.
@@ -716,52 +662,7 @@ impl Contact {
             self.certificates.book(&self.candidates, self.results.iter().map(|r| r.1));
         }
         let orphans = if contact_model == ContactModel::Gradient { self.orphans(model, x, v, dt) } else { Vec::new() };
-        self.active_pairs = 0;
-        self.spring_energy = 0.0;
-        self.potential = 0.0;
-        self.in_contact.clear();
-        for r in by_pair(self.results.iter().filter_map(|r| r.0.as_deref()), &orphans) {
-            let [a, b] = r.tets;
-            if let Some(held) = r.onset {
-                self.held_next.insert(spring_key(a, b), held);
-            }
-            if r.touching {
-                self.active_pairs += 1;
-                self.in_contact.push((a, b));
-            }
-            if r.friction != Vec3::zeros() || r.spring_energy > 0.0 {
-                self.stick_next.insert(spring_key(a, b), r.spring);
-                self.spring_energy += r.spring_energy;
-            }
-            self.potential += r.energy;
-            if let Some(off) = r.started {
-                self.started_next.insert(spring_key(a, b), off);
-            }
-            if r.fresh && self.settings.activation == Activation::Ramp && self.settings.ramp_steps > 0 {
-                self.ramp.entry(spring_key(a, b)).or_insert(0);
-            }
-            for (side, (t, sign)) in [(a, -1.0), (b, 1.0)].into_iter().enumerate() {
-                for (k, &n) in model.tets[t as usize].iter().enumerate() {
-                    let n = n as usize;
-                    if !self.is_touched[n] {
-                        self.is_touched[n] = true;
-                        self.touched.push(n as u32);
-                    }
-                    self.force[n] += r.normal[side][k] + r.kick[side][k];
-                    self.friction_force[n] += r.friction * (r.weights[side][k] * sign);
-                    if r.started.is_some() {
-                        self.started_force[n] += r.normal[side][k];
-                    }
-                }
-            }
-        }
-        self.touched.sort_unstable();
-        self.v_before.clear();
-        for &n in &self.touched {
-            let n = n as usize;
-            self.total[n] = self.force[n] + self.friction_force[n];
-            self.v_before.push(v[n]);
-        }
+        self.sum_into_nodes(model, &orphans, v);
         // Eq. 18: n_c counts the steps since the joint failed.
         let n_total = self.settings.ramp_steps;
         self.ramp.retain(|_, n_c| {
@@ -778,30 +679,6 @@ impl Contact {
         self.held_next.clear();
         self.primed = true;
         self.newly.clear();
-    }
-
-    /// The corrections (`onset.rs`) of the pairs the last pass left a debt
-    /// to that are no longer candidates (detection drops pairs that have
-    /// separated), in ascending pair order: out of contact, they carry
-    /// only their corrections until the debt is paid.
-    fn orphans(&self, model: &Model, x: &[Vec3], v: &[Vec3], dt: Real) -> Vec<PairForce> {
-        let mut keys: Vec<(u32, u32)> =
-            self.held.keys().copied().filter(|k| self.candidates.binary_search(k).is_err()).collect();
-        keys.sort_unstable();
-        keys.into_iter()
-            .filter_map(|(a, b)| {
-                let nodes = [model.tets[a as usize], model.tets[b as usize]];
-                let xs = nodes.map(|t| t.map(|n| x[n as usize]));
-                corrected(None, [a, b], &self.held, &xs, &nodes, v, dt, self.primed)
-            })
-            .collect()
-    }
-
-    /// With [`ContactModel::Gradient`]: the pairs the last pass followed
-    /// for the energy-consistent kicks (`onset.rs`): those in contact, and
-    /// those that have separated with a debt still to pay.
-    pub fn kicked_pairs(&self) -> usize {
-        self.held.len()
     }
 
     /// The pairs in contact now that started overlapped (see

@@ -11,8 +11,9 @@ Needs Gmsh from PyPI (`pip install gmsh`; tested with 4.15.2).
   tets, mean ~27 mm, smallest ~17 mm); h = 50 mm is the quick profile's.
 - disc-<h>mm.msh: the Brazilian disc (§3.1), 40 mm across and 15 mm thick,
   one physical volume `disc`, at target size h (4 mm: 1,823 tets; 2 mm:
-  10,950): the unstructured alternative to the extruded prisms, for
-  `cargo xtask validate --sensitivity`.
+  10,950; 1.2 mm, the paper's size: see the file): the unstructured
+  alternative to the extruded prisms, for `cargo xtask validate
+  --sensitivity` and the paper's mesh type at the paper's size.
 """
 
 import os
@@ -72,6 +73,6 @@ gmsh.initialize()
 gmsh.option.setNumber("General.Terminal", 0)
 for size in (50, 22):
     cube(size)
-for size in (4, 2):
+for size in (4, 2, 1.2):
     disc(size)
 gmsh.finalize()

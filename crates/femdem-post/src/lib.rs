@@ -10,6 +10,7 @@
 //! | [`frames`] | the `.pvd` series and `.vtu` frames |
 //! | [`brazilian`] | the load–strain curve, its peak, Eq. 23's f_bt, the first load drop, failure locations |
 //! | [`hondros`] | Hondros' (Frocht's) elastic stresses of a disc under diametral load, against a frame's |
+//! | [`diametral`] | the elastic shortening of a disc between flat rigid platens (the load–strain curve before failure) |
 //! | [`mohr`] | the Mohr–Coulomb reach of applied principal stresses and Eq. 24's band angle |
 //! | [`bands`] | shear-band and facet directions of failed faces |
 //! | [`tips`] | the tips and junctions of a fracture map, and how near failures lie to them |
@@ -30,6 +31,7 @@
 pub mod bands;
 pub mod brazilian;
 pub mod columns;
+pub mod diametral;
 pub mod failures;
 pub mod fragments;
 pub mod frames;

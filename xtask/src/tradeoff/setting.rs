@@ -100,7 +100,8 @@ impl Setting {
 
     /// The case of this setting, as TOML text.
     pub fn case(&self, base: &Base) -> Result<String> {
-        let mesh = Mesh { element_size: self.h, layers: self.layers(base.disc.thickness), platen_size: self.h };
+        let mesh =
+            Mesh { element_size: self.h, layers: self.layers(base.disc.thickness), platen_size: self.h, gmsh: None };
         let young = base.disc.young;
         let s = *self;
         let title = format!("Brazilian disc, {} (cargo xtask tradeoff)", self.key());

@@ -1,6 +1,6 @@
 //! `cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST]
 //! [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--weibull M]
-//! [--out DIR] [--sensitivity]`:
+//! [--disc extruded|unstructured] [--out DIR] [--sensitivity | --strain-axis]`:
 //! runs the reference paper's examples through `femdem run`, as a user
 //! would, checks the results against the paper and closed forms, and writes
 //! `report.md`, `checks.csv`, the runs' data and PNG figures to DIR
@@ -24,8 +24,19 @@
 //! heterogeneity: every joint's f_t and c times independent Weibull factors
 //! of mean 1 and modulus M (`[heterogeneity]` of the case format).
 //!
+//! `--disc extruded` (or `unstructured`) meshes the Brazilian disc that way:
+//! by default the quick profile extrudes its 4 mm triangles in layers and
+//! the paper profile reads Gmsh's unstructured 1.2 mm tets
+//! (`cases/paper/meshes/disc-1.2mm.msh`), the paper's mesh type.
+//!
 //! `--sensitivity` adds the Brazilian one-change-at-a-time runs (what moves
 //! f_bt; seven more runs).
+//!
+//! `--strain-axis` runs, for the Brazilian case, only the study of what
+//! its load–strain curve's strain consists of before failure (the disc's
+//! elasticity against the closed form, the contact's penetration, the
+//! joints' compliance; eight short runs at 0.5 m/s, one at 0.1 m/s), not the
+//! rates or their checks.
 //!
 //! A run that finished before with the same case text is reused, and one
 //! that did not finish continues from its latest checkpoint
@@ -119,14 +130,28 @@ pub struct Args {
     /// Where the report and the runs go (default target/validation).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Brazilian: the disc's mesh (default: extruded in the quick profile,
+    /// unstructured, the paper's type, in the paper profile).
+    #[arg(long, value_enum, value_name = "MESH")]
+    disc: Option<brazilian::DiscMesh>,
     /// Brazilian: also the sensitivity runs.
     #[arg(long)]
     sensitivity: bool,
+    /// Brazilian: only the strain-axis study (what the strain consists of
+    /// before failure), instead of the rates.
+    #[arg(long = "strain-axis", conflicts_with_all = ["sensitivity", "rates"])]
+    strain_axis: bool,
 }
 
 /// Runs the task.
 pub fn run(args: Args) -> Result<()> {
-    let Args { profile, case: only, rates, ramp, end_time, mesh, weibull, out, sensitivity } = args;
+    let Args { profile, case: only, rates, ramp, end_time, mesh, weibull, out, disc, sensitivity, strain_axis } = args;
+    let disc = disc.unwrap_or(brazilian::DiscMesh::of(profile));
+    let study = match (sensitivity, strain_axis) {
+        (_, true) => brazilian::Study::StrainAxis,
+        (true, false) => brazilian::Study::Sensitivity,
+        (false, false) => brazilian::Study::Rates,
+    };
     let rates = rates.map(|r| r.0);
     let mut variant = polyaxial::Variant { ramp, end: end_time, weibull, ..polyaxial::Variant::default() };
     if let Some(m) = mesh {
@@ -153,7 +178,7 @@ pub fn run(args: Args) -> Result<()> {
         match name {
             "brazilian" => {
                 let rates = rates.as_deref().unwrap_or(&brazilian::RATES);
-                brazilian::validate(&femdem, profile, rates, sensitivity, &out, &mut report)?
+                brazilian::validate(&femdem, (profile, disc), rates, study, &out, &mut report)?
             }
             "polyaxial" => polyaxial::validate(&femdem, profile, variant, &out, &mut report)?,
             "multilayer" => multilayer::validate(&femdem, profile, &out, &mut report)?,
@@ -182,7 +207,29 @@ pub fn run(args: Args) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::polyaxial::Meshes;
-    use super::{positive, seconds};
+    use super::{Args, brazilian, positive, seconds};
+    use clap::{Args as _, FromArgMatches as _};
+
+    fn parse(args: &[&str]) -> Result<Args, clap::Error> {
+        let cmd = Args::augment_args(clap::Command::new("validate"));
+        let matches = cmd.try_get_matches_from(std::iter::once("validate").chain(args.iter().copied()))?;
+        Args::from_arg_matches(&matches)
+    }
+
+    #[test]
+    fn the_strain_axis_study_runs_alone_and_the_disc_mesh_is_named() {
+        let a = parse(&["--strain-axis", "--disc", "unstructured"]).unwrap();
+        assert!(a.strain_axis && a.disc == Some(brazilian::DiscMesh::Unstructured));
+        assert_eq!(parse(&[]).unwrap().disc, None);
+        for clash in [&["--strain-axis", "--rates", "0.1"][..], &["--strain-axis", "--sensitivity"]] {
+            let e = parse(clash).unwrap_err().to_string();
+            assert!(e.contains("--strain-axis") && e.contains("cannot be used with"), "{e}");
+        }
+        let e = parse(&["--disc", "lattice"]).unwrap_err().to_string();
+        assert!(e.contains("lattice") && e.contains("extruded"), "{e}");
+        assert_eq!(brazilian::DiscMesh::of(super::Profile::Quick), brazilian::DiscMesh::Extruded);
+        assert_eq!(brazilian::DiscMesh::of(super::Profile::Paper), brazilian::DiscMesh::Unstructured);
+    }
 
     #[test]
     fn the_polyaxial_meshes_are_named_on_the_command_line() {

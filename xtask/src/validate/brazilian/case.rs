@@ -29,6 +29,26 @@ pub struct Mesh {
     pub layers: i64,
     /// Element size of the rigid platens, m.
     pub platen_size: f64,
+    /// The disc as unstructured Gmsh tets instead of the extrusion: a file
+    /// of `cases/paper/meshes` (`element_size` and `layers` then unused).
+    pub gmsh: Option<&'static str>,
+}
+
+impl Mesh {
+    /// How the mesh is described in the report.
+    pub fn describe(&self) -> String {
+        match self.gmsh {
+            Some(file) => {
+                format!("unstructured Gmsh tets, cases/paper/meshes/{file} (platens {} mm)", 1e3 * self.platen_size)
+            }
+            None => format!(
+                "{} mm triangles, {} layers (platens {} mm)",
+                1e3 * self.element_size,
+                self.layers,
+                1e3 * self.platen_size
+            ),
+        }
+    }
 }
 
 /// The disc's geometry, read from the base case.
@@ -42,6 +62,12 @@ pub struct Disc {
     pub tensile_strength: f64,
     /// Young's modulus E, Pa.
     pub young: f64,
+    /// Poisson's ratio ν.
+    pub poisson: f64,
+    /// The joints' penalty p0, Pa.
+    pub joint_penalty: f64,
+    /// The contact penalty, Pa.
+    pub contact_penalty: f64,
 }
 
 impl Disc {
@@ -94,6 +120,9 @@ impl Base {
             thickness: num(&table, &["mesh", "parts", "0", "thickness"])?,
             tensile_strength: num(&table, &["materials", "0", "tensile_strength"])?,
             young: num(&table, &["materials", "0", "young"])?,
+            poisson: num(&table, &["materials", "0", "poisson"])?,
+            joint_penalty: num(&table, &["materials", "0", "penalty"])?,
+            contact_penalty: num(&table, &["contact", "penalty"])?,
         };
         Ok(Base { table, disc })
     }
@@ -113,6 +142,9 @@ impl Base {
             } else {
                 part.insert("element_size".into(), mesh.platen_size.into());
             }
+        }
+        if let Some(file) = mesh.gmsh {
+            set_gmsh_disc(&mut t, file);
         }
         let platens = t.get_mut("platens").and_then(Value::as_array_mut).context("platens")?;
         for p in platens.iter_mut() {
@@ -160,6 +192,29 @@ pub fn set_gmsh_disc(t: &mut Table, file: &str) {
     }
 }
 
+/// Makes the disc's region (`mesh.regions[0]`) unbreakable: no joints,
+/// the tets share their nodes (plain continuous FEM).
+pub fn set_unbreakable(t: &mut Table) {
+    let region = t.get_mut("mesh").and_then(|m| m.get_mut("regions")).and_then(|r| r.get_mut(0));
+    if let Some(r) = region.and_then(Value::as_table_mut) {
+        r.insert("breakable".into(), false.into());
+    }
+}
+
+/// Ends the run at strain `strain` (Eq. 22) of platens approaching at
+/// `velocity` (m/s) each, after their ramp, with a single frame at the end
+/// (the history is what is read).
+pub fn set_end_strain(t: &mut Table, strain: f64, velocity: f64, diameter: f64) {
+    let ramp = t["platens"][0].get("ramp_time").and_then(Value::as_float).unwrap_or(0.0);
+    let end = ramp + strain * diameter / (2.0 * velocity);
+    if let Some(s) = t.get_mut("solver").and_then(Value::as_table_mut) {
+        s.insert("end_time".into(), end.into());
+    }
+    if let Some(o) = t.get_mut("output").and_then(Value::as_table_mut) {
+        o.insert("interval".into(), end.into());
+    }
+}
+
 /// Sets `[contact] key` to `value`.
 pub fn set_contact(t: &mut Table, key: &str, value: Value) {
     if let Some(c) = t.get_mut("contact").and_then(Value::as_table_mut) {
@@ -173,5 +228,45 @@ pub fn set_platen_friction(t: &mut Table, mu: f64) {
         for p in pairs.iter_mut().filter_map(Value::as_table_mut) {
             p.insert("friction".into(), mu.into());
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Base, Mesh, set_end_strain, set_unbreakable};
+    use toml::{Table, Value};
+
+    fn disc_part(text: &str) -> Table {
+        let t: Table = text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
+        t["mesh"]["parts"][0].as_table().unwrap().clone()
+    }
+
+    /// A profile's mesh reaches the case: the extrusion's size and layers,
+    /// or the Gmsh file in place of the extrusion; the strain-axis changes
+    /// end the run at a strain and make the disc unbreakable.
+    #[test]
+    fn the_disc_mesh_and_the_study_changes_reach_the_case() {
+        let base = Base::load().unwrap();
+        let extruded = Mesh { element_size: 4.0e-3, layers: 4, platen_size: 4.0e-3, gmsh: None };
+        let part = disc_part(&base.case("t", extruded, 0.1, &|_| {}).unwrap());
+        assert_eq!(part["kind"].as_str(), Some("extrusion"));
+        assert_eq!(part["element_size"].as_float(), Some(4.0e-3));
+        assert_eq!(part["layers"].as_integer(), Some(4));
+        let gmsh = Mesh { gmsh: Some("disc-1.2mm.msh"), ..extruded };
+        let part = disc_part(&base.case("t", gmsh, 0.1, &|_| {}).unwrap());
+        assert_eq!(part["kind"].as_str(), Some("msh"));
+        let path = part["path"].as_str().unwrap();
+        assert!(path.ends_with("cases/paper/meshes/disc-1.2mm.msh") && std::path::Path::new(path).is_file(), "{path}");
+
+        let tweak = |t: &mut Table| {
+            set_unbreakable(t);
+            set_end_strain(t, 2.5e-3, 0.5, base.disc.diameter);
+        };
+        let text = base.case("t", extruded, 0.5, &tweak).unwrap();
+        let t: Table = text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
+        assert_eq!(t["mesh"]["regions"][0]["breakable"], Value::Boolean(false));
+        let ramp = t["platens"][0]["ramp_time"].as_float().unwrap();
+        let end = t["solver"]["end_time"].as_float().unwrap();
+        assert!((end - ramp - 2.5e-3 * base.disc.diameter / (2.0 * 0.5)).abs() < 1e-15, "{end}");
     }
 }

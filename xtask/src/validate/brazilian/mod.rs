@@ -1,11 +1,13 @@
 //! The Brazilian disc test of the paper (Guo et al. §3.1, Fig. 6–8, Eq.
-//! 21–23): four loading rates, the paper's checks, the figures, and the
-//! sensitivity runs that measure what moves the tensile strength.
+//! 21–23): four loading rates, the paper's checks, the figures, the
+//! sensitivity runs that measure what moves the tensile strength, and the
+//! study of what the load–strain curve's strain consists of.
 
 pub(crate) mod analysis;
 pub(crate) mod case;
 mod figures;
 mod sensitivity;
+mod strain_axis;
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -43,33 +45,88 @@ pub fn parse_rates(list: &str) -> Result<Vec<f64>> {
 const PAPER_PEAK: f64 = 1844.76;
 const PAPER_FBT: f64 = 1.96e6;
 
-/// The mesh a profile runs.
-fn mesh(profile: Profile) -> Mesh {
-    match profile {
-        // Ten 4 mm triangles across the diameter: minutes per rate.
-        Profile::Quick => Mesh { element_size: 4.0e-3, layers: 4, platen_size: 4.0e-3 },
-        // The bundled case: the paper's ~1.2 mm (§3.1).
-        Profile::Paper => Mesh { element_size: 1.2e-3, layers: 10, platen_size: 2.0e-3 },
+/// How the disc is meshed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DiscMesh {
+    /// The bundled case's circle triangulated and extruded in layers.
+    Extruded,
+    /// Gmsh's unstructured tets (`cases/paper/meshes/disc-*.msh`), the
+    /// paper's mesh type.
+    Unstructured,
+}
+
+impl DiscMesh {
+    /// A profile's own: extruded in the quick profile, unstructured (the
+    /// paper's type) in the paper profile.
+    pub fn of(profile: Profile) -> DiscMesh {
+        match profile {
+            Profile::Quick => DiscMesh::Extruded,
+            Profile::Paper => DiscMesh::Unstructured,
+        }
     }
 }
 
-/// Runs the case in `profile` (with the sensitivity runs if `sensitivity`),
+/// The mesh a profile runs, of the disc mesh `disc`.
+fn mesh(profile: Profile, disc: DiscMesh) -> Mesh {
+    let gmsh = (disc == DiscMesh::Unstructured).then(|| gmsh_disc(profile));
+    match profile {
+        // Ten 4 mm triangles across the diameter: minutes per rate.
+        Profile::Quick => Mesh { element_size: 4.0e-3, layers: 4, platen_size: 4.0e-3, gmsh },
+        // The paper's ~1.2 mm (§3.1), 51,690 unstructured tets in its disc.
+        Profile::Paper => Mesh { element_size: 1.2e-3, layers: 10, platen_size: 2.0e-3, gmsh },
+    }
+}
+
+/// The Gmsh disc of a profile's size (`cases/paper/meshes`).
+fn gmsh_disc(profile: Profile) -> &'static str {
+    match profile {
+        Profile::Quick => "disc-4mm.msh",
+        Profile::Paper => "disc-1.2mm.msh",
+    }
+}
+
+/// What the Brazilian case runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Study {
+    /// The rates and the paper's checks.
+    Rates,
+    /// The rates, then the one-change-at-a-time runs at the fastest.
+    Sensitivity,
+    /// Only the study of the strain axis (no rates, no checks).
+    StrainAxis,
+}
+
+/// Runs the case in `profile` on the disc mesh `disc` as `study` says,
 /// adding its checks and sections to `report`.
 pub fn validate(
     femdem: &Femdem,
-    profile: Profile,
+    (profile, disc_mesh): (Profile, DiscMesh),
     rates: &[f64],
-    sensitivity: bool,
+    study: Study,
     out: &Path,
     report: &mut Report,
 ) -> Result<()> {
-    if sensitivity && rates.first() != Some(&RATES[0]) {
+    if study == Study::Sensitivity && rates.first() != Some(&RATES[0]) {
         anyhow::bail!("--sensitivity compares with the {} m/s run: keep that rate in --rates", RATES[0]);
     }
     let base = Base::load()?;
     let disc = base.disc;
-    let mesh = mesh(profile);
+    let mesh = mesh(profile, disc_mesh);
     let dir = out.join("brazilian");
+    if study == Study::StrainAxis {
+        let figs = out.join("figures");
+        std::fs::create_dir_all(&figs)?;
+        let mut md = format!(
+            "## Brazilian disc: the strain axis ({} profile)
+",
+            profile.name()
+        );
+        // Its main set on the extrusion, its last rows on the Gmsh disc.
+        let extruded = Mesh { gmsh: None, ..mesh };
+        md.push_str(&strain_axis::run(femdem, &base, extruded, gmsh_disc(profile), &dir, &figs)?);
+        report.sections.push(md);
+        return Ok(());
+    }
     let mut runs = Vec::new();
     for &v in rates {
         let title = format!("Brazilian disc, V_y = {v} m/s, {} profile (cargo xtask validate)", profile.name());
@@ -82,10 +139,8 @@ pub fn validate(
     let mut md = format!("## Brazilian disc ({} profile)\n\n", profile.name());
     let _ = writeln!(
         md,
-        "Mesh: {} mm triangles, {} layers (platens {} mm). Runs end once the load has fallen to a tenth of its peak (the disc has split).\n",
-        1e3 * mesh.element_size,
-        mesh.layers,
-        1e3 * mesh.platen_size
+        "Mesh: {}. Runs end once the load has fallen to a tenth of its peak (the disc has split).\n",
+        mesh.describe()
     );
     md.push_str("| V_y (m/s) | peak F (N) | f_bt (MPa) | f_bt / f_t | ε at peak (‰) | first 5% drop F (N) | failures T/S/M/C | steps | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n");
     for (v, o) in &runs {
@@ -276,7 +331,8 @@ pub fn validate(
     let curves: Vec<(f64, &Outcome)> = runs.iter().map(|(v, o)| (*v, o)).collect();
     figures::load_strain(&figs.join("brazilian_load_strain.png"), &curves)?;
     let s0 = 2.0 * load / (std::f64::consts::PI * disc.diameter * disc.thickness);
-    let layer = disc.thickness / mesh.layers as f64;
+    // The slice drawn: one layer of the extrusion, or an element's size.
+    let layer = if mesh.gmsh.is_some() { mesh.element_size } else { disc.thickness / mesh.layers as f64 };
     figures::mid_plane_sigma_x(
         &figs.join("brazilian_sigma_x.png"),
         &grid,
@@ -295,7 +351,7 @@ pub fn validate(
         let _ = writeln!(md, "\n![fractures along z, V = {v}](figures/{z}) ![fractures 3D, V = {v}](figures/{d3})");
         let _ = writeln!(md, "\nV = {v} m/s: {}.", super::runner::fragments_line(&o.run.fragments()?));
     }
-    if sensitivity {
+    if study == Study::Sensitivity {
         md.push_str(&sensitivity::run(femdem, &base, mesh, &dir, &runs[0].1)?);
     }
     report.sections.push(md);

@@ -24,7 +24,7 @@ type Tweak = Box<dyn Fn(&mut Table)>;
 /// The variants: name, what changes, the mesh, the change.
 fn variants(base: &Base, mesh: Mesh) -> Vec<(&'static str, String, Mesh, Tweak)> {
     let e = base.disc.young;
-    let finer = Mesh { element_size: 0.75 * mesh.element_size, layers: mesh.layers + 1, ..mesh };
+    let finer = Mesh { element_size: 0.75 * mesh.element_size, layers: mesh.layers + 1, gmsh: None, ..mesh };
     vec![
         (
             "p0 = E",

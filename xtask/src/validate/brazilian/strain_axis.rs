@@ -1,0 +1,311 @@
+//! What the strain of a Brazilian run's load–strain curve (ε_yy = Δa/d,
+//! Eq. 22) consists of before the disc breaks: the disc's elasticity, the
+//! joints' penalty compliance (Eq. 9) and the platen contact's penetration
+//! (Eq. 17), each measured by runs that change one of them, against the
+//! closed form of a disc between flat rigid platens
+//! ([`femdem_post::diametral`]); and which reading of the paper's strain
+//! unit (Fig. 6–7: "%" or ‰) that is consistent with.
+//!
+//! The decomposition at each load F:
+//! - joints = ε(as bundled) − ε(no joints), both at the bundled contact
+//!   penalty;
+//! - the disc with rigid contact, ε∞: the no-joint runs at contact
+//!   penalties p, 10 p and 100 p fitted exactly by ε = ε∞ + c p^(−α)
+//!   (three points, three unknowns);
+//! - contact = ε(no joints, p) − ε∞.
+//!
+//! The joints' share is checked by the run at p0 = 2 E (the low end of
+//! Eq. 9's range): a joint's opening under a stress is σ h / p0, so their
+//! share should scale as 1/p0.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::Result;
+use toml::Table;
+
+use super::PAPER_PEAK;
+use super::analysis::Outcome;
+use super::case::{Base, Mesh, set_contact, set_end_strain, set_gmsh_disc, set_material, set_unbreakable};
+use crate::validate::plot;
+use crate::validate::runner::Femdem;
+use femdem_post::diametral::{self, Elastic, Plane};
+
+/// Platen speed of the runs, m/s: the loads are reached in a few thousand
+/// steps. The `0.1 m/s` variant repeats the bundled case at the paper's
+/// fastest rate to show that the strains do not depend on it.
+pub const RATE: f64 = 0.5;
+/// The rate of that check, m/s.
+const SLOW: f64 = 0.1;
+/// Where every run ends at the latest, ε_yy (Eq. 22): past the first
+/// failure of the bundled case on the 4 mm and 1.2 mm discs.
+const END_STRAIN: f64 = 2.5e-3;
+/// The loads compared, as fractions of F_t = π d t f_t / 2, the load whose
+/// Hondros centre stress σx = 2F/(πdt) is f_t.
+const LOADS: [f64; 3] = [0.15, 0.3, 0.45];
+/// The strain printed under the paper's Fig. 7a ("before fracture
+/// initiation", V = 0.01 m/s), in the paper's printed unit.
+const PAPER_FIG7A: f64 = 1.03;
+
+type Tweak = Box<dyn Fn(&mut Table)>;
+
+/// One run of the study.
+struct Variant {
+    key: &'static str,
+    change: String,
+    rate: f64,
+    tweak: Tweak,
+}
+
+fn variants(base: &Base, gmsh: &'static str) -> Vec<Variant> {
+    let (e, p) = (base.disc.young, base.disc.contact_penalty);
+    let v = |key, change: String, rate, tweak: Tweak| Variant { key, change, rate, tweak };
+    vec![
+        v(
+            "as bundled",
+            format!("joints p0 = {:.2e} Pa, contact penalty {p:.2e} Pa", base.disc.joint_penalty),
+            RATE,
+            Box::new(|_| {}),
+        ),
+        v("0.1 m/s", format!("as bundled at V = {SLOW} m/s"), SLOW, Box::new(|_| {})),
+        v("no joints", "the disc unbreakable (no joints, shared nodes)".into(), RATE, Box::new(set_unbreakable)),
+        v(
+            "no joints, contact ×10",
+            format!("no joints, contact penalty {:.2e} Pa", 10.0 * p),
+            RATE,
+            Box::new(move |t| {
+                set_unbreakable(t);
+                set_contact(t, "penalty", (10.0 * p).into());
+            }),
+        ),
+        v(
+            "no joints, contact ×100",
+            format!("no joints, contact penalty {:.2e} Pa", 100.0 * p),
+            RATE,
+            Box::new(move |t| {
+                set_unbreakable(t);
+                set_contact(t, "penalty", (100.0 * p).into());
+            }),
+        ),
+        v(
+            "p0 = 2 E",
+            format!("joints p0 = {:.2e} Pa (the low end of Eq. 9's 2E–10E)", 2.0 * e),
+            RATE,
+            Box::new(move |t| set_material(t, "penalty", (2.0 * e).into())),
+        ),
+        v(
+            "unstructured",
+            format!("as bundled on the Gmsh disc cases/paper/meshes/{gmsh}"),
+            RATE,
+            Box::new(move |t| set_gmsh_disc(t, gmsh)),
+        ),
+        v(
+            "unstructured, no joints, contact ×100",
+            format!("the Gmsh disc {gmsh}, no joints, contact penalty {:.2e} Pa", 100.0 * p),
+            RATE,
+            Box::new(move |t| {
+                set_gmsh_disc(t, gmsh);
+                set_unbreakable(t);
+                set_contact(t, "penalty", (100.0 * p).into());
+            }),
+        ),
+    ]
+}
+
+/// The strain where the load first reaches `f` (linear between history
+/// rows), and how many joints had failed by then.
+fn strain_at(o: &Outcome, f: f64) -> Option<(f64, usize)> {
+    let i = o.curve.iter().position(|c| c.1 >= f).filter(|&i| i > 0)?;
+    let (a, b) = (o.curve[i - 1], o.curve[i]);
+    let strain = a.0 + (b.0 - a.0) * (f - a.1) / (b.1 - a.1);
+    Some((strain, o.failures.iter().filter(|x| x.time <= o.time[i]).count()))
+}
+
+/// The strain of the first joint failure, if one failed by the run's end.
+fn strain_at_failure(o: &Outcome) -> Option<f64> {
+    let t = o.first_failure()?.time;
+    let i = o.time.iter().position(|&x| x >= t)?;
+    Some(o.curve[i].0)
+}
+
+/// The rigid-contact limit ε∞ and the exponent α of
+/// `ε = ε∞ + c p^(−α)` through the strains at penalties p, 10 p, 100 p:
+/// `q = 10^(−α) = (ε₁₀ − ε₁₀₀) / (ε₁ − ε₁₀)`; none unless 0 < q < 1.
+fn rigid_limit(e1: f64, e10: f64, e100: f64) -> Option<(f64, f64)> {
+    let q = (e10 - e100) / (e1 - e10);
+    (q > 0.0 && q < 1.0).then(|| (e1 - (e1 - e10) / (1.0 - q), -q.log10()))
+}
+
+fn permille(e: Option<(f64, usize)>) -> String {
+    match e {
+        Some((e, 0)) => format!("{:.3}", 1e3 * e),
+        Some((e, n)) => format!("{:.3} ({n} failed)", 1e3 * e),
+        None => "—".into(),
+    }
+}
+
+/// Runs the study on `mesh` (and on the Gmsh disc `gmsh` of the same size)
+/// and returns its Markdown section; the figure goes to `figures`.
+pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, gmsh: &'static str, dir: &Path, figures: &Path) -> Result<String> {
+    let disc = base.disc;
+    let elastic = Elastic { young: disc.young, poisson: disc.poisson };
+    let geometry = disc.geometry();
+    let f_t = std::f64::consts::PI * disc.diameter * disc.thickness * disc.tensile_strength / 2.0;
+    let loads: Vec<f64> = LOADS.iter().map(|s| (s * f_t).round()).collect();
+    let mut runs: Vec<(Variant, Outcome)> = Vec::new();
+    for variant in variants(base, gmsh) {
+        let title = format!("Brazilian disc, strain axis: {} (cargo xtask validate --strain-axis)", variant.key);
+        let rate = variant.rate;
+        let tweak = |t: &mut Table| {
+            (variant.tweak)(t);
+            set_end_strain(t, END_STRAIN, rate, disc.diameter);
+        };
+        let case = base.case(&title, mesh, rate, &tweak)?;
+        let slug: String = variant.key.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
+        let run = femdem.run(&dir.join(format!("strain_{slug}")), "brazilian", &case)?;
+        let outcome = Outcome::read(run, disc)?;
+        runs.push((variant, outcome));
+    }
+    let at = |key: &str, f: f64| runs.iter().find(|(v, _)| v.key == key).and_then(|(_, o)| strain_at(o, f));
+    let closed = |plane, f| diametral::strain(geometry, elastic, plane, f);
+
+    let mut md = format!(
+        "\n### What the strain consists of (ε_yy of Eq. 22 before failure, V = {RATE} m/s)\n\n\
+         Strains (‰) where the load first reaches F; \"(n failed)\" where joints had already failed. \
+         The closed form is `femdem_post::diametral` (a disc between flat rigid platens, Johnson §5.6), \
+         plane stress and plane strain bounding the {} mm thick disc.\n\n| variant | change |",
+        1e3 * disc.thickness
+    );
+    for f in &loads {
+        let _ = write!(md, " ε at {f:.0} N |");
+    }
+    md.push_str(" ε at the paper's peak load | ε at the first failure | steps | wall (s) |\n|---|---|");
+    md.push_str(&"---|".repeat(loads.len() + 4));
+    md.push('\n');
+    for (plane, name) in [(Plane::Stress, "plane stress"), (Plane::Strain, "plane strain")] {
+        let _ = write!(md, "| closed form, {name} | elastic disc, rigid platens |");
+        for &f in loads.iter().chain([&PAPER_PEAK]) {
+            let _ = write!(md, " {:.3} |", 1e3 * closed(plane, f));
+        }
+        md.push_str(" — | — | — |\n");
+    }
+    for (v, o) in &runs {
+        let _ = write!(md, "| {} | {} |", v.key, v.change);
+        for &f in loads.iter().chain([&PAPER_PEAK]) {
+            let _ = write!(md, " {} |", permille(strain_at(o, f)));
+        }
+        let first = strain_at_failure(o).map_or("none".into(), |e| format!("{:.3}", 1e3 * e));
+        let _ = writeln!(md, " {first} | {} | {:.0}{} |", o.steps, o.run.wall, o.run.provenance());
+    }
+
+    md.push_str(
+        "\nThe decomposition at each load (‰): the disc with rigid contact (the no-joint runs' three contact \
+         penalties fitted by ε∞ + c p^(−α)), the contact's penetration at the bundled penalty, the joints' \
+         compliance at the bundled p0; their sum is the bundled case's strain by construction. The last columns \
+         check the joints' share against the p0 = 2 E run (1/p0 scaling) and the rate.\n\n\
+         | F (N) | closed form (strain – stress) | disc, rigid contact ε∞ (α) | + contact | + joints | = as bundled | p0 = 2 E: predicted / measured | 0.1 m/s against 0.5 m/s |\n\
+         |---|---|---|---|---|---|---|---|\n",
+    );
+    let scale = disc.joint_penalty / (2.0 * disc.young) - 1.0;
+    for &f in &loads {
+        let cell = |x: Option<f64>| x.map_or("—".into(), |x| format!("{:.3}", 1e3 * x));
+        let plain = |key: &str| at(key, f).filter(|x| x.1 == 0).map(|x| x.0);
+        let (bundled, nj) = (plain("as bundled"), plain("no joints"));
+        let fit = match (nj, plain("no joints, contact ×10"), plain("no joints, contact ×100")) {
+            (Some(a), Some(b), Some(c)) => rigid_limit(a, b, c),
+            _ => None,
+        };
+        let joints = bundled.zip(nj).map(|(b, n)| b - n);
+        let predicted = bundled.zip(joints).map(|(b, j)| b + scale * j);
+        let slow = plain("0.1 m/s").zip(bundled).map(|(s, b)| format!("{:+.1}%", 100.0 * (s / b - 1.0)));
+        let _ = writeln!(
+            md,
+            "| {f:.0} | {:.3} – {:.3} | {} | {} | {} | {} | {} / {} | {} |",
+            1e3 * closed(Plane::Strain, f),
+            1e3 * closed(Plane::Stress, f),
+            fit.map_or("—".into(), |(e, a)| format!("{:.3} ({a:.2})", 1e3 * e)),
+            cell(nj.zip(fit).map(|(n, (e, _))| n - e)),
+            cell(joints),
+            cell(bundled),
+            cell(predicted),
+            cell(plain("p0 = 2 E")),
+            slow.unwrap_or("—".into()),
+        );
+    }
+
+    // The paper's unit: Fig. 7a is before fracture initiation, at a load
+    // below the paper's peak, so its strain is at most the disc's strain
+    // at that peak.
+    let elastic_peak = |plane| closed(plane, PAPER_PEAK);
+    let at_peak: Vec<(&str, f64, usize)> =
+        runs.iter().filter_map(|(v, o)| strain_at(o, PAPER_PEAK).map(|(e, n)| (v.key, e, n))).collect();
+    let _ = write!(
+        md,
+        "\nThe paper's unit. Fig. 7a (\"before fracture initiation\", V = 0.01 m/s) prints ε_yy = {PAPER_FIG7A}, \
+         the later panels up to 4.15, with the unit %. Fig. 7a's load is below the paper's peak, {PAPER_PEAK} N, \
+         where the closed form gives {:.3}–{:.3} ‰",
+        1e3 * elastic_peak(Plane::Strain),
+        1e3 * elastic_peak(Plane::Stress)
+    );
+    let softest = at_peak.iter().max_by(|a, b| a.1.total_cmp(&b.1));
+    if let Some((key, e, failed)) = softest {
+        let stiff = elastic_peak(Plane::Strain);
+        let _ = write!(
+            md,
+            " and the most compliant of these runs {:.3} ‰ (`{key}`{}), {:.1}× the closed form. Read as %, \
+             Fig. 7a's strain is {:.1} ‰, at least {:.1}× the closed form's with nothing yet broken; read as ‰ it is \
+             {:.2}× it, within what the runs' joints and contact add.",
+            1e3 * e,
+            if *failed > 0 { format!(", {failed} joints failed by then") } else { String::new() },
+            e / stiff,
+            10.0 * PAPER_FIG7A,
+            10.0 * PAPER_FIG7A / (1e3 * stiff),
+            PAPER_FIG7A / (1e3 * stiff)
+        );
+    } else {
+        md.push_str("; no run reached that load.");
+    }
+    md.push('\n');
+
+    // Eight series, the palette's size: the 0.1 m/s run lies on the bundled
+    // one and plane strain within 1 − ν² of plane stress (both in the tables).
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = runs
+        .iter()
+        .filter(|(v, _)| v.rate == RATE)
+        .map(|(v, o)| {
+            let upto = o.curve.iter().take_while(|c| c.0 <= END_STRAIN);
+            (v.key.to_owned(), upto.map(|(e, f)| (1e3 * e, 1e-3 * f)).collect())
+        })
+        .collect();
+    let top = runs.iter().map(|(_, o)| o.peak).fold(0.0, f64::max);
+    let curve = (0..=60).map(|i| top * i as f64 / 60.0).map(|f| (1e3 * closed(Plane::Stress, f), 1e-3 * f));
+    series.push(("closed form, plane stress".to_owned(), curve.filter(|p| p.0 <= 1e3 * END_STRAIN).collect()));
+    plot::lines(
+        &figures.join("brazilian_strain_axis.png"),
+        "Brazilian disc: what the strain consists of",
+        "strain ε_yy (‰)",
+        "load F (kN)",
+        &series,
+    )?;
+    md.push_str("\n![strain axis](figures/brazilian_strain_axis.png)\n");
+    Ok(md)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rigid_limit;
+
+    /// Three strains of ε∞ + c p^(−α) at p, 10 p, 100 p give back ε∞ and α;
+    /// strains that do not fall geometrically give none.
+    #[test]
+    fn the_rigid_limit_inverts_a_power_law() {
+        for (inf, c, alpha) in [(0.3e-3, 0.2e-3, 0.5), (1.0, 2.0, 1.0), (0.0, 1.0, 2.0 / 3.0)] {
+            let e = |x: f64| inf + c * x.powf(-alpha);
+            let (got, a) = rigid_limit(e(1.0), e(10.0), e(100.0)).unwrap();
+            assert!((got - inf).abs() < 1e-12 * c.max(inf), "{got} vs {inf}");
+            assert!((a - alpha).abs() < 1e-12, "{a} vs {alpha}");
+        }
+        assert!(rigid_limit(1.0, 0.5, 0.5).is_none());
+        assert!(rigid_limit(1.0, 0.9, 0.7).is_none());
+    }
+}

@@ -1,6 +1,6 @@
 //! `cargo xtask <task>`: project automation that needs nothing but cargo.
 //!
-//! - `validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--mesh M] [--weibull M] [--disc D] [--out DIR] [--sensitivity | --strain-axis]`: runs the
+//! - `validate [--profile quick|paper] [--case NAME] [--rates LIST] [--ramp S] [--end-time S] [--mesh M] [--weibull M] [--disc D] [--out DIR] [--sensitivity | --strain-axis | --crushing-onset]`: runs the
 //!   reference paper's examples and reports against its numbers
 //!   (`docs/validation.md`).
 //! - `tradeoff [--quick] [--out DIR]`: the speed–accuracy trade of the

@@ -1,6 +1,7 @@
 //! `cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST]
 //! [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--weibull M]
-//! [--disc extruded|unstructured] [--out DIR] [--sensitivity | --strain-axis]`:
+//! [--disc extruded|unstructured] [--out DIR]
+//! [--sensitivity | --strain-axis | --crushing-onset]`:
 //! runs the reference paper's examples through `femdem run`, as a user
 //! would, checks the results against the paper and closed forms, and writes
 //! `report.md`, `checks.csv`, the runs' data and PNG figures to DIR
@@ -37,6 +38,11 @@
 //! elasticity against the closed form, the contact's penetration, the
 //! joints' compliance; eight short runs at 0.5 m/s, one at 0.1 m/s), not the
 //! rates or their checks.
+//!
+//! `--crushing-onset` (paper profile) runs, for the Brazilian case, only the
+//! study of whether the first load drop (the first crushing under a platen)
+//! is converged: seven runs at 0.1 m/s to their first 5% drop, one change
+//! each, against the spread of two meshes of the same disc.
 //!
 //! A run that finished before with the same case text is reused, and one
 //! that did not finish continues from its latest checkpoint
@@ -141,16 +147,34 @@ pub struct Args {
     /// before failure), instead of the rates.
     #[arg(long = "strain-axis", conflicts_with_all = ["sensitivity", "rates"])]
     strain_axis: bool,
+    /// Brazilian, paper profile: only the crushing-onset study (is the
+    /// first load drop converged?), instead of the rates.
+    #[arg(long = "crushing-onset", conflicts_with_all = ["sensitivity", "rates", "strain_axis", "disc"])]
+    crushing_onset: bool,
 }
 
 /// Runs the task.
 pub fn run(args: Args) -> Result<()> {
-    let Args { profile, case: only, rates, ramp, end_time, mesh, weibull, out, disc, sensitivity, strain_axis } = args;
+    let Args {
+        profile,
+        case: only,
+        rates,
+        ramp,
+        end_time,
+        mesh,
+        weibull,
+        out,
+        disc,
+        sensitivity,
+        strain_axis,
+        crushing_onset,
+    } = args;
     let disc = disc.unwrap_or(brazilian::DiscMesh::of(profile));
-    let study = match (sensitivity, strain_axis) {
-        (_, true) => brazilian::Study::StrainAxis,
-        (true, false) => brazilian::Study::Sensitivity,
-        (false, false) => brazilian::Study::Rates,
+    let study = match (sensitivity, strain_axis, crushing_onset) {
+        (_, _, true) => brazilian::Study::CrushingOnset,
+        (_, true, _) => brazilian::Study::StrainAxis,
+        (true, ..) => brazilian::Study::Sensitivity,
+        _ => brazilian::Study::Rates,
     };
     let rates = rates.map(|r| r.0);
     let mut variant = polyaxial::Variant { ramp, end: end_time, weibull, ..polyaxial::Variant::default() };
@@ -221,7 +245,11 @@ mod tests {
         let a = parse(&["--strain-axis", "--disc", "unstructured"]).unwrap();
         assert!(a.strain_axis && a.disc == Some(brazilian::DiscMesh::Unstructured));
         assert_eq!(parse(&[]).unwrap().disc, None);
-        for clash in [&["--strain-axis", "--rates", "0.1"][..], &["--strain-axis", "--sensitivity"]] {
+        for clash in [
+            &["--strain-axis", "--rates", "0.1"][..],
+            &["--strain-axis", "--sensitivity"],
+            &["--crushing-onset", "--strain-axis"],
+        ] {
             let e = parse(clash).unwrap_err().to_string();
             assert!(e.contains("--strain-axis") && e.contains("cannot be used with"), "{e}");
         }

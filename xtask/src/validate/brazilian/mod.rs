@@ -5,6 +5,7 @@
 
 pub(crate) mod analysis;
 pub(crate) mod case;
+mod crushing_onset;
 mod figures;
 mod sensitivity;
 mod strain_axis;
@@ -94,6 +95,8 @@ pub enum Study {
     Sensitivity,
     /// Only the study of the strain axis (no rates, no checks).
     StrainAxis,
+    /// Only the study of the crushing onset's convergence (paper profile).
+    CrushingOnset,
 }
 
 /// Runs the case in `profile` on the disc mesh `disc` as `study` says,
@@ -113,6 +116,15 @@ pub fn validate(
     let disc = base.disc;
     let mesh = mesh(profile, disc_mesh);
     let dir = out.join("brazilian");
+    if study == Study::CrushingOnset {
+        if profile != Profile::Paper {
+            anyhow::bail!("--crushing-onset runs the 1.2 mm discs: give --profile paper");
+        }
+        let mut md = format!("## Brazilian disc: the crushing onset ({} profile)\n", profile.name());
+        md.push_str(&crushing_onset::run(femdem, &base, mesh, &dir)?);
+        report.sections.push(md);
+        return Ok(());
+    }
     if study == Study::StrainAxis {
         let figs = out.join("figures");
         std::fs::create_dir_all(&figs)?;

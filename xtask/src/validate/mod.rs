@@ -36,8 +36,9 @@
 //! `--strain-axis` runs, for the Brazilian case, only the study of what
 //! its load–strain curve's strain consists of before failure (the disc's
 //! elasticity against the closed form, the contact's penetration, the
-//! joints' compliance; eight short runs at 0.5 m/s, one at 0.1 m/s), not the
-//! rates or their checks.
+//! joints' compliance; seven short runs at 0.5 m/s, one at 0.1 m/s), not the
+//! rates or their checks. Both studies run the Brazilian case alone (as if
+//! with `--case brazilian`).
 //!
 //! `--crushing-onset` (paper profile) runs, for the Brazilian case, only the
 //! study of whether the first load drop (the first crushing under a platen)
@@ -145,7 +146,7 @@ pub struct Args {
     sensitivity: bool,
     /// Brazilian: only the strain-axis study (what the strain consists of
     /// before failure), instead of the rates.
-    #[arg(long = "strain-axis", conflicts_with_all = ["sensitivity", "rates"])]
+    #[arg(long = "strain-axis", conflicts_with_all = ["sensitivity", "rates", "disc"])]
     strain_axis: bool,
     /// Brazilian, paper profile: only the crushing-onset study (is the
     /// first load drop converged?), instead of the rates.
@@ -169,12 +170,25 @@ pub fn run(args: Args) -> Result<()> {
         strain_axis,
         crushing_onset,
     } = args;
-    let disc = disc.unwrap_or(brazilian::DiscMesh::of(profile));
     let study = match (sensitivity, strain_axis, crushing_onset) {
         (_, _, true) => brazilian::Study::CrushingOnset,
         (_, true, _) => brazilian::Study::StrainAxis,
         (true, ..) => brazilian::Study::Sensitivity,
         _ => brazilian::Study::Rates,
+    };
+    let disc = disc.unwrap_or(brazilian::DiscMesh::of(profile));
+    // The Brazilian studies run that case alone.
+    let study_flag = match study {
+        brazilian::Study::StrainAxis => Some("--strain-axis"),
+        brazilian::Study::CrushingOnset => Some("--crushing-onset"),
+        _ => None,
+    };
+    let only = match (study_flag, only) {
+        (Some(flag), Some(name)) if name != "brazilian" => {
+            bail!("{flag} is a study of the Brazilian case, not `{name}`")
+        }
+        (Some(_), _) => Some("brazilian".to_owned()),
+        (None, only) => only,
     };
     let rates = rates.map(|r| r.0);
     let mut variant = polyaxial::Variant { ramp, end: end_time, weibull, ..polyaxial::Variant::default() };
@@ -211,9 +225,10 @@ pub fn run(args: Args) -> Result<()> {
     }
     let wall = start.elapsed().as_secs_f64();
     report.sections.push(format!(
-        "Total wall time {wall:.0} s on {} cores (`cargo xtask validate --profile {}`).",
+        "Total wall time {wall:.0} s on {} cores (`cargo xtask validate --profile {}{}`).",
         std::thread::available_parallelism().map_or(1, |n| n.get()),
-        profile.name()
+        profile.name(),
+        study_flag.map_or(String::new(), |f| format!(" {f}"))
     ));
     report.write(&out, &format!("femdem validation against Guo et al. ({} profile)", profile.name()))?;
     let failed: Vec<String> = report.failures().map(|c| format!("{}: {} = {}", c.case, c.metric, c.value)).collect();
@@ -242,13 +257,16 @@ mod tests {
 
     #[test]
     fn the_strain_axis_study_runs_alone_and_the_disc_mesh_is_named() {
-        let a = parse(&["--strain-axis", "--disc", "unstructured"]).unwrap();
-        assert!(a.strain_axis && a.disc == Some(brazilian::DiscMesh::Unstructured));
+        let a = parse(&["--strain-axis"]).unwrap();
+        assert!(a.strain_axis && a.disc.is_none());
+        let a = parse(&["--disc", "unstructured"]).unwrap();
+        assert_eq!(a.disc, Some(brazilian::DiscMesh::Unstructured));
         assert_eq!(parse(&[]).unwrap().disc, None);
         for clash in [
             &["--strain-axis", "--rates", "0.1"][..],
             &["--strain-axis", "--sensitivity"],
             &["--crushing-onset", "--strain-axis"],
+            &["--strain-axis", "--disc", "extruded"],
         ] {
             let e = parse(clash).unwrap_err().to_string();
             assert!(e.contains("--strain-axis") && e.contains("cannot be used with"), "{e}");

@@ -297,10 +297,11 @@ fn paper_unit(at: &StrainAt, (strain, stress): (f64, f64)) -> String {
         })
         .collect();
     md.push_str(&format!(" femdem's runs at that load: {}.", list.join("; ")));
+    // A strain below the peak load may be anything up to the strain there.
     let verdict = if fig <= range.1 {
-        "the ‰ reading lies within the runs' strains at the paper's peak load"
+        "the ‰ reading is no more than the runs' strains at the paper's peak load, as a strain below that load must be"
     } else {
-        "the ‰ reading lies above every run's strain at the paper's peak load"
+        "even the ‰ reading lies above every run's strain at the paper's peak load"
     };
     md.push_str(&format!(" So {verdict}, and the % reading is {:.1}× the most compliant run's.", 10.0 * fig / range.1));
     // How soft would contact have to be for the % reading: the contact

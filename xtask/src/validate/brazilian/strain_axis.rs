@@ -63,6 +63,13 @@ struct Variant {
 fn variants(base: &Base, gmsh: &'static str) -> Vec<Variant> {
     let (e, p) = (base.disc.young, base.disc.contact_penalty);
     let v = |key, change: String, rate, tweak: Tweak| Variant { key, change, rate, tweak };
+    // No joints, and the contact penalty times `k`.
+    let stiff = move |k: f64| -> Tweak {
+        Box::new(move |t| {
+            set_unbreakable(t);
+            set_contact(t, "penalty", (k * p).into());
+        })
+    };
     vec![
         v(
             "as bundled",
@@ -72,24 +79,8 @@ fn variants(base: &Base, gmsh: &'static str) -> Vec<Variant> {
         ),
         v("0.1 m/s", format!("as bundled at V = {SLOW} m/s"), SLOW, Box::new(|_| {})),
         v("no joints", "the disc unbreakable (no joints, shared nodes)".into(), RATE, Box::new(set_unbreakable)),
-        v(
-            "no joints, contact ×10",
-            format!("no joints, contact penalty {:.2e} Pa", 10.0 * p),
-            RATE,
-            Box::new(move |t| {
-                set_unbreakable(t);
-                set_contact(t, "penalty", (10.0 * p).into());
-            }),
-        ),
-        v(
-            "no joints, contact ×100",
-            format!("no joints, contact penalty {:.2e} Pa", 100.0 * p),
-            RATE,
-            Box::new(move |t| {
-                set_unbreakable(t);
-                set_contact(t, "penalty", (100.0 * p).into());
-            }),
-        ),
+        v("no joints, contact ×10", format!("no joints, contact penalty {:.2e} Pa", 10.0 * p), RATE, stiff(10.0)),
+        v("no joints, contact ×100", format!("no joints, contact penalty {:.2e} Pa", 100.0 * p), RATE, stiff(100.0)),
         v(
             "p0 = 2 E",
             format!("joints p0 = {:.2e} Pa (the low end of Eq. 9's 2E–10E)", 2.0 * e),
@@ -108,8 +99,7 @@ fn variants(base: &Base, gmsh: &'static str) -> Vec<Variant> {
             RATE,
             Box::new(move |t| {
                 set_gmsh_disc(t, gmsh);
-                set_unbreakable(t);
-                set_contact(t, "penalty", (100.0 * p).into());
+                stiff(100.0)(t);
             }),
         ),
     ]

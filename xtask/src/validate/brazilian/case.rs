@@ -10,7 +10,7 @@ pub const BASE: &str = "cases/paper/brazilian-to-failure.toml";
 
 /// Largest strain ε_yy (Eq. 22) a run may reach; the runs end earlier,
 /// once the load has dropped to [`STOP_BELOW_PEAK`] of its peak.
-const MAX_STRAIN: f64 = 0.005;
+pub const MAX_STRAIN: f64 = 0.005;
 /// `[output.load_strain] stop_below_peak` of every run: a tenth, so that a
 /// run goes on past the crushing under the platens until the disc has
 /// split (at half the peak, the quick mesh is still crushing and the

@@ -17,7 +17,7 @@ use anyhow::Result;
 use toml::{Table, Value};
 
 use super::analysis::{DROP, Outcome};
-use super::case::{Base, Mesh, set_contact, set_platen_friction};
+use super::case::{Base, MAX_STRAIN, Mesh, set_contact, set_platen_friction};
 use crate::validate::runner::Femdem;
 
 /// Platen speed of the runs, m/s (the paper's fastest rate).
@@ -85,6 +85,16 @@ fn stop_at_first_drop(t: &mut Table) {
     }
 }
 
+/// The load at a run's first drop and its time: where the history's rows
+/// fall by [`DROP`], or, for a run that stopped at its drop between two
+/// rows (the stop rule watches every step, the rows every 2·10⁻⁶ of
+/// strain), its largest recorded load; none for a run that reached its end
+/// strain without one.
+fn first_drop(o: &Outcome) -> Option<(f64, f64)> {
+    let stopped = o.curve.last().is_some_and(|c| c.0 < 0.99 * MAX_STRAIN);
+    o.first_drop.or_else(|| stopped.then_some((o.peak, o.peak_time)))
+}
+
 /// Runs the study on the 1.2 mm Gmsh discs and returns its Markdown
 /// section.
 pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<String> {
@@ -100,7 +110,7 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<Strin
         let run = femdem.run(&dir.join(format!("onset_{slug}")), "brazilian", &case)?;
         rows.push((name, change, Outcome::read(run, disc)?));
     }
-    let first = |o: &Outcome| o.first_drop.map(|(f, t)| (f, t, o.failures.iter().filter(|x| x.time <= t).count()));
+    let first = |o: &Outcome| first_drop(o).map(|(f, t)| (f, t, o.failures.iter().filter(|x| x.time <= t).count()));
     let drop = |name: &str| rows.iter().find(|r| r.0 == name).and_then(|r| first(&r.2)).map(|d| d.0);
     let (base_drop, spread) = match (drop("baseline"), drop("turned mesh")) {
         (Some(a), Some(b)) => (Some(a), Some((a - b).abs())),
@@ -117,6 +127,8 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<Strin
     );
     for (name, change, o) in &rows {
         let first_failure = o.first_failure().map_or("none".into(), |x| format!("{:.0}", o.load_at(x.time)));
+        // Where the rows show no 5% fall, the drop is the stop's.
+        let marked = if o.first_drop.is_none() { " (stopped)" } else { "" };
         let Some((f, t, _)) = first(o) else {
             let _ = writeln!(
                 md,
@@ -138,7 +150,7 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<Strin
         };
         let _ = writeln!(
             md,
-            "| {name} | {change} | {first_failure} | {f:.0} | {:.3} | {delta} | {beyond} | {:.3} | {} | {} | {:.0}{} |",
+            "| {name} | {change} | {first_failure} | {f:.0}{marked} | {:.3} | {delta} | {beyond} | {:.3} | {} | {} | {:.0}{} |",
             1e-6 * disc.geometry().f_bt(f),
             1e3 * strain,
             before.text(),

@@ -22,6 +22,11 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// ε_yy of the first history row at or after time `t`, if any.
+    pub fn strain_at_time(&self, t: f64) -> Option<f64> {
+        self.time.iter().position(|&x| x >= t).map(|i| self.curve[i].0)
+    }
+
     /// Reads a finished run of `disc`.
     pub fn read(run: RunOutput, disc: Disc) -> Result<Outcome> {
         let measured = Measured::read(&run.dir, disc.geometry())?;

@@ -202,17 +202,27 @@ pub fn set_unbreakable(t: &mut Table) {
 }
 
 /// Ends the run at strain `strain` (Eq. 22) of platens approaching at
-/// `velocity` (m/s) each, after their ramp, with a single frame at the end
-/// (the history is what is read).
+/// `velocity` (m/s) each, after their ramp.
 pub fn set_end_strain(t: &mut Table, strain: f64, velocity: f64, diameter: f64) {
     let ramp = t["platens"][0].get("ramp_time").and_then(Value::as_float).unwrap_or(0.0);
     let end = ramp + strain * diameter / (2.0 * velocity);
     if let Some(s) = t.get_mut("solver").and_then(Value::as_table_mut) {
         s.insert("end_time".into(), end.into());
     }
+}
+
+/// One frame, at the end time, for a study that reads the history only.
+pub fn set_single_frame(t: &mut Table) {
+    let end = t["solver"]["end_time"].as_float().unwrap_or(0.0);
     if let Some(o) = t.get_mut("output").and_then(Value::as_table_mut) {
         o.insert("interval".into(), end.into());
     }
+}
+
+/// A run's directory name from a variant's name: ASCII letters and digits
+/// kept, anything else `_`.
+pub fn slug(name: &str) -> String {
+    name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect()
 }
 
 /// Sets `[contact] key` to `value`.
@@ -237,7 +247,7 @@ mod tests {
     use toml::{Table, Value};
 
     fn disc_part(text: &str) -> Table {
-        let t: Table = text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
+        let t: Table = text.parse().unwrap();
         t["mesh"]["parts"][0].as_table().unwrap().clone()
     }
 
@@ -263,7 +273,7 @@ mod tests {
             set_end_strain(t, 2.5e-3, 0.5, base.disc.diameter);
         };
         let text = base.case("t", extruded, 0.5, &tweak).unwrap();
-        let t: Table = text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap();
+        let t: Table = text.parse().unwrap();
         assert_eq!(t["mesh"]["regions"][0]["breakable"], Value::Boolean(false));
         let ramp = t["platens"][0]["ramp_time"].as_float().unwrap();
         let end = t["solver"]["end_time"].as_float().unwrap();

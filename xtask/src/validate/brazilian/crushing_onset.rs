@@ -17,7 +17,7 @@ use anyhow::Result;
 use toml::{Table, Value};
 
 use super::analysis::{DROP, Outcome};
-use super::case::{Base, MAX_STRAIN, Mesh, set_contact, set_platen_friction};
+use super::case::{Base, MAX_STRAIN, Mesh, set_contact, set_platen_friction, set_single_frame, slug};
 use crate::validate::runner::Femdem;
 
 /// Platen speed of the runs, m/s (the paper's fastest rate).
@@ -76,12 +76,10 @@ fn variants(base: &Base, mesh: Mesh) -> Vec<(&'static str, String, Mesh, Tweak)>
 /// Ends the run at its first drop of [`DROP`] after a failure, with a
 /// single frame at the end.
 fn stop_at_first_drop(t: &mut Table) {
-    let end = t["solver"]["end_time"].as_float().unwrap_or(0.0);
-    if let Some(o) = t.get_mut("output").and_then(Value::as_table_mut) {
-        o.insert("interval".into(), end.into());
-        if let Some(ls) = o.get_mut("load_strain").and_then(Value::as_table_mut) {
-            ls.insert("stop_below_peak".into(), (1.0 - DROP).into());
-        }
+    set_single_frame(t);
+    let ls = t.get_mut("output").and_then(|o| o.get_mut("load_strain")).and_then(Value::as_table_mut);
+    if let Some(ls) = ls {
+        ls.insert("stop_below_peak".into(), (1.0 - DROP).into());
     }
 }
 
@@ -106,8 +104,7 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<Strin
             tweak(t);
             stop_at_first_drop(t);
         })?;
-        let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
-        let run = femdem.run(&dir.join(format!("onset_{slug}")), "brazilian", &case)?;
+        let run = femdem.run(&dir.join(format!("onset_{}", slug(name))), "brazilian", &case)?;
         rows.push((name, change, Outcome::read(run, disc)?));
     }
     let first = |o: &Outcome| first_drop(o).map(|(f, t)| (f, t, o.failures.iter().filter(|x| x.time <= t).count()));
@@ -139,7 +136,7 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<Strin
             );
             continue;
         };
-        let strain = o.time.iter().position(|&x| x >= t).map_or(f64::NAN, |i| o.curve[i].0);
+        let strain = o.strain_at_time(t).unwrap_or(f64::NAN);
         let before = femdem_post::failures::Modes::of(o.failures.iter().filter(|x| x.time <= t));
         let delta = base_drop.map_or("—".into(), |b| format!("{:+.1}%", 100.0 * (f / b - 1.0)));
         let beyond = match (base_drop, spread) {
@@ -172,7 +169,7 @@ mod tests {
     use toml::Table;
 
     fn parsed(text: &str) -> Table {
-        text.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n").parse().unwrap()
+        text.parse().unwrap()
     }
 
     /// Every variant's disc file exists, each changes what it says, and

@@ -73,7 +73,7 @@ fn mesh(profile: Profile, disc: DiscMesh) -> Mesh {
     match profile {
         // Ten 4 mm triangles across the diameter: minutes per rate.
         Profile::Quick => Mesh { element_size: 4.0e-3, layers: 4, platen_size: 4.0e-3, gmsh },
-        // The paper's ~1.2 mm (§3.1), 51,690 unstructured tets in its disc.
+        // The paper's ~1.2 mm (§3.1; the paper's disc has 51,690 tets).
         Profile::Paper => Mesh { element_size: 1.2e-3, layers: 10, platen_size: 2.0e-3, gmsh },
     }
 }

@@ -105,7 +105,7 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path, baseline: &Outc
     for (name, change, m, tweak) in variants(base, mesh) {
         let title = format!("Brazilian disc, V_y = {RATE} m/s, sensitivity: {name} (cargo xtask validate)");
         let case = base.case(&title, m, RATE, &*tweak)?;
-        let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
+        let slug = super::case::slug(name);
         let run = femdem.run(&dir.join(format!("sensitivity_{slug}")), "brazilian", &case)?;
         row(&mut md, name, &change, &Outcome::read(run, base.disc)?);
     }

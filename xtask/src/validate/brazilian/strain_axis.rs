@@ -26,7 +26,9 @@ use toml::Table;
 
 use super::PAPER_PEAK;
 use super::analysis::Outcome;
-use super::case::{Base, Mesh, set_contact, set_end_strain, set_gmsh_disc, set_material, set_unbreakable};
+use super::case::{
+    Base, Mesh, set_contact, set_end_strain, set_gmsh_disc, set_material, set_single_frame, set_unbreakable, slug,
+};
 use crate::validate::plot;
 use crate::validate::runner::Femdem;
 use femdem_post::diametral::{self, Elastic, Plane};
@@ -116,9 +118,7 @@ fn strain_at(o: &Outcome, f: f64) -> Option<(f64, usize)> {
 
 /// The strain of the first joint failure, if one failed by the run's end.
 fn strain_at_failure(o: &Outcome) -> Option<f64> {
-    let t = o.first_failure()?.time;
-    let i = o.time.iter().position(|&x| x >= t)?;
-    Some(o.curve[i].0)
+    o.strain_at_time(o.first_failure()?.time)
 }
 
 /// The rigid-contact limit ε∞ and the exponent α of
@@ -152,10 +152,10 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, gmsh: &'static str, dir: &P
         let tweak = |t: &mut Table| {
             (variant.tweak)(t);
             set_end_strain(t, END_STRAIN, rate, disc.diameter);
+            set_single_frame(t);
         };
         let case = base.case(&title, mesh, rate, &tweak)?;
-        let slug: String = variant.key.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
-        let run = femdem.run(&dir.join(format!("strain_{slug}")), "brazilian", &case)?;
+        let run = femdem.run(&dir.join(format!("strain_{}", slug(variant.key))), "brazilian", &case)?;
         let outcome = Outcome::read(run, disc)?;
         runs.push((variant, outcome));
     }

@@ -98,17 +98,42 @@ impl Grid {
         s.map(|v| v / cell.len() as f64)
     }
 
-    /// The volume of tetrahedral cell `c`, m³.
+    /// The volume of tetrahedral cell `c` at the frame's positions, m³.
     pub fn tet_volume(&self, c: usize) -> f64 {
-        let p = |k: usize| self.points[self.cells[c][k]];
-        let (a, b, cc, d) = (p(0), p(1), p(2), p(3));
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]];
-        let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
-        let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-            + u[2] * (v[0] * w[1] - v[1] * w[0]);
-        det.abs() / 6.0
+        tet_volume([0, 1, 2, 3].map(|k| self.points[self.cells[c][k]]))
     }
+
+    /// The undeformed positions of the points (their positions less the
+    /// frame's `displacement`), m.
+    pub fn undeformed_points(&self) -> Result<Vec<[f64; 3]>> {
+        let (_, u) = self.point("displacement")?;
+        Ok(self.points.iter().enumerate().map(|(i, p)| [0, 1, 2].map(|k| p[k] - u[3 * i + k])).collect())
+    }
+
+    /// A grid of `points` and `cells` without arrays (to build frames in
+    /// tests; add arrays with [`Grid::add_point`]).
+    pub fn new(points: Vec<[f64; 3]>, cells: Vec<Vec<usize>>) -> Grid {
+        Grid { points, cells, cell_data: Vec::new(), point_data: Vec::new() }
+    }
+
+    /// Adds the point array `name` of `components` values per point.
+    pub fn add_point(&mut self, name: &str, components: usize, values: Vec<f64>) {
+        assert_eq!(
+            values.len(),
+            components * self.points.len(),
+            "point array `{name}`: one value per component and point"
+        );
+        self.point_data.push((name.to_owned(), components, values));
+    }
+}
+
+/// The volume of the tetrahedron `p`, m³.
+pub fn tet_volume(p: [[f64; 3]; 4]) -> f64 {
+    let d = |k: usize| [0, 1, 2].map(|c| p[k][c] - p[0][c]);
+    let (u, v, w) = (d(1), d(2), d(3));
+    let det =
+        u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    det.abs() / 6.0
 }
 
 /// The array `name` of `arrays` (`kind` names them in the error): its

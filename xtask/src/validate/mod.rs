@@ -1,6 +1,6 @@
 //! `cargo xtask validate [--profile quick|paper] [--case NAME] [--rates LIST]
 //! [--ramp S] [--end-time S] [--mesh unstructured|lattice|both] [--weibull M]
-//! [--disc extruded|unstructured] [--out DIR]
+//! [--disc extruded|unstructured] [--element-size M] [--out DIR]
 //! [--sensitivity | --strain-axis | --crushing-onset]`:
 //! runs the reference paper's examples through `femdem run`, as a user
 //! would, checks the results against the paper and closed forms, and writes
@@ -43,7 +43,14 @@
 //! `--crushing-onset` (paper profile) runs, for the Brazilian case, only the
 //! study of whether the first load drop (the first crushing under a platen)
 //! is converged: seven runs at 0.1 m/s to their first 5% drop, one change
-//! each, against the spread of two meshes of the same disc.
+//! each, against the spread of two meshes of the same disc; `--variants
+//! baseline,contact__10` runs only those (the run directories' names less
+//! `onset_`).
+//!
+//! `--element-size M` (with `--case multilayer`) meshes the multi-layer
+//! block with M m triangle edges instead of the profile's (0.15 quick,
+//! 0.024 paper), e.g. 0.048 for h ≈ l_ch / 3; the checks stay the profile's
+//! (gated in the paper profile only).
 //!
 //! A run that finished before with the same case text is reused, and one
 //! that did not finish continues from its latest checkpoint
@@ -103,6 +110,18 @@ fn positive(flag: &str, text: &str, what: &str) -> Result<f64> {
     }
 }
 
+/// `--element-size` sets the multi-layer mesh alone: refused unless the
+/// run is that case's alone (`only`), so that no other case seems to follow it.
+fn element_size_applies(only: Option<&str>, element_size: Option<f64>) -> Result<()> {
+    match (element_size, only) {
+        (Some(_), Some("multilayer")) | (None, _) => Ok(()),
+        (Some(_), other) => bail!(
+            "--element-size sets the multi-layer case's mesh: add `--case multilayer` (the run asked for {})",
+            other.map_or("every case".to_owned(), |o| format!("`{o}`"))
+        ),
+    }
+}
+
 /// The platen speeds of `--rates`, m/s (a newtype: clap would read a
 /// `Vec` as repeated options).
 #[derive(Debug, Clone)]
@@ -134,6 +153,10 @@ pub struct Args {
     /// modulus.
     #[arg(long, value_name = "M", value_parser = |s: &str| positive("--weibull", s, "a positive Weibull modulus"))]
     weibull: Option<f64>,
+    /// Multi-layer: the extrusion's target triangle edge, m (default: the
+    /// profile's, 0.15 quick, 0.024 paper), e.g. 0.048 for h ≈ l_ch / 3.
+    #[arg(long = "element-size", value_name = "M", value_parser = |s: &str| positive("--element-size", s, "a positive length in metres"))]
+    element_size: Option<f64>,
     /// Where the report and the runs go (default target/validation).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -152,6 +175,11 @@ pub struct Args {
     /// first load drop converged?), instead of the rates.
     #[arg(long = "crushing-onset", conflicts_with_all = ["sensitivity", "rates", "strain_axis", "disc"])]
     crushing_onset: bool,
+    /// With --crushing-onset: only these variants, by their run
+    /// directories' names less `onset_` (comma-separated, e.g.
+    /// `baseline,contact__10`).
+    #[arg(long, value_name = "LIST", requires = "crushing_onset", value_delimiter = ',')]
+    variants: Option<Vec<String>>,
 }
 
 /// Runs the task.
@@ -164,11 +192,13 @@ pub fn run(args: Args) -> Result<()> {
         end_time,
         mesh,
         weibull,
+        element_size,
         out,
         disc,
         sensitivity,
         strain_axis,
         crushing_onset,
+        variants,
     } = args;
     let study = match (sensitivity, strain_axis, crushing_onset) {
         (_, _, true) => brazilian::Study::CrushingOnset,
@@ -190,6 +220,7 @@ pub fn run(args: Args) -> Result<()> {
         (Some(_), _) => Some("brazilian".to_owned()),
         (None, only) => only,
     };
+    element_size_applies(only.as_deref(), element_size)?;
     let rates = rates.map(|r| r.0);
     let mut variant = polyaxial::Variant { ramp, end: end_time, weibull, ..polyaxial::Variant::default() };
     if let Some(m) = mesh {
@@ -216,10 +247,10 @@ pub fn run(args: Args) -> Result<()> {
         match name {
             "brazilian" => {
                 let rates = rates.as_deref().unwrap_or(&brazilian::RATES);
-                brazilian::validate(&femdem, (profile, disc), rates, study, &out, &mut report)?
+                brazilian::validate(&femdem, (profile, disc), rates, (study, variants.as_deref()), &out, &mut report)?
             }
             "polyaxial" => polyaxial::validate(&femdem, profile, variant, &out, &mut report)?,
-            "multilayer" => multilayer::validate(&femdem, profile, &out, &mut report)?,
+            "multilayer" => multilayer::validate(&femdem, profile, element_size, &out, &mut report)?,
             _ => unreachable!("every built case is dispatched"),
         }
     }
@@ -246,7 +277,7 @@ pub fn run(args: Args) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::polyaxial::Meshes;
-    use super::{Args, brazilian, positive, seconds};
+    use super::{Args, brazilian, element_size_applies, positive, seconds};
     use clap::{Args as _, FromArgMatches as _};
 
     fn parse(args: &[&str]) -> Result<Args, clap::Error> {
@@ -296,5 +327,21 @@ mod tests {
         assert_eq!(positive("--weibull", "20", "a modulus").unwrap(), 20.0);
         let e = positive("--weibull", "-8", "a positive Weibull modulus").unwrap_err().to_string();
         assert!(e.contains("--weibull needs a positive Weibull modulus, not `-8`"), "{e}");
+    }
+
+    #[test]
+    fn the_element_size_is_the_multilayer_cases_alone() {
+        let a = parse(&["--case", "multilayer", "--element-size", "0.048"]).unwrap();
+        assert_eq!(a.element_size, Some(0.048));
+        assert!(element_size_applies(Some("multilayer"), a.element_size).is_ok());
+        assert!(element_size_applies(None, None).is_ok());
+        for only in [None, Some("brazilian")] {
+            let e = element_size_applies(only, Some(0.048)).unwrap_err().to_string();
+            assert!(e.contains("--case multilayer"), "{e}");
+        }
+        for bad in ["--element-size=-0.05", "--element-size=0", "--element-size=48mm"] {
+            let e = parse(&[bad]).unwrap_err().to_string();
+            assert!(e.contains("--element-size needs a positive length in metres"), "{bad}: {e}");
+        }
     }
 }

@@ -13,7 +13,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use toml::{Table, Value};
 
 use super::analysis::{DROP, Outcome};
@@ -93,12 +93,27 @@ fn first_drop(o: &Outcome) -> Option<(f64, f64)> {
     o.first_drop.or_else(|| stopped.then_some((o.peak, o.peak_time)))
 }
 
-/// Runs the study on the 1.2 mm Gmsh discs and returns its Markdown
-/// section.
-pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<String> {
+/// The variants named in `only` (by their run directories' slugs, e.g.
+/// `contact__10`), or all of them; an unknown name is an error listing the
+/// names.
+fn chosen(
+    all: Vec<(&'static str, String, Mesh, Tweak)>,
+    only: Option<&[String]>,
+) -> Result<Vec<(&'static str, String, Mesh, Tweak)>> {
+    let Some(only) = only else { return Ok(all) };
+    let names: Vec<String> = all.iter().map(|v| slug(v.0)).collect();
+    if let Some(bad) = only.iter().find(|o| !names.contains(o)) {
+        bail!("--variants: no crushing-onset variant `{bad}`; the variants: {}", names.join(", "));
+    }
+    Ok(all.into_iter().filter(|v| only.contains(&slug(v.0))).collect())
+}
+
+/// Runs the study on the 1.2 mm Gmsh discs (only the variants `only`
+/// names, where given) and returns its Markdown section.
+pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, only: Option<&[String]>, dir: &Path) -> Result<String> {
     let disc = base.disc;
     let mut rows = Vec::new();
-    for (name, change, m, tweak) in variants(base, mesh) {
+    for (name, change, m, tweak) in chosen(variants(base, mesh), only)? {
         let title = format!("Brazilian disc, V_y = {RATE} m/s, crushing onset: {name} (cargo xtask validate)");
         let case = base.case(&title, m, RATE, &|t: &mut Table| {
             tweak(t);
@@ -164,7 +179,7 @@ pub fn run(femdem: &Femdem, base: &Base, mesh: Mesh, dir: &Path) -> Result<Strin
 
 #[cfg(test)]
 mod tests {
-    use super::{REFINED, stop_at_first_drop, variants};
+    use super::{REFINED, chosen, stop_at_first_drop, variants};
     use crate::validate::brazilian::case::{Base, Mesh};
     use toml::Table;
 
@@ -201,5 +216,18 @@ mod tests {
             };
             assert_eq!(friction, expected, "{name}");
         }
+    }
+
+    #[test]
+    fn variants_are_chosen_by_their_run_directories_names() {
+        let base = Base::load().unwrap();
+        let mesh = Mesh { element_size: 1.2e-3, layers: 10, platen_size: 2.0e-3, gmsh: None };
+        let all = || variants(&base, mesh);
+        assert_eq!(chosen(all(), None).unwrap().len(), all().len());
+        let only = ["contact__10".to_owned(), "disc_refined_at_the_platens".to_owned()];
+        let names: Vec<&str> = chosen(all(), Some(&only)).unwrap().iter().map(|v| v.0).collect();
+        assert_eq!(names, ["contact ×10", "disc refined at the platens"]);
+        let e = chosen(all(), Some(&["contact".to_owned()])).err().unwrap().to_string();
+        assert!(e.contains("`contact`") && e.contains("contact__10") && e.contains("baseline"), "{e}");
     }
 }

@@ -99,13 +99,14 @@ pub enum Study {
     CrushingOnset,
 }
 
-/// Runs the case in `profile` on the disc mesh `disc` as `study` says,
-/// adding its checks and sections to `report`.
+/// Runs the case in `profile` on the disc mesh `disc` as `study` says
+/// (the crushing-onset study only the variants named in `onset_only`,
+/// where given), adding its checks and sections to `report`.
 pub fn validate(
     femdem: &Femdem,
     (profile, disc_mesh): (Profile, DiscMesh),
     rates: &[f64],
-    study: Study,
+    (study, onset_only): (Study, Option<&[String]>),
     out: &Path,
     report: &mut Report,
 ) -> Result<()> {
@@ -121,7 +122,7 @@ pub fn validate(
             anyhow::bail!("--crushing-onset runs the 1.2 mm discs: give --profile paper");
         }
         let mut md = format!("## Brazilian disc: the crushing onset ({} profile)\n", profile.name());
-        md.push_str(&crushing_onset::run(femdem, &base, mesh, &dir)?);
+        md.push_str(&crushing_onset::run(femdem, &base, mesh, onset_only, &dir)?);
         report.sections.push(md);
         return Ok(());
     }

@@ -54,14 +54,13 @@ pub fn sigma1_section(
     title: &str,
 ) -> Result<()> {
     let (_, principal) = grid.cell("principal_stress")?;
-    let (_, u) = grid.point("displacement")?;
-    let x0 = |i: usize| [0, 1, 2].map(|k| grid.points[i][k] - u[3 * i + k]);
+    let x0 = grid.undeformed_points()?;
     let mut tris: Vec<Flat> = Vec::new();
     for (c, cell) in grid.cells.iter().enumerate() {
         if cell.len() != 4 {
             continue;
         }
-        let poly = section([0, 1, 2, 3].map(|k| x0(cell[k])), z);
+        let poly = section([0, 1, 2, 3].map(|k| x0[cell[k]]), z);
         if poly.len() < 3 {
             continue;
         }

@@ -8,6 +8,7 @@
 
 mod case;
 mod figures;
+mod strips;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -119,11 +120,21 @@ fn plan_view(f: &[Failure]) -> Vec<[f64; 2]> {
     f.iter().map(|f| [f.at[0], f.at[1]]).collect()
 }
 
-/// Runs the case in `profile`, adding its checks and sections to `report`.
-pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Report) -> Result<()> {
+/// Runs the case in `profile` (on `element_size` m elements where given,
+/// else the profile's), adding its checks and sections to `report`.
+pub fn validate(
+    femdem: &Femdem,
+    profile: Profile,
+    element_size: Option<f64>,
+    out: &Path,
+    report: &mut Report,
+) -> Result<()> {
     let base = Base::load()?;
     let block = base.block.clone();
-    let p = plan(profile);
+    let mut p = plan(profile);
+    if let Some(h) = element_size {
+        p.element_size = h;
+    }
     let title = format!(
         "Multi-layer rock (Guo et al. §3.3), {:.0} mm elements, {} profile (cargo xtask validate)",
         1e3 * p.element_size,
@@ -319,24 +330,66 @@ pub fn validate(femdem: &Femdem, profile: Profile, out: &Path, report: &mut Repo
         .collect();
     let _ = writeln!(md, "{}\n", fifths.join("; "));
 
+    // Where the kinetic energy lies: the strips along the x faces or the
+    // interior, once the stresses are held and at the end.
+    let frames = o.frames("")?;
+    // The first frame once the stresses are held, and the last frame.
+    let after_ramp = |f: &[(f64, PathBuf)]| -> Result<(f64, PathBuf)> {
+        f.iter().find(|(t, _)| *t >= block.ramp * (1.0 - 1e-9)).or(f.last()).cloned().context("no frame")
+    };
+    let last = |f: &[(f64, PathBuf)]| -> Result<(f64, PathBuf)> { f.last().cloned().context("no frame") };
+    let strip_rows = [("end of the ramp", after_ramp(&frames)?), ("end", last(&frames)?)];
+    let _ = writeln!(
+        md,
+        "Kinetic energy in the {:.0} mm strips along the two x faces (from the frames' nodal velocities, lumped mass):\n\n\
+         | frame | t (ms) | kinetic energy (kJ) | in the strips | strips' mass | strips' mean outward v_x (m/s) | fastest outward node (m/s) | interior rms speed (m/s) |\n|---|---|---|---|---|---|---|---|",
+        1e3 * strips::WIDTH
+    );
+    let mut at_end = None;
+    for (name, (t, file)) in strip_rows {
+        let s = strips::measure(&Grid::read(&file)?, lo[0], hi[0], block.density)?;
+        let _ = writeln!(
+            md,
+            "| {name} | {:.2} | {:.3} | {:.0}% | {:.0}% | {:.2} | {:.2} | {:.3} |",
+            1e3 * t,
+            1e-3 * s.kinetic,
+            100.0 * s.kinetic_share,
+            100.0 * s.mass_share,
+            s.mean_outward,
+            s.max_outward,
+            s.interior_rms
+        );
+        at_end = Some(s);
+    }
+    md.push('\n');
+    if let Some(s) = at_end {
+        report.check(
+            c,
+            &format!("the x-face strips at the end ({:.0} mm wide)", 1e3 * strips::WIDTH),
+            "no run-away: a stable final pattern (§3.3.2)".into(),
+            format!(
+                "{:.0}% of the kinetic energy ({:.0}% of the mass), moving outward at {:.2} m/s (mean), {:.2} m/s (fastest node); interior rms {:.3} m/s",
+                100.0 * s.kinetic_share,
+                100.0 * s.mass_share,
+                s.mean_outward,
+                s.max_outward,
+                s.interior_rms
+            ),
+            "reported",
+            true,
+            Kind::Info,
+        );
+    }
+
     let figs = out.join("figures");
     std::fs::create_dir_all(&figs)?;
     let pad = 0.03 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
     let bounds = (lo[0] - pad..hi[0] + pad, lo[1] - pad..hi[1] + pad);
     let z_mid = block.z0 + 0.5 * block.thickness;
-    let frames = o.frames("")?;
     let fracture_frames = o.frames("_fractures")?;
-    // The first frame once the stresses are held, and the last frame.
-    let after_ramp = |f: &[(f64, PathBuf)]| -> Result<(f64, PathBuf)> {
-        f.iter().find(|(t, _)| *t >= block.ramp * (1.0 - 1e-9)).or(f.last()).cloned().context("no frame")
-    };
     let shots = [
         ("ramp", after_ramp(&frames)?, after_ramp(&fracture_frames)?),
-        (
-            "end",
-            frames.last().cloned().context("no frame")?,
-            fracture_frames.last().cloned().context("no fracture frame")?,
-        ),
+        ("end", last(&frames)?, last(&fracture_frames)?),
     ];
     for (name, (t, frame), (tf, fracture)) in shots {
         let s1 = format!("multilayer_sigma1_{name}.png");

@@ -58,6 +58,9 @@ const END_TIME: f64 = 4.0e-3;
 
 /// Share of the first new failures that must lie near a tip or a junction.
 const NEAR_SHARE: f64 = 0.8;
+/// The earliest failures, reported beside the first [`FIRST_SHARE`]: this
+/// share of all new failures.
+const EARLIEST_SHARE: f64 = 0.01;
 /// "Near": within this many element sizes (the issue's 3).
 const NEAR_SIZES: f64 = 3.0;
 /// The first failures: this share of all new failures (the issue's 10%).
@@ -105,8 +108,14 @@ impl Outcome {
     /// The first [`FIRST_SHARE`] of the new failures (at least one, when
     /// any failed), in the order they failed.
     fn first(&self) -> &[Failure] {
+        self.first_share(FIRST_SHARE)
+    }
+
+    /// The first `share` of the new failures (at least one, when any
+    /// failed), in the order they failed.
+    fn first_share(&self, share: f64) -> &[Failure] {
         let n = self.failures.len();
-        &self.failures[..((FIRST_SHARE * n as f64).ceil() as usize).min(n)]
+        &self.failures[..((share * n as f64).ceil() as usize).min(n)]
     }
 
     /// The frames of series `suffix` ("" or "_fractures"): `(time, file)`.
@@ -287,22 +296,36 @@ pub fn validate(
         1e3 * first.first().map_or(f64::NAN, |f| f.time),
         1e3 * first.last().map_or(f64::NAN, |f| f.time)
     );
-    md.push_str(
+    // On a fine mesh the first tenth spans much of the ramp: the first
+    // hundredth shows where the fracturing starts.
+    let earliest = o.first_share(EARLIEST_SHARE);
+    let earliest_xy = plan_view(earliest);
+    let _ = writeln!(
+        md,
         "Share of failures (seen along z) within a distance of a pre-existing tip or junction, against uniformly random points \
-         (the share of the section that lies that close):\n\n| distance | first 10% of failures | all failures | random points |\n|---|---|---|---|\n",
+         (the share of the section that lies that close); the first {:.0}% are {} failures to {:.3} ms ({}):\n\n\
+         | distance | first {:.0}% of failures | first {:.0}% | all failures | random points |\n|---|---|---|---|---|",
+        100.0 * EARLIEST_SHARE,
+        earliest.len(),
+        1e3 * earliest.last().map_or(f64::NAN, |f| f.time),
+        Modes::of(earliest.iter()).text(),
+        100.0 * EARLIEST_SHARE,
+        100.0 * FIRST_SHARE
     );
     for k in [1.0, 2.0, NEAR_SIZES] {
         let r = k * h;
         let _ = writeln!(
             md,
-            "| {:.0} mm ({k} element size{}) | {:.0}% | {:.0}% | {:.0}% |",
+            "| {:.0} mm ({k} element size{}) | {:.0}% | {:.0}% | {:.0}% | {:.0}% |",
             1e3 * r,
             if k == 1.0 { "" } else { "s" },
+            100.0 * tips::share_within(&earliest_xy, &all_sites, r),
             100.0 * tips::share_within(&first_xy, &all_sites, r),
             100.0 * tips::share_within(&all_xy, &all_sites, r),
             100.0 * tips::share_within(&baseline, &all_sites, r)
         );
     }
+    md.push('\n');
     if let Some(w) = o.work_by_axis {
         let share = |x: f64| 100.0 * x / o.work.max(f64::MIN_POSITIVE);
         let _ = writeln!(

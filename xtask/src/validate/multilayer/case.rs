@@ -26,8 +26,10 @@ pub struct Block {
     pub map: PathBuf,
     /// Input tensile strength f_t, Pa.
     pub tensile_strength: f64,
-    /// The rock's density, kg/m³ (the kinetic energy of the x-face strips).
-    pub density: f64,
+    /// The nodal mass per unit volume, kg/m³: the rock's density times
+    /// `[solver] mass_scaling` (1 where not set), as femdem lumps it (the
+    /// kinetic energy of the x-face strips).
+    pub mass_density: f64,
     /// The longest ramp of the loads, s: the stresses are held after it.
     pub ramp: f64,
     /// The stresses the held pressures set far from the fractures, and the
@@ -99,6 +101,13 @@ impl Base {
                 .with_context(|| format!("{BASE}: no pressure on a group `*{side}`"))?;
             Ok(-num(load.get("pressure"), "loads.pressure")?)
         };
+        let mass_scaling = match table.get("solver").and_then(|s| s.get("mass_scaling")) {
+            None => 1.0,
+            v => num(v, "solver.mass_scaling")?,
+        };
+        if table.get("materials").and_then(Value::as_array).is_some_and(|m| m.len() != 1) {
+            bail!("{BASE}: the multi-layer checks read one material, the rock's");
+        }
         let friction = num(table.get("contact").and_then(|c| c.get("friction")), "contact.friction")?;
         let far = FarField { sxx: stress(".xmin")?, syy: stress(".ymin")?, friction };
         let block = Block {
@@ -107,7 +116,7 @@ impl Base {
             thickness: num(p.get("thickness"), "mesh.parts[0].thickness")?,
             map,
             tensile_strength: num(material.get("tensile_strength"), "materials[0].tensile_strength")?,
-            density: num(material.get("density"), "materials[0].density")?,
+            mass_density: num(material.get("density"), "materials[0].density")? * mass_scaling,
             ramp,
             far,
         };

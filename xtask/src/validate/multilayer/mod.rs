@@ -356,9 +356,11 @@ pub fn validate(
     // Where the kinetic energy lies: the strips along the x faces or the
     // interior, once the stresses are held and at the end.
     let frames = o.frames("")?;
-    // The first frame once the stresses are held, and the last frame.
+    // The frame at the end of the ramp (the first within half an interval
+    // of it: frames are stamped at the step nearest their time, up to half
+    // a step early), and the last frame.
     let after_ramp = |f: &[(f64, PathBuf)]| -> Result<(f64, PathBuf)> {
-        f.iter().find(|(t, _)| *t >= block.ramp * (1.0 - 1e-9)).or(f.last()).cloned().context("no frame")
+        f.iter().find(|(t, _)| *t >= block.ramp - 0.5 * p.interval).or(f.last()).cloned().context("no frame")
     };
     let last = |f: &[(f64, PathBuf)]| -> Result<(f64, PathBuf)> { f.last().cloned().context("no frame") };
     let strip_rows = [("end of the ramp", after_ramp(&frames)?), ("end", last(&frames)?)];
@@ -368,9 +370,9 @@ pub fn validate(
          | frame | t (ms) | kinetic energy (kJ) | in the strips | strips' mass | strips' mean outward v_x (m/s) | fastest outward node (m/s) | interior rms speed (m/s) |\n|---|---|---|---|---|---|---|---|",
         1e3 * strips::WIDTH
     );
-    let mut at_end = None;
+    let mut measured = Vec::new();
     for (name, (t, file)) in strip_rows {
-        let s = strips::measure(&Grid::read(&file)?, lo[0], hi[0], block.density)?;
+        let s = strips::measure(&Grid::read(&file)?, lo[0], hi[0], block.mass_density)?;
         let _ = writeln!(
             md,
             "| {name} | {:.2} | {:.3} | {:.0}% | {:.0}% | {:.2} | {:.2} | {:.3} |",
@@ -382,24 +384,29 @@ pub fn validate(
             s.max_outward,
             s.interior_rms
         );
-        at_end = Some(s);
+        measured.push(s);
     }
     md.push('\n');
-    if let Some(s) = at_end {
+    if let [held, s] = measured[..] {
         report.check(
             c,
-            &format!("the x-face strips at the end ({:.0} mm wide)", 1e3 * strips::WIDTH),
+            &format!(
+                "the x-face strips ({:.0} mm wide) do not speed up once the stresses are held",
+                1e3 * strips::WIDTH
+            ),
             "no run-away: a stable final pattern (§3.3.2)".into(),
             format!(
-                "{:.0}% of the kinetic energy ({:.0}% of the mass), moving outward at {:.2} m/s (mean), {:.2} m/s (fastest node); interior rms {:.3} m/s",
-                100.0 * s.kinetic_share,
-                100.0 * s.mass_share,
+                "mean outward v_x {:.2} m/s at the end of the ramp, {:.2} m/s at the end (fastest node {:.2} m/s); \
+                 {:.0}% of the kinetic energy ({:.0}% of the mass); interior rms {:.3} m/s",
+                held.mean_outward,
                 s.mean_outward,
                 s.max_outward,
+                100.0 * s.kinetic_share,
+                100.0 * s.mass_share,
                 s.interior_rms
             ),
-            "reported",
-            true,
+            "end ≤ end of the ramp",
+            s.mean_outward <= held.mean_outward,
             Kind::Info,
         );
     }

@@ -32,15 +32,16 @@ pub struct Strips {
 }
 
 /// The strips of `grid` (a frame with `displacement` and `velocity` point
-/// arrays) for a block between `x_min` and `x_max` of density `density`.
-pub fn measure(grid: &Grid, x_min: f64, x_max: f64, density: f64) -> Result<Strips> {
+/// arrays) for a block between `x_min` and `x_max` whose nodal mass per
+/// unit volume is `mass_density` (kg/m³: ρ times `[solver] mass_scaling`).
+pub fn measure(grid: &Grid, x_min: f64, x_max: f64, mass_density: f64) -> Result<Strips> {
     let x0 = grid.undeformed_points()?;
     let (_, v) = grid.point("velocity")?;
     let (mut mass, mut strip_mass, mut kinetic, mut strip_kinetic) = (0.0, 0.0, 0.0, 0.0);
     let (mut outward_momentum, mut max_outward, mut interior_mv2) = (0.0, f64::NEG_INFINITY, 0.0);
     for cell in grid.cells.iter().filter(|c| c.len() == 4) {
         let p = [0, 1, 2, 3].map(|k| x0[cell[k]]);
-        let m = 0.25 * density * tet_volume(p);
+        let m = 0.25 * mass_density * tet_volume(p);
         let cx = 0.25 * p.iter().map(|q| q[0]).sum::<f64>();
         // Outward along x: +1 in the x_max strip, −1 in the x_min strip.
         let side = if cx > x_max - WIDTH {
@@ -113,7 +114,7 @@ mod tests {
         let rho = 2000.0;
         let s = measure(&block([[-3.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 2.0, 0.0]]), 0.0, 1.0, rho).unwrap();
         let m = rho * 0.05f64.powi(3) / 6.0;
-        assert!((s.mass_share - 2.0 / 3.0).abs() < 1e-15);
+        assert!((s.mass_share - 2.0 / 3.0).abs() < 1e-12);
         assert!((s.kinetic - 0.5 * m * (9.0 + 5.0)).abs() < 1e-12 * s.kinetic);
         assert_eq!(s.kinetic_share, 1.0);
         // Outward: +3 at x_min (moving −x), +1 at x_max.
@@ -132,8 +133,11 @@ mod tests {
     }
 
     #[test]
-    fn a_block_narrower_than_the_strips_is_refused() {
+    fn a_block_all_strip_or_without_strips_is_refused() {
         let g = block([[0.0; 3]; 3]);
+        // Every tet within WIDTH of x_max.
         assert!(measure(&g, 0.0, 2.0 * WIDTH - 0.2, 1000.0).is_err());
+        // No tet within WIDTH of either face.
+        assert!(measure(&g, -1.0, 3.0, 1000.0).is_err());
     }
 }

@@ -105,7 +105,7 @@ fn chosen(
     if let Some(bad) = only.iter().find(|o| !names.contains(o)) {
         bail!("--variants: no crushing-onset variant `{bad}`; the variants: {}", names.join(", "));
     }
-    Ok(all.into_iter().filter(|v| only.contains(&slug(v.0))).collect())
+    Ok(all.into_iter().zip(names).filter(|(_, n)| only.contains(n)).map(|(v, _)| v).collect())
 }
 
 /// Runs the study on the 1.2 mm Gmsh discs (only the variants `only`

@@ -363,7 +363,9 @@ pub fn validate(
         f.iter().find(|(t, _)| *t >= block.ramp - 0.5 * p.interval).or(f.last()).cloned().context("no frame")
     };
     let last = |f: &[(f64, PathBuf)]| -> Result<(f64, PathBuf)> { f.last().cloned().context("no frame") };
-    let strip_rows = [("end of the ramp", after_ramp(&frames)?), ("end", last(&frames)?)];
+    // The two frames, read once for the strips and the σ1 figures.
+    let read = |(t, file): (f64, PathBuf)| -> Result<(f64, Grid)> { Ok((t, Grid::read(&file)?)) };
+    let held = [read(after_ramp(&frames)?)?, read(last(&frames)?)?];
     let _ = writeln!(
         md,
         "Kinetic energy in the {:.0} mm strips along the two x faces (from the frames' nodal velocities, lumped mass):\n\n\
@@ -371,8 +373,8 @@ pub fn validate(
         1e3 * strips::WIDTH
     );
     let mut measured = Vec::new();
-    for (name, (t, file)) in strip_rows {
-        let s = strips::measure(&Grid::read(&file)?, lo[0], hi[0], block.mass_density)?;
+    for (name, (t, grid)) in ["end of the ramp", "end"].into_iter().zip(&held) {
+        let s = strips::measure(grid, lo[0], hi[0], block.mass_density)?;
         let _ = writeln!(
             md,
             "| {name} | {:.2} | {:.3} | {:.0}% | {:.0}% | {:.2} | {:.2} | {:.3} |",
@@ -417,15 +419,12 @@ pub fn validate(
     let bounds = (lo[0] - pad..hi[0] + pad, lo[1] - pad..hi[1] + pad);
     let z_mid = block.z0 + 0.5 * block.thickness;
     let fracture_frames = o.frames("_fractures")?;
-    let shots = [
-        ("ramp", after_ramp(&frames)?, after_ramp(&fracture_frames)?),
-        ("end", last(&frames)?, last(&fracture_frames)?),
-    ];
-    for (name, (t, frame), (tf, fracture)) in shots {
+    let shots = [("ramp", after_ramp(&fracture_frames)?), ("end", last(&fracture_frames)?)];
+    for ((name, (tf, fracture)), (t, frame)) in shots.into_iter().zip(&held) {
         let s1 = format!("multilayer_sigma1_{name}.png");
         figures::sigma1_section(
             &figs.join(&s1),
-            &Grid::read(&frame)?,
+            frame,
             z_mid,
             block.tensile_strength,
             bounds.clone(),

@@ -14,8 +14,15 @@
 # there with carry = ["target/gpu-carry", ".gl"]. It prints what Vulkan
 # finds and every rate, and copies its output to $OUT/measure.log where
 # $OUT is set; 55-90 s on an H200 machine.
+#
+# Arguments choose the parts (default `bulk contact`): `bulk` the
+# gpu_step boxes, `contact` the three contact cases, `paper` the
+# multi-layer case at the paper's mesh size (24 mm, 603k tets) over its
+# first 40 steps (a minute or two of meshing each, on the CPU and on the
+# device). Device runs print their host wall-clock time by stage.
 set -u
 cd "$(dirname "$0")/../.."
+parts=" ${*:-bulk contact} "
 log=${OUT:-/tmp}/measure.log
 measure() {
 carry=target/gpu-carry
@@ -51,14 +58,16 @@ fi
 threads=$(nproc)
 # A first small box: is the device there, and does f64 run on it?
 RAYON_NUM_THREADS=$threads timeout 40 "$carry/gpu_step" 2000 10 2>&1 | grep -v XDG_RUNTIME_DIR
-# Time limits add up to 400 s (580 s with a baseline), inside one device
-# command's 600 s; on an H200 the whole script took 55-90 s.
+# Time limits: bulk 200 s (380 s with a baseline), contact 180 s, paper
+# 300 s; on an H200 the bulk and contact parts took 55-90 s.
 # A baseline build of the example, if prepared as gpu-carry/gpu_step_base
 # (an earlier commit's), runs before this one's at each size: the same
 # machine's ratio of the two.
 steppers=gpu_step
 [ -x "$carry/gpu_step_base" ] && steppers="gpu_step_base gpu_step"
-for run in "100000 60" "1000000 120"; do
+runs=()
+[[ " $parts " == *" bulk "* ]] && runs=("100000 60" "1000000 120")
+for run in "${runs[@]}"; do
     read -r tets limit <<< "$run"
     for stepper in $steppers; do
         echo "== $stepper, $tets tets, $threads threads"
@@ -70,16 +79,24 @@ done
 # output.interval = 1 s: no frames but the first and last (the windows
 # are shorter), so that writing does not enter the timing.
 femdem="$carry/femdem"
-for run in "cases/brazilian-split.toml solver.end_time=3e-4" "cases/paper/brazilian.toml solver.end_time=2e-5" \
-    "cases/paper/multilayer.toml solver.end_time=5.7e-5"; do
-    read -r case window <<< "$run"
+runs=()
+[[ " $parts " == *" contact "* ]] && runs+=("30 cases/brazilian-split.toml solver.end_time=3e-4" \
+    "30 cases/paper/brazilian.toml solver.end_time=2e-5" "30 cases/paper/multilayer.toml solver.end_time=5.7e-5")
+[[ " $parts " == *" paper "* ]] && runs+=("150 cases/paper/multilayer.toml solver.end_time=7.8e-6 mesh.parts.0.element_size=0.024")
+for run in "${runs[@]}"; do
+    read -r limit case window more <<< "$run"
+    sets=(--set "$window" --set output.interval=1.0)
+    [ -n "${more:-}" ] && sets+=(--set "$more")
     for device in cpu gpu; do
-        echo "== femdem run $case --set $window --device $device, $threads threads"
-        timeout 30 "$femdem" run "$case" --out "/tmp/measure-$device" --overwrite --device "$device" \
-            --threads "$threads" --set "$window" --set output.interval=1.0 2>&1 \
-            | grep -E "^femdem: |^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device" | grep -v XDG_RUNTIME_DIR
+        echo "== femdem run $case ${sets[*]} --device $device, $threads threads"
+        start=$SECONDS
+        timeout "$limit" "$femdem" run "$case" --out "/tmp/measure-$device" \
+            --overwrite --device "$device" --threads "$threads" "${sets[@]}" 2>&1 \
+            | grep -E "^femdem: [0-9]|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stage times" \
+            | grep -v XDG_RUNTIME_DIR
         status=${PIPESTATUS[0]}
-        [ "$status" = 0 ] || echo "femdem run: exit status $status (124: over 30 s)"
+        echo "elapsed $((SECONDS - start)) s, meshing and start included"
+        [ "$status" = 0 ] || echo "femdem run: exit status $status (124: over $limit s)"
     done
 done
 }

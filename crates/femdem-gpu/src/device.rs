@@ -12,6 +12,8 @@ use std::sync::{Arc, Mutex};
 
 use thiserror::Error;
 
+use crate::staging::Pool;
+
 /// Why no device could be opened.
 #[derive(Debug, Error)]
 pub enum GpuError {
@@ -58,9 +60,6 @@ pub enum GpuError {
     },
 }
 
-/// The largest read-back buffer [`Gpu::keep_staging`] keeps, bytes.
-pub(crate) const STAGING_KEPT: u64 = 16 << 20;
-
 /// An opened device and its queue.
 #[derive(Clone, Debug)]
 pub struct Gpu {
@@ -70,7 +69,7 @@ pub struct Gpu {
     limits: wgpu::Limits,
     /// Read-back buffers kept for the next read-back (allocating host
     /// memory every step costs more than the copy).
-    staging: Arc<Mutex<Vec<wgpu::Buffer>>>,
+    staging: Arc<Mutex<Pool<wgpu::Buffer>>>,
     /// Whether a read-back waits by polling the device in a loop rather
     /// than blocking ([`Gpu::set_spin_wait`]).
     spin: Arc<AtomicBool>,
@@ -165,12 +164,9 @@ impl Gpu {
     /// A read-back buffer of at least `bytes` bytes: a kept one, or a new
     /// one (sized to a power of two, so that a few serve every size).
     pub(crate) fn take_staging(&self, bytes: u64) -> wgpu::Buffer {
-        let mut kept = self.staging.lock().expect("the read-back pool");
-        // The smallest that fits (kept largest first).
-        if let Some(k) = kept.iter().rposition(|b| b.size() >= bytes) {
-            return kept.remove(k);
+        if let Some(kept) = self.staging.lock().expect("the read-back pool").take(bytes) {
+            return kept;
         }
-        drop(kept);
         self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read-back"),
             size: bytes.next_power_of_two().max(256),
@@ -179,18 +175,10 @@ impl Gpu {
         })
     }
 
-    /// Keeps an unmapped read-back buffer for [`Gpu::take_staging`]: the
-    /// four largest up to [`STAGING_KEPT`] bytes (a whole-model read-back,
-    /// positions or histories of 10⁶ tets, is made afresh each time rather
-    /// than held in host-visible memory).
+    /// Keeps an unmapped read-back buffer for [`Gpu::take_staging`]
+    /// (which ones: `staging.rs`).
     pub(crate) fn keep_staging(&self, buffer: wgpu::Buffer) {
-        if buffer.size() > STAGING_KEPT {
-            return;
-        }
-        let mut kept = self.staging.lock().expect("the read-back pool");
-        kept.push(buffer);
-        kept.sort_by_key(|b| std::cmp::Reverse(b.size()));
-        kept.truncate(4);
+        self.staging.lock().expect("the read-back pool").keep(buffer);
     }
 
     /// Waits until the submitted work is done and `done` is set (by a

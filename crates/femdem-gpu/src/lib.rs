@@ -46,6 +46,7 @@ mod kernels;
 pub mod math;
 pub mod motion;
 pub mod pairs;
+mod staging;
 pub mod surface;
 pub mod timings;
 

@@ -67,6 +67,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod clock;
 pub mod contact;
 mod device;
 mod error;
@@ -81,6 +82,7 @@ mod state;
 mod step;
 mod timestep;
 
+pub use clock::StageTimes;
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
 pub use device::Residency;
 pub use error::SolverError;

@@ -77,6 +77,10 @@ pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> 
             s.device_bytes
         );
     }
+    if let Some(times) = &s.device_times {
+        let stages: Vec<String> = times.per_step_ms().iter().map(|(name, ms)| format!("{name} {ms:.3}")).collect();
+        println!("stage times ms a step over {} device steps (host wall clock): {}", times.steps, stages.join(", "));
+    }
     println!("built       femdem {}; {}; simd {}", provenance::build(), provenance::cpu(), provenance::simd());
     println!("results     {}", s.frames.display());
     println!("fractures   {} ({} joints failed)", s.fractures.display(), s.failed_joints);

@@ -1,17 +1,45 @@
 //! The candidate pairs' Eq. 17 contacts computed elsewhere than in the
 //! pass — on a device, `femdem_gpu::Bulk::pair_geometry` — for
-//! [`Contact::pass_with`]: what the pass asks for and what it costs.
+//! [`Contact::pass_with`]: which pairs the pass asks for, and what it costs.
+//!
+//! Only the pairs the pass would clip are asked for: a pair within its
+//! certificate's radius is skipped before its geometry is looked at, and a
+//! pair whose bounding boxes are apart has no contact (`pair::evaluate`'s
+//! first test), so neither is sent. The same two tests, on the same
+//! numbers, run again in the pass, so the pairs it looks up are exactly
+//! those asked for.
 
 use femdem_contact::Bounded;
-use femdem_core::Real;
+use femdem_core::{Real, Vec3};
+use rayon::prelude::*;
 
-use super::{Contact, ContactModel};
+use super::pair::boxes_overlap;
+use super::{Contact, ContactModel, certify};
+use crate::model::Model;
 
 /// Where [`Contact::pass_with`] gets the candidate pairs' Eq. 17 contacts:
 /// given the pairs, their `negligible` thresholds (m², where the settings
 /// have one) and the penalty (Pa), one result per pair, or `None` to
 /// compute them on the CPU after all.
 pub(crate) type Geometry<'a> = dyn FnMut(&[[u32; 2]], Option<&[Real]>, Real) -> Option<Vec<Bounded>> + 'a;
+
+/// A candidate not asked for.
+const NOT_ASKED: u32 = u32::MAX;
+
+/// The contacts a geometry gave for the candidates that were asked for.
+pub(super) struct Asked {
+    /// Per candidate, its place in `found`, or [`NOT_ASKED`].
+    slot: Vec<u32>,
+    found: Vec<Bounded>,
+}
+
+impl Asked {
+    /// Candidate `k`'s contact, where it was asked for.
+    pub fn get(&self, k: usize) -> Option<Bounded> {
+        let s = self.slot[k];
+        (s != NOT_ASKED).then(|| self.found[s as usize])
+    }
+}
 
 impl Contact {
     /// Whether [`Contact::pass_with`] asks its geometry for the pairs'
@@ -20,28 +48,59 @@ impl Contact {
         self.settings.model == ContactModel::Potential
     }
 
-    /// Bytes a pass with [`Contact::pass_with`] moves to and from a device
-    /// for its geometry: per candidate pair 8 up (and 8 for its threshold
-    /// where `negligible` is set), 240 back.
+    /// Bytes the last pass with [`Contact::pass_with`] moved to and from a
+    /// device for its geometry: per pair asked for, 8 up (and 8 for its
+    /// threshold where `negligible` is set) and 240 back.
     pub(crate) fn geometry_bytes(&self) -> usize {
         if !self.geometry_elsewhere() {
             return 0;
         }
         let up = if self.settings.negligible > 0.0 { 16 } else { 8 };
-        self.candidates.len() * (up + 240)
+        self.asked * (up + 240)
     }
 
-    /// The candidates' contacts from `geometry`, one per candidate, where
-    /// the model's are computed elsewhere and there are candidates; each
-    /// pair's threshold as `pair::evaluate` forms it, `negligible · ℓ²`.
-    pub(super) fn ask_geometry(&self, geometry: &mut Geometry<'_>) -> Option<Vec<Bounded>> {
+    /// The contacts from `geometry` of the candidates the pass will clip at
+    /// positions `x` (the module documentation), where the model's are
+    /// computed elsewhere and there are such pairs; each pair's threshold
+    /// as `pair::evaluate` forms it, `negligible · ℓ²`. Called after the
+    /// certificates are renewed or anchored, as the pass reads them.
+    pub(super) fn ask_geometry(&mut self, model: &Model, x: &[Vec3], geometry: &mut Geometry<'_>) -> Option<Asked> {
+        self.asked = 0;
         if !self.geometry_elsewhere() || self.candidates.is_empty() {
             return None;
         }
-        let pairs: Vec<[u32; 2]> = self.candidates.iter().map(|&(a, b)| [a, b]).collect();
+        let certifying = self.certifying();
+        let anchor = &self.certificates.anchor;
+        let newly = self.newly.any().then_some(&self.newly);
+        let clipped: Vec<bool> = self
+            .candidates
+            .par_iter()
+            .zip(self.certificates.cached.par_iter())
+            .map(|(&(a, b), &radius)| {
+                let nodes = [model.tets[a as usize], model.tets[b as usize]];
+                let xs = nodes.map(|t| t.map(|n| x[n as usize]));
+                let fresh = newly.is_some_and(|n| n.contains(a, b));
+                let skipped = certifying
+                    && radius > 0.0
+                    && !fresh
+                    && certify::deviation(&xs, &certify::anchors(anchor, &nodes)) <= radius;
+                !skipped && boxes_overlap(&xs[0], &xs[1])
+            })
+            .collect();
+        let mut slot = vec![NOT_ASKED; self.candidates.len()];
+        let mut pairs = Vec::new();
+        for (k, (&(a, b), _)) in self.candidates.iter().zip(&clipped).enumerate().filter(|(_, (_, c))| **c) {
+            slot[k] = u32::try_from(pairs.len()).expect("fewer than 2^32 pairs");
+            pairs.push([a, b]);
+        }
+        if pairs.is_empty() {
+            return None;
+        }
+        self.asked = pairs.len();
         let (negligible, sizes) = (self.settings.negligible, &self.sizes);
-        let omit = |&(a, b): &(u32, u32)| negligible * sizes[a as usize].min(sizes[b as usize]).powi(2);
-        let omits = (negligible > 0.0).then(|| self.candidates.iter().map(omit).collect::<Vec<_>>());
-        geometry(&pairs, omits.as_deref(), self.settings.penalty)
+        let omit = |&[a, b]: &[u32; 2]| negligible * sizes[a as usize].min(sizes[b as usize]).powi(2);
+        let omits = (negligible > 0.0).then(|| pairs.iter().map(omit).collect::<Vec<_>>());
+        let found = geometry(&pairs, omits.as_deref(), self.settings.penalty)?;
+        Some(Asked { slot, found })
     }
 }

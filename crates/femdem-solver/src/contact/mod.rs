@@ -78,7 +78,9 @@ mod sums;
 use femdem_contact::Nbs;
 use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
+use std::time::{Duration, Instant};
 
+use crate::clock::lap;
 use crate::model::Model;
 use certify::{Certificates, Verdict};
 use debts::corrected;
@@ -143,6 +145,17 @@ impl ContactEnergy {
     }
 }
 
+/// Host wall-clock time of [`Contact::pass_with`] by part.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PassClock {
+    /// Resetting the touched nodes, detection, the certificates.
+    pub detection: Duration,
+    /// Choosing the pairs to clip and asking the geometry for them.
+    pub geometry: Duration,
+    /// The pair loop, the sums into the nodes and the bookkeeping after.
+    pub pairs: Duration,
+}
+
 /// The contact pass's state.
 #[derive(Clone, Debug)]
 pub struct Contact {
@@ -188,6 +201,12 @@ pub struct Contact {
     results: Vec<(Option<Box<PairForce>>, Verdict)>,
     /// The negligible pairs' certificates (`certify.rs`).
     certificates: Certificates,
+    /// Pairs whose contacts the last pass asked its geometry for
+    /// (`geometry.rs`).
+    asked: usize,
+    /// Host wall-clock time of the passes by part (not a result: see
+    /// `clock.rs`).
+    pub(crate) clock: PassClock,
     /// Normal contact force per node from the last pass, N.
     pub force: Vec<Vec3>,
     /// Friction force per node from the last pass, N.
@@ -284,6 +303,8 @@ impl Contact {
             pending: Vec::new(),
             results: Vec::new(),
             certificates: Certificates::default(),
+            asked: 0,
+            clock: PassClock::default(),
             force: vec![Vec3::zeros(); model.num_nodes()],
             friction_force: vec![Vec3::zeros(); model.num_nodes()],
             total: vec![Vec3::zeros(); model.num_nodes()],
@@ -564,6 +585,7 @@ impl Contact {
             self.is_touched[n as usize] = false;
         }
         self.touched.clear();
+        let mut clock = Instant::now();
         match self.needs_detection(x) {
             Update::None => {}
             Update::Full => self.detect(model, x),
@@ -586,8 +608,10 @@ impl Contact {
             while last.next_if(|&p| p < c).is_some() {}
             self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
         }
-        let precomputed = geometry.and_then(|g| self.ask_geometry(g));
-        let precomputed = precomputed.as_deref();
+        lap(&mut clock, &mut self.clock.detection);
+        let precomputed = geometry.and_then(|g| self.ask_geometry(model, x, g));
+        let precomputed = precomputed.as_ref();
+        lap(&mut clock, &mut self.clock.geometry);
         let sizes = &self.sizes;
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
@@ -639,7 +663,7 @@ impl Contact {
                         couple: newly.is_some_and(|n| n.is_couple(a, b)),
                         activation,
                         started,
-                        geometry: precomputed.map(|p| p[k]),
+                        geometry: precomputed.and_then(|p| p.get(k)),
                     },
                     &mut negligible_bound,
                 );
@@ -679,6 +703,7 @@ impl Contact {
         self.held_next.clear();
         self.primed = true;
         self.newly.clear();
+        lap(&mut clock, &mut self.clock.pairs);
     }
 
     /// The pairs in contact now that started overlapped (see

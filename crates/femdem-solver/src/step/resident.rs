@@ -26,6 +26,8 @@
 //! histories, the velocities of the step before and the internal forces
 //! come back only with [`Solver::sync_device`].
 
+use std::time::Instant;
+
 use femdem_core::Vec3;
 use femdem_gpu::{Evaluate, MotionSetup, Sum, SurfaceKind, SurfaceLoad};
 
@@ -33,6 +35,7 @@ use super::Solver;
 use super::external::weight;
 use super::prescribed::Claim;
 use super::update::Powers;
+use crate::clock::{StageTimes, lap};
 use crate::contact::Contact;
 use crate::forces::{ForceSums, Want};
 use crate::loads;
@@ -113,6 +116,8 @@ impl Solver {
         let dt = self.scene.params.dt;
         let t = self.evolving.state.time;
         let viscous = self.scene.viscous;
+        let mut clock = Instant::now();
+        let mut times = StageTimes::default();
         let device = self.pipeline.device.as_mut().expect("a resident device");
         let ws = &mut self.pipeline.workspace;
         // 1. Internal forces at x_n, on the device, with the sums asked
@@ -143,6 +148,7 @@ impl Solver {
         for (&i, [x, v]) in device.watched.iter().zip(back.watched) {
             (state.x[i as usize], state.v[i as usize]) = (x, v);
         }
+        lap(&mut clock, &mut times.forces);
         // 2. Failures: the record reads the failed joints' positions (and
         // contact, unbonding their tets, every node's).
         let first_new = self.evolving.failures.len();
@@ -154,18 +160,26 @@ impl Solver {
             self.record_failures(t);
             self.watch_contactable().expect("the watched nodes fit where all nodes do");
         }
+        lap(&mut clock, &mut times.failures);
         // 3. Contact, on the CPU from the contactable tets' nodes.
         let mut contact_down = Vec::new();
         if let Some(contact) = &mut self.evolving.contact {
             // The pairs' Eq. 17 contacts on the device, at its x_n (the
             // watched nodes' positions the pass reads are those).
             let bulk = &mut self.pipeline.device.as_mut().expect("a resident device").bulk;
+            let on_device = &mut times.geometry_device;
             let mut geometry = |pairs: &[[u32; 2]], omits: Option<&[f64]>, penalty: f64| {
-                let found = bulk.pair_geometry(pairs, omits, penalty).ok()?;
-                Some(found.into_iter().map(bounded).collect())
+                let start = Instant::now();
+                let found = bulk.pair_geometry(pairs, omits, penalty).ok();
+                *on_device += start.elapsed();
+                Some(found?.into_iter().map(bounded).collect())
             };
             let (x, v) = (&self.evolving.state.x, &self.evolving.state.v);
+            let before = contact.clock;
             contact.pass_with(&self.scene.model, x, v, dt, Some(&mut geometry));
+            times.detection = contact.clock.detection - before.detection;
+            times.geometry = contact.clock.geometry - before.geometry;
+            times.pairs = contact.clock.pairs - before.pairs;
             let device = self.pipeline.device.as_mut().expect("a resident device");
             // The nodes touched now or at the pass before (zero now where
             // no longer touched), ascending.
@@ -177,6 +191,7 @@ impl Solver {
             contact_down = nodes.iter().map(|&n| (n, total[n as usize])).collect();
             device.touched = contact.touched().to_vec();
         }
+        clock = Instant::now();
         let contact_forces = self.evolving.contact.as_ref().map(Contact::total_force);
         // 4. External forces: the surface loads on the device (above), the
         // drives' reactions from their nodes' state by the CPU's code.
@@ -189,6 +204,7 @@ impl Solver {
             dt,
             &mut self.evolving.record,
         );
+        lap(&mut clock, &mut times.drives);
         // 5. The update, on the device; every sum comes back with it, and
         // with contact the new state of the nodes whose forces went down.
         let external = &self.pipeline.external;
@@ -219,8 +235,12 @@ impl Solver {
         if want.stress || want.energy {
             device.pull_motion(&mut self.evolving.state);
         }
+        lap(&mut clock, &mut times.update);
         // 6. The account and the record, as on the CPU.
         self.account(sums, powers, first_new, t, want);
+        lap(&mut clock, &mut times.account);
+        times.steps = 1;
+        self.pipeline.device.as_mut().expect("a resident device").times += times;
     }
 }
 

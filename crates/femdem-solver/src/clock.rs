@@ -1,0 +1,78 @@
+//! Host wall-clock time by stage of the step resident on a device: where a
+//! GPU step's time goes (waiting on the device included), for the run's
+//! summary and the measurement kit. Not part of the results: it varies
+//! from run to run and never enters the history or a checkpoint.
+
+use std::time::{Duration, Instant};
+
+/// Time spent in each stage of [`crate::Solver`]'s resident steps.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Resident steps timed.
+    pub steps: u64,
+    /// Stage 1 on the device, with its read-back (failure count, the
+    /// drives' and watched nodes' state), and the host's copy of it.
+    pub forces: Duration,
+    /// Stage 2: the failures' record (read-backs of the failed joints and
+    /// the positions on failure steps).
+    pub failures: Duration,
+    /// Stage 3 on the host: detection (full or incremental).
+    pub detection: Duration,
+    /// Stage 3: choosing the pairs to clip and their Eq. 17 contacts on the
+    /// device (upload, dispatch, read-back).
+    pub geometry: Duration,
+    /// Of [`StageTimes::geometry`], the device's part: from sending the
+    /// pairs to having their results.
+    pub geometry_device: Duration,
+    /// Stage 3 on the host: the pair loop (ramps, offsets, friction,
+    /// certificates) and the sums into the nodes.
+    pub pairs: Duration,
+    /// Stage 4: the drives' reactions on the host.
+    pub drives: Duration,
+    /// Stage 5 on the device with its read-back (the sums, the touched
+    /// nodes' new state).
+    pub update: Duration,
+    /// Stage 6: the account and the record on the host.
+    pub account: Duration,
+}
+
+impl StageTimes {
+    /// The stages' names and their mean time a step, ms, in step order.
+    pub fn per_step_ms(&self) -> Vec<(&'static str, f64)> {
+        let n = self.steps.max(1) as f64;
+        let ms = |d: Duration| d.as_secs_f64() * 1e3 / n;
+        vec![
+            ("forces", ms(self.forces)),
+            ("failures", ms(self.failures)),
+            ("detection", ms(self.detection)),
+            ("pair geometry", ms(self.geometry)),
+            ("of which device", ms(self.geometry_device)),
+            ("pair loop", ms(self.pairs)),
+            ("drives", ms(self.drives)),
+            ("update", ms(self.update)),
+            ("account", ms(self.account)),
+        ]
+    }
+}
+
+impl std::ops::AddAssign for StageTimes {
+    fn add_assign(&mut self, o: Self) {
+        self.steps += o.steps;
+        self.forces += o.forces;
+        self.failures += o.failures;
+        self.detection += o.detection;
+        self.geometry += o.geometry;
+        self.geometry_device += o.geometry_device;
+        self.pairs += o.pairs;
+        self.drives += o.drives;
+        self.update += o.update;
+        self.account += o.account;
+    }
+}
+
+/// The time since `start`, added to `total`; restarts `start`.
+pub(crate) fn lap(start: &mut Instant, total: &mut Duration) {
+    let now = Instant::now();
+    *total += now - *start;
+    *start = now;
+}

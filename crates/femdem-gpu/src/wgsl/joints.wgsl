@@ -161,6 +161,25 @@ fn position(n: u32) -> vec3<f64> {
     return vec3<f64>(x[3u * n], x[3u * n + 1u], x[3u * n + 2u]);
 }
 
+// A joint's law (numbers 0..10 of `law`), read once per evaluation.
+struct Law {
+    penalty: f64,
+    ft: f64,
+    cohesion: f64,
+    gf_shear: f64,
+    h: f64,
+    dnp: f64,
+    dnc: f64,
+    tan_phi: f64,
+    exact: bool,
+    coupling: u32,
+}
+
+fn law_of(j: u32) -> Law {
+    return Law(law[at(j, 0u)], law[at(j, 1u)], law[at(j, 2u)], law[at(j, 3u)], law[at(j, 4u)], law[at(j, 5u)],
+               law[at(j, 6u)], law[at(j, 7u)], law[at(j, 8u)] == 1.0, u32(law[at(j, 9u)]));
+}
+
 struct Point {
     sigma: f64,
     tau: f64,
@@ -178,17 +197,17 @@ struct Point {
 }
 
 // One integration point (femdem_fracture's `point`: Eq. 5-7, 11-13).
-fn point(j: u32, dn: f64, ds: f64, d_hist: f64, soft_n_in: bool, soft_s_in: bool) -> Point {
-    let penalty = law[at(j, 0u)];
-    let ft = law[at(j, 1u)];
-    let cohesion = law[at(j, 2u)];
-    let gf_shear = law[at(j, 3u)];
-    let h = law[at(j, 4u)];
-    let dnp = law[at(j, 5u)];
-    let dnc = law[at(j, 6u)];
-    let tan_phi = law[at(j, 7u)];
-    let exact = law[at(j, 8u)] == 1.0;
-    let coupling = u32(law[at(j, 9u)]);
+fn point(lw: Law, dn: f64, ds: f64, d_hist: f64, soft_n_in: bool, soft_s_in: bool) -> Point {
+    let penalty = lw.penalty;
+    let ft = lw.ft;
+    let cohesion = lw.cohesion;
+    let gf_shear = lw.gf_shear;
+    let h = lw.h;
+    let dnp = lw.dnp;
+    let dnc = lw.dnc;
+    let tan_phi = lw.tan_phi;
+    let exact = lw.exact;
+    let coupling = lw.coupling;
     let z_hist = z_known(d_hist);
     let rn = dn / dnp;
     var dn_soft: f64 = 0.0;
@@ -297,9 +316,9 @@ fn point(j: u32, dn: f64, ds: f64, d_hist: f64, soft_n_in: bool, soft_s_in: bool
     return Point(sigma, tau, damage, broke, dissipated, soft_n, soft_s, rn, zd, fs, dsp, rs);
 }
 
-fn point_stored(j: u32, p: Point) -> f64 {
-    let coupling = u32(law[at(j, 9u)]);
-    var s = stored(coupling, law[at(j, 1u)], law[at(j, 5u)], p.rn, p.zd, p.soft_n);
+fn point_stored(lw: Law, p: Point) -> f64 {
+    let coupling = lw.coupling;
+    var s = stored(coupling, lw.ft, lw.dnp, p.rn, p.zd, p.soft_n);
     if (p.fs > 0.0) {
         s = s + stored(coupling, p.fs, p.dsp, p.rs, p.zd, p.soft_s);
     } else {
@@ -378,6 +397,11 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     var ending: f64 = 0.0;
     var stored_sum: f64 = 0.0;
     var points: array<Point, 3>;
+    let lw = law_of(j);
+    // The history's two running sums, kept here and stored once (the same
+    // additions in the same order as number by number).
+    var dissipated = hist[at(j, 3u)];
+    var work = hist[at(j, 5u)];
     for (var i = 0u; i < 3u; i++) {
         let w = GAUSS[i];
         let pa = xs[0] * w[0] + xs[1] * w[1] + xs[2] * w[2];
@@ -386,7 +410,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         let opening = dot(g, zn);
         let slip = g - zn * opening;
         let ds = sqrt(dot(slip, slip));
-        let ps = point(j, opening, ds, hist[at(j, i)], (fl & (1u << (2u * i))) != 0u,
+        let ps = point(lw, opening, ds, hist[at(j, i)], (fl & (1u << (2u * i))) != 0u,
                        (fl & (1u << (2u * i + 1u))) != 0u);
         points[i] = ps;
         hist[at(j, i)] = ps.damage;
@@ -408,7 +432,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
             traction = traction + slip_last * (tau_last / ds_last);
         }
         let normal_work = 0.5 * (sigma_last + ps.sigma) * (opening - ln);
-        hist[at(j, 5u)] = hist[at(j, 5u)] + weight * (normal_work + 0.5 * dot(traction, d_slip));
+        work = work + weight * (normal_work + 0.5 * dot(traction, d_slip));
         ending = ending + weight * 0.5 * (ps.sigma * (opening - ln) + dot(shear, d_slip));
         hist[at(j, lb)] = opening;
         hist[at(j, lb + 1u)] = slip.x;
@@ -416,7 +440,7 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         hist[at(j, lb + 3u)] = slip.z;
         hist[at(j, 18u + 2u * i)] = ps.sigma;
         hist[at(j, 19u + 2u * i)] = ps.tau;
-        hist[at(j, 3u)] = hist[at(j, 3u)] + weight * ps.dissipated;
+        dissipated = dissipated + weight * ps.dissipated;
         if (ps.damage >= 1.0) {
             broken_points = broken_points + 1u;
         }
@@ -437,11 +461,13 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     }
     if (broken_points >= 2u || want_energy) {
         for (var i = 0u; i < 3u; i++) {
-            stored_sum = stored_sum + weight * point_stored(j, points[i]);
+            stored_sum = stored_sum + weight * point_stored(lw, points[i]);
         }
     }
+    hist[at(j, 3u)] = dissipated;
+    hist[at(j, 5u)] = work;
     if (broken_points >= 2u) {
-        hist[at(j, 5u)] = hist[at(j, 5u)] - ending;
+        hist[at(j, 5u)] = work - ending;
         hist[at(j, 4u)] = stored_sum;
         if (mode == 0u) {
             mode = MODE_MIXED;
@@ -457,6 +483,6 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     }
     if (want_energy) {
         sums[2u * j] = stored_sum;
-        sums[2u * j + 1u] = hist[at(j, 5u)] - stored_sum;
+        sums[2u * j + 1u] = work - stored_sum;
     }
 }

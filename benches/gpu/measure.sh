@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
-# Issue 34, item 5, and issue 35's first numbers, on a lent GPU machine:
-# the intact jointed step at 1e5 and 1e6 tets, CPU (all its cores)
-# against the resident step on the GPU (`gpu_step`); then the README run
-# over its intact phase (platens in contact, contact on the CPU beside the
-# device), the paper's Brazilian disc (1.2 mm, extruded) over its first
-# 20 µs and the multi-layer quick case over 100 steps (pre-existing
-# fractures in contact from step 1), `femdem run` on the CPU and with
-# `--device gpu`, each printing its throughput.
+# Issues 34 (item 5) and 35 on a lent GPU machine: the intact jointed
+# step at 1e5 and 1e6 tets, CPU (all its cores) against the resident step
+# on the GPU (`gpu_step`); then the README run over its intact phase
+# (platens in contact), the paper's Brazilian disc (1.2 mm, extruded) over
+# its first 20 µs and the multi-layer quick case over 100 steps
+# (pre-existing fractures in contact from step 1), `femdem run` on the CPU
+# and with `--device gpu` (the contact pass on the CPU, the pairs' Eq. 17
+# on the device), each printing its throughput.
 #
 # Prepare here with benches/gpu/prepare.sh (the device machine has no
 # network and may lack the Vulkan loader and libglvnd: prepare.sh fetches
 # their Debian packages into .gl/), then run `benches/gpu/measure.sh`
 # there with carry = ["target/gpu-carry", ".gl"]. It prints what Vulkan
 # finds and every rate, and copies its output to $OUT/measure.log where
-# $OUT is set; 55-90 s on an H200 machine.
+# $OUT is set.
 #
 # Arguments choose the parts (default `bulk contact`): `bulk` the
 # gpu_step boxes, `contact` the three contact cases, `paper` the
@@ -23,6 +23,12 @@
 set -u
 cd "$(dirname "$0")/../.."
 parts=" ${*:-bulk contact} "
+for part in $parts; do
+    case $part in
+        bulk | contact | paper) ;;
+        *) echo "measure.sh: unknown part '$part' (bulk, contact, paper)" >&2; exit 2 ;;
+    esac
+done
 log=${OUT:-/tmp}/measure.log
 measure() {
 carry=target/gpu-carry
@@ -58,8 +64,10 @@ fi
 threads=$(nproc)
 # A first small box: is the device there, and does f64 run on it?
 RAYON_NUM_THREADS=$threads timeout 40 "$carry/gpu_step" 2000 10 2>&1 | grep -v XDG_RUNTIME_DIR
-# Time limits: bulk 200 s (380 s with a baseline), contact 180 s, paper
-# 300 s; on an H200 the bulk and contact parts took 55-90 s.
+# Time limits: the first box 40 s, bulk 180 s (360 s with a baseline),
+# contact 180 s, paper 300 s: within one command's 600 s only without
+# `paper` or with `paper` alone (`measure.sh paper`; 230 s on an H100,
+# meshing included). Bulk and contact took 55-90 s on an H200 and an H100.
 # A baseline build of the example, if prepared as gpu-carry/gpu_step_base
 # (an earlier commit's), runs before this one's at each size: the same
 # machine's ratio of the two.
@@ -67,7 +75,7 @@ steppers=gpu_step
 [ -x "$carry/gpu_step_base" ] && steppers="gpu_step_base gpu_step"
 runs=()
 [[ " $parts " == *" bulk "* ]] && runs=("100000 60" "1000000 120")
-for run in "${runs[@]}"; do
+for run in ${runs[@]+"${runs[@]}"}; do
     read -r tets limit <<< "$run"
     for stepper in $steppers; do
         echo "== $stepper, $tets tets, $threads threads"
@@ -83,20 +91,23 @@ runs=()
 [[ " $parts " == *" contact "* ]] && runs+=("30 cases/brazilian-split.toml solver.end_time=3e-4" \
     "30 cases/paper/brazilian.toml solver.end_time=2e-5" "30 cases/paper/multilayer.toml solver.end_time=5.7e-5")
 [[ " $parts " == *" paper "* ]] && runs+=("150 cases/paper/multilayer.toml solver.end_time=7.8e-6 mesh.parts.0.element_size=0.024")
-for run in "${runs[@]}"; do
-    read -r limit case window more <<< "$run"
-    sets=(--set "$window" --set output.interval=1.0)
-    [ -n "${more:-}" ] && sets+=(--set "$more")
+for run in ${runs[@]+"${runs[@]}"}; do
+    # The time limit, the case, then its overrides (one word each).
+    read -r limit case overrides <<< "$run"
+    sets=(--set output.interval=1.0)
+    for o in $overrides; do sets+=(--set "$o"); done
     for device in cpu gpu; do
         echo "== femdem run $case ${sets[*]} --device $device, $threads threads"
         start=$SECONDS
-        timeout "$limit" "$femdem" run "$case" --out "/tmp/measure-$device" \
+        # A run stopped by SIGTERM writes its checkpoint first: killed 10 s
+        # later if that takes longer.
+        timeout -k 10 "$limit" "$femdem" run "$case" --out "/tmp/measure-$device" \
             --overwrite --device "$device" --threads "$threads" "${sets[@]}" 2>&1 \
-            | grep -E "^femdem: [0-9]|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stage times" \
+            | grep -E "^femdem: [0-9]|^femdem: warning|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stage times" \
             | grep -v XDG_RUNTIME_DIR
         status=${PIPESTATUS[0]}
         echo "elapsed $((SECONDS - start)) s, meshing and start included"
-        [ "$status" = 0 ] || echo "femdem run: exit status $status (124: over $limit s)"
+        [ "$status" = 0 ] || echo "femdem run: exit status $status (124 or 137: over $limit s)"
     done
 done
 }

@@ -5,18 +5,22 @@
 
 use std::time::{Duration, Instant};
 
-/// Time spent in each stage of [`crate::Solver`]'s resident steps.
+/// Time spent in each stage of [`crate::Solver`]'s resident steps. Not
+/// counted: what runs between steps (the output, the run guard, the
+/// watched list made again when a crack makes tets contactable).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
     /// Resident steps timed.
     pub steps: u64,
     /// Stage 1 on the device, with its read-back (failure count, the
-    /// drives' and watched nodes' state), and the host's copy of it.
+    /// drives' and watched nodes' state; the stresses on steps that ask
+    /// for them), and the host's copy of it.
     pub forces: Duration,
     /// Stage 2: the failures' record (read-backs of the failed joints and
     /// the positions on failure steps).
     pub failures: Duration,
-    /// Stage 3 on the host: detection (full or incremental).
+    /// Stage 3 on the host: detection (full or incremental), the newly
+    /// allowed pairs, the certificates renewed or anchored (`PassClock`).
     pub detection: Duration,
     /// Stage 3: choosing the pairs to clip and their Eq. 17 contacts on the
     /// device (upload, dispatch, read-back).
@@ -25,12 +29,14 @@ pub struct StageTimes {
     /// pairs to having their results.
     pub geometry_device: Duration,
     /// Stage 3 on the host: the pair loop (ramps, offsets, friction,
-    /// certificates) and the sums into the nodes.
+    /// certificates), the sums into the nodes and the list of contact
+    /// forces to send down.
     pub pairs: Duration,
     /// Stage 4: the drives' reactions on the host.
     pub drives: Duration,
     /// Stage 5 on the device with its read-back (the sums, the touched
-    /// nodes' new state).
+    /// nodes' new state; every node's position and velocity on steps that
+    /// ask for stresses or energies: output, history rows, checks).
     pub update: Duration,
     /// Stage 6: the account and the record on the host.
     pub account: Duration,

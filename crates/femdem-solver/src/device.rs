@@ -326,20 +326,21 @@ impl crate::Solver {
         })
     }
 
-    /// Bytes a step moves between host and device at least (the arrays;
+    /// Bytes the last step moved between host and device (the arrays;
     /// each dispatch also sends 16 bytes of parameters), or 0 on the CPU;
-    /// output steps read back positions, velocities and stresses on top,
-    /// and a step with failures the failed joints, positions and
-    /// velocities.
+    /// with contact it changes from step to step with the pairs asked for
+    /// and the nodes touched. Output steps read back positions, velocities
+    /// and stresses on top, and a step with failures the failed joints,
+    /// positions and velocities.
     pub fn device_bytes_per_step(&self) -> u64 {
         match &self.pipeline.device {
             None => 0,
             Some(d) if d.resident => {
                 // Failure count, the seven sums and each surface load's
                 // five, the drives' nodes' state, the watched nodes'
-                // positions and velocities, the candidate pairs up (8
-                // bytes, 8 more for the threshold) and their contacts back
-                // (240) with the potential model, the touched nodes' contact forces down (28 bytes
+                // positions and velocities, the pairs the last pass asked
+                // the device for up (8 bytes, 8 more for the threshold) and
+                // their contacts back (240) with the potential model, the touched nodes' contact forces down (28 bytes
                 // each) and state back (48), the drive and surface-load
                 // tables and the step's scalars.
                 let surfaces = self.scene.loads.surfaces.len() as u64;

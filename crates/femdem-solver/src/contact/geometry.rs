@@ -49,8 +49,9 @@ impl Contact {
     }
 
     /// Bytes the last pass with [`Contact::pass_with`] moved to and from a
-    /// device for its geometry: per pair asked for, 8 up (and 8 for its
-    /// threshold where `negligible` is set) and 240 back.
+    /// device for its geometry: per pair asked for and answered, 8 up (and
+    /// 8 for its threshold where `negligible` is set) and 240 back (0 where
+    /// the device could not answer and the CPU clipped).
     pub(crate) fn geometry_bytes(&self) -> usize {
         if !self.geometry_elsewhere() {
             return 0;
@@ -96,11 +97,11 @@ impl Contact {
         if pairs.is_empty() {
             return None;
         }
-        self.asked = pairs.len();
         let (negligible, sizes) = (self.settings.negligible, &self.sizes);
         let omit = |&[a, b]: &[u32; 2]| negligible * sizes[a as usize].min(sizes[b as usize]).powi(2);
         let omits = (negligible > 0.0).then(|| pairs.iter().map(omit).collect::<Vec<_>>());
         let found = geometry(&pairs, omits.as_deref(), self.settings.penalty)?;
+        self.asked = pairs.len();
         Some(Asked { slot, found })
     }
 }

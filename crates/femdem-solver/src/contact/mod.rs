@@ -148,7 +148,8 @@ impl ContactEnergy {
 /// Host wall-clock time of [`Contact::pass_with`] by part.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct PassClock {
-    /// Resetting the touched nodes, detection, the certificates.
+    /// Resetting the touched nodes, detection (full or incremental), the
+    /// newly allowed pairs, the certificates, which pairs were in contact.
     pub detection: Duration,
     /// Choosing the pairs to clip and asking the geometry for them.
     pub geometry: Duration,
@@ -577,6 +578,7 @@ impl Contact {
         dt: Real,
         geometry: Option<&mut Geometry<'_>>,
     ) {
+        let mut clock = Instant::now();
         for &n in &self.touched {
             self.force[n as usize] = Vec3::zeros();
             self.friction_force[n as usize] = Vec3::zeros();
@@ -585,7 +587,6 @@ impl Contact {
             self.is_touched[n as usize] = false;
         }
         self.touched.clear();
-        let mut clock = Instant::now();
         match self.needs_detection(x) {
             Update::None => {}
             Update::Full => self.detect(model, x),

@@ -190,6 +190,8 @@ impl Solver {
             let total = contact.total_force();
             contact_down = nodes.iter().map(|&n| (n, total[n as usize])).collect();
             device.touched = contact.touched().to_vec();
+            // The contact forces to send down, with the pair loop.
+            lap(&mut clock, &mut times.pairs);
         }
         clock = Instant::now();
         let contact_forces = self.evolving.contact.as_ref().map(Contact::total_force);

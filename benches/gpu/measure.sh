@@ -103,7 +103,7 @@ for run in ${runs[@]+"${runs[@]}"}; do
         # later if that takes longer.
         timeout -k 10 "$limit" "$femdem" run "$case" --out "/tmp/measure-$device" \
             --overwrite --device "$device" --threads "$threads" "${sets[@]}" 2>&1 \
-            | grep -E "^femdem: [0-9]|^femdem: warning|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stage times" \
+            | grep -E "^femdem: [0-9]|^femdem: warning|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stages" \
             | grep -v XDG_RUNTIME_DIR
         status=${PIPESTATUS[0]}
         echo "elapsed $((SECONDS - start)) s, meshing and start included"

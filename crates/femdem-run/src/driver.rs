@@ -272,7 +272,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         overrides: prepared.case.overrides.args(),
         device: solver.device_summary(),
         device_bytes: solver.device_bytes_per_step(),
-        device_times: solver.device_stage_times(),
+        stage_times: solver.stage_times(),
     })
 }
 

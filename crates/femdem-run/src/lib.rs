@@ -149,7 +149,7 @@ pub struct Summary {
     pub device: Option<String>,
     /// Bytes a step moved between host and device at least (0 on the CPU).
     pub device_bytes: u64,
-    /// Host wall-clock time of the resident steps by stage (`None` on the
-    /// CPU): where a device step's time went. Varies from run to run.
-    pub device_times: Option<femdem_solver::StageTimes>,
+    /// Host wall-clock time of the steps by stage (`None` without a step):
+    /// where a step's time went. Varies from run to run.
+    pub stage_times: Option<femdem_solver::StageTimes>,
 }

@@ -1,16 +1,20 @@
-//! Host wall-clock time by stage of the step resident on a device: where a
-//! GPU step's time goes (waiting on the device included), for the run's
-//! summary and the measurement kit. Not part of the results: it varies
-//! from run to run and never enters the history or a checkpoint.
+//! Host wall-clock time of the step by stage, on the CPU or resident on a
+//! device (waiting on the device included): where a step's time goes, for
+//! the run's summary and the measurement kits. Not part of the results: it
+//! varies from run to run and never enters the history or a checkpoint.
 
 use std::time::{Duration, Instant};
 
-/// Time spent in each stage of [`crate::Solver`]'s resident steps. Not
+use crate::contact::PassClock;
+
+/// Time spent in each stage of [`crate::Solver`]'s steps (on a device,
+/// stages 1 and 5 run there and their time is the host's wait; with stage 1
+/// alone on the device, its uploads and read-backs are in `forces`). Not
 /// counted: what runs between steps (the output, the run guard, the
 /// watched list made again when a crack makes tets contactable).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
-    /// Resident steps timed.
+    /// Steps timed.
     pub steps: u64,
     /// Stage 1 on the device, with its read-back (failure count, the
     /// drives' and watched nodes' state; the stresses on steps that ask
@@ -43,7 +47,17 @@ pub struct StageTimes {
 }
 
 impl StageTimes {
-    /// The stages' names and their mean time a step, ms, in step order.
+    /// Adds a contact pass's parts: the pass clock's advance from
+    /// `before` to `after`.
+    pub(crate) fn add_pass(&mut self, before: &PassClock, after: &PassClock) {
+        self.detection += after.detection - before.detection;
+        self.geometry += after.geometry - before.geometry;
+        self.pairs += after.pairs - before.pairs;
+    }
+
+    /// The stages' names and their mean time a step, ms, in step order;
+    /// stages that took no time (contact in a scene without it, the
+    /// device's part on the CPU) left out.
     pub fn per_step_ms(&self) -> Vec<(&'static str, f64)> {
         let n = self.steps.max(1) as f64;
         let ms = |d: Duration| d.as_secs_f64() * 1e3 / n;
@@ -58,6 +72,9 @@ impl StageTimes {
             ("update", ms(self.update)),
             ("account", ms(self.account)),
         ]
+        .into_iter()
+        .filter(|&(_, ms)| ms > 0.0)
+        .collect()
     }
 }
 

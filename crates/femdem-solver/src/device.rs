@@ -22,7 +22,6 @@ use femdem_fracture::{FailureMode, JointHistory};
 use femdem_gpu::{Bulk, Evaluate, Gpu, GpuError, JointMesh, MotionSetup, TetMesh};
 
 use crate::SolverError;
-use crate::clock::StageTimes;
 use crate::contact::Contact;
 use crate::forces::{CHUNK, Dissipation, ForceSums, Want, Workspace};
 use crate::model::Model;
@@ -56,8 +55,6 @@ pub(crate) struct OnDevice {
     /// Resident with contact: the nodes whose positions and velocities
     /// come back every step (the contactable tets'), ascending.
     pub(crate) watched: Vec<u32>,
-    /// Host wall-clock time of the resident steps by stage.
-    pub(crate) times: StageTimes,
 }
 
 /// Bytes one step of stage 1 alone moves between host and device at
@@ -107,7 +104,6 @@ impl OnDevice {
             flagged: Vec::new(),
             touched: Vec::new(),
             watched: Vec::new(),
-            times: StageTimes::default(),
         })
     }
 
@@ -299,12 +295,6 @@ impl crate::Solver {
     /// CPU): what a run's summary and history header say.
     pub fn device_summary(&self) -> Option<String> {
         self.device().zip(self.device_stages()).map(|(a, s)| format!("{a}: {s}"))
-    }
-
-    /// Host wall-clock time of the resident steps by stage (`None` on the
-    /// CPU or where no step ran resident): where a device step's time goes.
-    pub fn device_stage_times(&self) -> Option<StageTimes> {
-        self.pipeline.device.as_ref().map(|d| d.times).filter(|t| t.steps > 0)
     }
 
     /// Which stages run on the device (`None` on the CPU).

@@ -77,9 +77,9 @@ pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> 
             s.device_bytes
         );
     }
-    if let Some(times) = &s.device_times {
+    if let Some(times) = &s.stage_times {
         let stages: Vec<String> = times.per_step_ms().iter().map(|(name, ms)| format!("{name} {ms:.3}")).collect();
-        println!("stage times ms a step over {} device steps (host wall clock): {}", times.steps, stages.join(", "));
+        println!("stages      ms a step over {} steps (host wall clock): {}", times.steps, stages.join(", "));
     }
     println!("built       femdem {}; {}; simd {}", provenance::build(), provenance::cpu(), provenance::simd());
     println!("results     {}", s.frames.display());

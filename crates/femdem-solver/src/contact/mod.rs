@@ -610,9 +610,12 @@ impl Contact {
             self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
         }
         lap(&mut clock, &mut self.clock.detection);
-        let precomputed = geometry.and_then(|g| self.ask_geometry(model, x, g));
+        let precomputed = geometry.and_then(|g| {
+            let asked = self.ask_geometry(model, x, g);
+            lap(&mut clock, &mut self.clock.geometry);
+            asked
+        });
         let precomputed = precomputed.as_ref();
-        lap(&mut clock, &mut self.clock.geometry);
         let sizes = &self.sizes;
         let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
         let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));

@@ -96,7 +96,10 @@ use femdem_fracture::JointHistory;
 pub use prescribed::held_nodes;
 pub use record::{FailureCounts, StepRecord};
 
+use std::time::Instant;
+
 use crate::SolverError;
+use crate::clock::{StageTimes, lap};
 use crate::contact::{Contact, ContactEnergy, ContactModel, ContactSettings};
 use crate::device::OnDevice;
 use crate::forces::{Dissipation, ForceSums, Want, Workspace, internal_forces};
@@ -181,6 +184,9 @@ pub(crate) struct Pipeline {
     pub(crate) forces_current: bool,
     /// The step on a GPU ([`Solver::use_device`]), or `None` for the CPU.
     pub(crate) device: Option<OnDevice>,
+    /// Host wall-clock time of the steps by stage (`clock.rs`; not a
+    /// result).
+    pub(crate) times: StageTimes,
 }
 
 /// An explicit solver: the scene it runs (model, loads, step
@@ -233,6 +239,7 @@ impl Solver {
                 external,
                 forces_current: false,
                 device: None,
+                times: StageTimes::default(),
             },
             scene: Scene { floor: energy_floor(&model), model, loads, params, viscous },
         })
@@ -390,6 +397,13 @@ impl Solver {
         &self.evolving.record
     }
 
+    /// Host wall-clock time of the steps so far by stage, `None` before the
+    /// first (`clock.rs`): where the time goes, on the CPU or a device.
+    /// Varies from run to run; not a result.
+    pub fn stage_times(&self) -> Option<StageTimes> {
+        Some(self.pipeline.times).filter(|t| t.steps > 0)
+    }
+
     /// [`Solver::step`]'s work.
     fn advance(&mut self, want: Want) {
         let dt = self.scene.params.dt;
@@ -406,6 +420,8 @@ impl Solver {
                 return;
             }
         }
+        let mut clock = Instant::now();
+        let mut times = StageTimes { steps: 1, ..StageTimes::default() };
         // 1. Internal forces at x_n.
         let dissipation =
             if self.scene.viscous { Dissipation::Since(&self.evolving.v_before) } else { Dissipation::None };
@@ -428,6 +444,7 @@ impl Solver {
             ),
         };
         self.pipeline.forces_current = true;
+        lap(&mut clock, &mut times.forces);
         // 2. Failures, handed to contact (which reads their histories).
         let first_new = self.evolving.failures.len();
         if let (Some(device), Some(_), true) = (&self.pipeline.device, &self.evolving.contact, sums.newly_failed > 0) {
@@ -436,10 +453,14 @@ impl Solver {
         if sums.newly_failed > 0 {
             self.record_failures(t);
         }
+        lap(&mut clock, &mut times.failures);
         // 3. Contact.
         if let Some(contact) = &mut self.evolving.contact {
+            let before = contact.clock;
             contact.pass(&self.scene.model, &self.evolving.state.x, &self.evolving.state.v, dt);
+            times.add_pass(&before, &contact.clock);
         }
+        clock = Instant::now();
         let contact_forces = self.evolving.contact.as_ref().map(Contact::total_force);
         // 4. External forces and reactions.
         self.pipeline.external.evaluate(
@@ -451,6 +472,7 @@ impl Solver {
             dt,
             &mut self.evolving.record,
         );
+        lap(&mut clock, &mut times.drives);
         // 5. The update.
         let powers = self.pipeline.update.advance(
             &self.scene.model,
@@ -464,7 +486,10 @@ impl Solver {
             want.energy,
         );
         self.pipeline.external.close_powers(&self.evolving.state.v);
+        lap(&mut clock, &mut times.update);
         self.account(sums, powers, first_new, t, want);
+        lap(&mut clock, &mut times.account);
+        self.pipeline.times += times;
     }
 
     /// Stage 6 of the step: the energy account (centred on `t_n`: module

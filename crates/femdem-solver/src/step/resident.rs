@@ -177,9 +177,7 @@ impl Solver {
             let (x, v) = (&self.evolving.state.x, &self.evolving.state.v);
             let before = contact.clock;
             contact.pass_with(&self.scene.model, x, v, dt, Some(&mut geometry));
-            times.detection = contact.clock.detection - before.detection;
-            times.geometry = contact.clock.geometry - before.geometry;
-            times.pairs = contact.clock.pairs - before.pairs;
+            times.add_pass(&before, &contact.clock);
             let device = self.pipeline.device.as_mut().expect("a resident device");
             // The nodes touched now or at the pass before (zero now where
             // no longer touched), ascending.
@@ -242,7 +240,7 @@ impl Solver {
         self.account(sums, powers, first_new, t, want);
         lap(&mut clock, &mut times.account);
         times.steps = 1;
-        self.pipeline.device.as_mut().expect("a resident device").times += times;
+        self.pipeline.times += times;
     }
 }
 

@@ -186,17 +186,18 @@ fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
         assert!(dev.device_stages().unwrap().contains("contact") || residency == Residency::ForcesOnly);
         assert_eq!(run(&mut cpu, 400), 0, "no failure yet");
         assert_eq!(run(&mut dev, 400), 0);
-        // The resident steps timed by stage; not on the CPU, nor stage 1
-        // alone.
-        assert!(cpu.device_stage_times().is_none());
-        if residency == Residency::Auto {
-            let times = dev.device_stage_times().expect("resident steps are timed");
+        // Every step timed by stage; the pairs asked of the device only
+        // where the step is resident.
+        for (s, on_device) in [(&cpu, false), (&dev, residency == Residency::Auto)] {
+            let times = s.stage_times().expect("steps are timed");
             assert_eq!(times.steps, 400);
             let stages = times.per_step_ms();
-            assert!(stages.iter().all(|&(_, ms)| ms >= 0.0) && stages.iter().any(|&(_, ms)| ms > 0.0));
+            assert!(stages.iter().all(|&(_, ms)| ms > 0.0), "{stages:?}");
+            for stage in ["forces", "detection", "pair loop", "update"] {
+                assert!(stages.iter().any(|&(name, _)| name == stage), "{stage} in {stages:?}");
+            }
             assert!(times.geometry_device <= times.geometry, "the device's part is within its stage");
-        } else {
-            assert!(dev.device_stage_times().is_none());
+            assert_eq!(times.geometry_device.is_zero(), !on_device, "{residency:?}");
         }
         dev.sync_device();
         assert_close(&cpu, &dev, &format!("{residency:?} with contact"));

@@ -5,7 +5,6 @@
 
 use std::time::{Duration, Instant};
 
-use crate::contact::PassClock;
 
 /// Time spent in each stage of [`crate::Solver`]'s steps (on a device,
 /// stages 1 and 5 run there and their time is the host's wait; with stage 1
@@ -91,6 +90,19 @@ impl std::ops::AddAssign for StageTimes {
         self.update += o.update;
         self.account += o.account;
     }
+}
+
+/// Host wall-clock time of a contact pass (`Contact::pass_with`) by part.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PassClock {
+    /// Resetting the touched nodes, detection (full or incremental), the
+    /// newly allowed pairs, the certificates, which pairs were in contact.
+    pub detection: Duration,
+    /// Choosing the pairs to clip and asking the geometry for them (only
+    /// where a geometry computes them elsewhere).
+    pub geometry: Duration,
+    /// The pair loop, the sums into the nodes and the bookkeeping after.
+    pub pairs: Duration,
 }
 
 /// The time since `start`, added to `total`; restarts `start`.

@@ -78,9 +78,9 @@ mod sums;
 use femdem_contact::Nbs;
 use femdem_core::{Real, Vec3};
 use rayon::prelude::*;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use crate::clock::lap;
+use crate::clock::{PassClock, lap};
 use crate::model::Model;
 use certify::{Certificates, Verdict};
 use debts::corrected;
@@ -143,18 +143,6 @@ impl ContactEnergy {
     pub fn handed(&self) -> Real {
         self.released.clamp(0.0, self.held.max(0.0))
     }
-}
-
-/// Host wall-clock time of [`Contact::pass_with`] by part.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct PassClock {
-    /// Resetting the touched nodes, detection (full or incremental), the
-    /// newly allowed pairs, the certificates, which pairs were in contact.
-    pub detection: Duration,
-    /// Choosing the pairs to clip and asking the geometry for them.
-    pub geometry: Duration,
-    /// The pair loop, the sums into the nodes and the bookkeeping after.
-    pub pairs: Duration,
 }
 
 /// The contact pass's state.

@@ -117,8 +117,12 @@ pub fn polyaxial_cube() -> femdem_solver::Solver {
         ContactSettings, Loads, Model, Ramp, RegionBehaviour, Solver, StepParams, SurfaceKind, SurfaceLoad,
         contact_omega, held_nodes, stable_time_step,
     };
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../cases/paper/meshes/cube-50mm.msh");
-    let bytes = std::fs::read(path).expect("cases/paper/meshes/cube-50mm.msh");
+    // Where it was built, else from the working directory (a binary
+    // carried to another machine runs in a copy of the repository).
+    let built = concat!(env!("CARGO_MANIFEST_DIR"), "/../cases/paper/meshes/cube-50mm.msh");
+    let bytes = std::fs::read(built)
+        .or_else(|_| std::fs::read("cases/paper/meshes/cube-50mm.msh"))
+        .expect("cases/paper/meshes/cube-50mm.msh, where the benches were built or in the working directory");
     let mut mesh = femdem_mesh::msh::read_msh(&bytes).expect("cube mesh");
     for r in &mut mesh.regions {
         r.breakable = true;

@@ -76,7 +76,8 @@ fn main() {
     // Where the device's step time goes, and the resident step again with
     // read-backs polling the device in a loop instead of blocking.
     for t in dev.device_timings(20).unwrap_or_default() {
-        println!("  {:<34}{:>10.1} µs", t.what, t.seconds * 1e6);
+        let items = t.items.map_or(String::new(), |n| format!(" ({n} items)"));
+        println!("  {:<34}{:>10.1} µs{items}", t.what, t.seconds * 1e6);
     }
     // Then the other way of waiting, and the default again: a GPU's
     // clocks rise under load, so the first window (after 5 steps) can be

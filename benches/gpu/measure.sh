@@ -16,7 +16,9 @@
 # $OUT is set.
 #
 # Arguments choose the parts (default `bulk contact`): `bulk` the
-# gpu_step boxes, `contact` the three contact cases, `paper` the
+# gpu_step boxes, `contact` the three contact cases and the fragmented
+# cube (`gpu_contact`: CPU and device by stage, and the pair kernel timed
+# alone on the pass's last list), `paper` the
 # multi-layer case at the paper's mesh size (24 mm, 603k tets) over its
 # first 40 steps (a minute or two of meshing each, on the CPU and on the
 # device). Device runs print their host wall-clock time by stage.
@@ -65,7 +67,7 @@ threads=$(nproc)
 # A first small box: is the device there, and does f64 run on it?
 RAYON_NUM_THREADS=$threads timeout 40 "$carry/gpu_step" 2000 10 2>&1 | grep -v XDG_RUNTIME_DIR
 # Time limits: the first box 40 s, bulk 180 s (360 s with a baseline),
-# contact 180 s, paper 300 s: within one command's 600 s only without
+# contact 270 s, paper 300 s: within one command's 600 s only without
 # `paper` or with `paper` alone (`measure.sh paper`; 230 s on an H100,
 # meshing included). Bulk and contact took 55-90 s on an H200 and an H100.
 # A baseline build of the example, if prepared as gpu-carry/gpu_step_base
@@ -75,6 +77,12 @@ steppers=gpu_step
 [ -x "$carry/gpu_step_base" ] && steppers="gpu_step_base gpu_step"
 runs=()
 [[ " $parts " == *" bulk "* ]] && runs=("100000 60" "1000000 120")
+if [[ " $parts " == *" contact "* ]]; then
+    echo "== gpu_contact 3400 100, $threads threads"
+    RAYON_NUM_THREADS=$threads timeout 90 "$carry/gpu_contact" 3400 100 2>&1 | grep -v XDG_RUNTIME_DIR
+    status=${PIPESTATUS[0]}
+    [ "$status" = 0 ] || echo "gpu_contact: exit status $status (124: over 90 s)"
+fi
 for run in ${runs[@]+"${runs[@]}"}; do
     read -r tets limit <<< "$run"
     for stepper in $steppers; do

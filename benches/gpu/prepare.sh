@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds what benches/gpu/measure.sh runs on a lent GPU machine (no
 # network there, and maybe no Vulkan loader) into target/gpu-carry:
-# the gpu_step example, the femdem binary (both stripped, to stay within
+# the gpu_step and gpu_contact examples, the femdem binary (stripped, to stay within
 # the 64 MiB a run may carry) and the Vulkan loader; and fetches Debian's
 # libvulkan1 and libglvnd packages into .gl/ (the NVIDIA driver's Vulkan
 # part needs libGLdispatch; measure.sh unpacks them where missing). Then
@@ -15,11 +15,11 @@ set -euo pipefail
 # The baseline's path, made absolute before moving to the repository root.
 base=${1:+$(realpath "$1")}
 cd "$(dirname "$0")/../.."
-cargo build --release -p femdem-benches --example gpu_step
+cargo build --release -p femdem-benches --example gpu_step --example gpu_contact
 cargo build --release -p femdem-cli
 mkdir -p target/gpu-carry
-cp target/release/examples/gpu_step target/release/femdem target/gpu-carry/
-strip target/gpu-carry/gpu_step target/gpu-carry/femdem
+cp target/release/examples/gpu_step target/release/examples/gpu_contact target/release/femdem target/gpu-carry/
+strip target/gpu-carry/gpu_step target/gpu-carry/gpu_contact target/gpu-carry/femdem
 loader=/usr/lib/x86_64-linux-gnu/libvulkan.so.1
 [ -e "$loader" ] || { echo "no Vulkan loader at $loader: install Debian's libvulkan1" >&2; exit 1; }
 cp -L "$loader" target/gpu-carry/

@@ -133,6 +133,9 @@ pub(crate) struct PairBuffers {
     out: wgpu::Buffer,
     penalty: wgpu::Buffer,
     capacity: usize,
+    /// The last call's pairs and whether it had thresholds (what
+    /// [`crate::Bulk::timings`] dispatches again).
+    pub(crate) last: (u32, bool),
 }
 
 /// The pair kernel of a [`crate::Bulk`]: compiled once, or the reason the
@@ -190,6 +193,7 @@ impl crate::Bulk {
                 out: zeroed::<Real>(&gpu, "pair contacts", OUT * capacity)?,
                 penalty: zeroed::<Real>(&gpu, "contact penalty", 1)?,
                 capacity,
+                last: (0, false),
             });
         }
         let b = self.pair_buffers.as_ref().expect("made above");
@@ -200,13 +204,38 @@ impl crate::Bulk {
         }
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let count = u32::try_from(pairs.len()).expect("at most 2^32 pairs");
-        let params = Params { count, flags: u32::from(omits.is_some()), pad: [0; 2] };
-        let buffers = [&self.x, &self.tets, &b.pairs, &b.penalty, &b.out, &b.omits];
-        // Not kept: the count changes from pass to pass.
-        dispatch(&gpu, None, &mut encoder, &pipeline, params, &buffers);
+        self.encode_pairs(&mut encoder, &pipeline, count, omits.is_some());
+        let b = self.pair_buffers.as_mut().expect("made above");
+        b.last = (count, omits.is_some());
         let bytes = submit_and_read(&gpu, encoder, &[(&b.out, 0, (8 * OUT * pairs.len()) as u64)]);
         let out: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
         Ok(out.chunks_exact(OUT).map(|c| bounded_of(c, omits.is_some())).collect())
+    }
+}
+
+impl crate::Bulk {
+    /// Records the pair kernel over the first `count` pairs of the kept
+    /// buffers (with their thresholds where `within`).
+    pub(crate) fn encode_pairs(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        count: u32,
+        within: bool,
+    ) {
+        let b = self.pair_buffers.as_ref().expect("the pairs' buffers");
+        let params = Params { count, flags: u32::from(within), pad: [0; 2] };
+        let buffers = [&self.x, &self.tets, &b.pairs, &b.penalty, &b.out, &b.omits];
+        // Not kept: the count changes from pass to pass.
+        dispatch(&self.gpu, None, encoder, pipeline, params, &buffers);
+    }
+
+    /// The pair kernel and the last list it ran on (pairs, thresholds or
+    /// not), if it ran.
+    pub(crate) fn last_pairs(&self) -> Option<(wgpu::ComputePipeline, u32, bool)> {
+        let Some(PairKernel::Ready(p)) = &self.pair_kernel else { return None };
+        let (count, within) = self.pair_buffers.as_ref()?.last;
+        (count > 0).then(|| (p.clone(), count, within))
     }
 }
 

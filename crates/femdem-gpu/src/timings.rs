@@ -20,6 +20,9 @@ pub struct Timing {
     pub what: &'static str,
     /// Mean wall time of one, s.
     pub seconds: f64,
+    /// How many items it ran over, where not the model's tets, joints or
+    /// nodes (the contact pairs).
+    pub items: Option<u64>,
 }
 
 impl Bulk {
@@ -30,7 +33,9 @@ impl Bulk {
     /// device. The kernels run on the device's current state; positions,
     /// velocities and the joints' histories, flags and failures are as
     /// before afterwards (the histories are saved and restored: the joint
-    /// pass would advance them), and so is the device's wait mode. The
+    /// pass would advance them), and so is the device's wait mode. Where
+    /// the contact pass has sent pairs (`Bulk::pair_geometry`), also the
+    /// pair kernel on the last list (its length in [`Timing::items`]). The
     /// forces and energies of the last evaluation are not: the next step
     /// computes them afresh.
     pub fn timings(&mut self, reps: usize) -> Vec<Timing> {
@@ -63,7 +68,7 @@ impl Bulk {
             for _ in 0..reps {
                 read_one(new_encoder());
             }
-            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64 });
+            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64, items: None });
         }
         gpu.set_spin_wait(spin);
         let want = Evaluate::default();
@@ -72,7 +77,8 @@ impl Bulk {
         for _ in 0..reps {
             self.encode_tets(&mut encoder, want);
         }
-        out.push(Timing { what: "host: record one kernel", seconds: start.elapsed().as_secs_f64() / reps as f64 });
+        let seconds = start.elapsed().as_secs_f64() / reps as f64;
+        out.push(Timing { what: "host: record one kernel", seconds, items: None });
         read_one(encoder);
         let kernels: [(&'static str, &Encode<'_>); 4] = [
             ("tet pass (Eq. 1-2)", &|e| self.encode_tets(e, want)),
@@ -94,7 +100,23 @@ impl Bulk {
             }
             let start = Instant::now();
             read_one(encoder);
-            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64 });
+            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64, items: None });
+        }
+        // The contact pairs' kernel on the last list the contact pass sent
+        // (it writes only its results, which the next pass overwrites).
+        if let Some((pipeline, count, within)) = self.last_pairs() {
+            let mut encoder = new_encoder();
+            self.encode_pairs(&mut encoder, &pipeline, count, within);
+            read_one(encoder);
+            let mut encoder = new_encoder();
+            for _ in 0..reps {
+                self.encode_pairs(&mut encoder, &pipeline, count, within);
+            }
+            let start = Instant::now();
+            read_one(encoder);
+            let what = "contact pairs (Eq. 17), the last list";
+            let seconds = start.elapsed().as_secs_f64() / reps as f64;
+            out.push(Timing { what, seconds, items: Some(u64::from(count)) });
         }
         let mut encoder = new_encoder();
         for (b, copy) in &saved {

@@ -5,7 +5,6 @@
 
 use std::time::{Duration, Instant};
 
-
 /// Time spent in each stage of [`crate::Solver`]'s steps (on a device,
 /// stages 1 and 5 run there and their time is the host's wait; with stage 1
 /// alone on the device, its uploads and read-backs are in `forces`). Not

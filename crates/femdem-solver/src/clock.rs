@@ -53,6 +53,19 @@ impl StageTimes {
         self.pairs += after.pairs - before.pairs;
     }
 
+    /// The stages' time together (the device's part of the pair geometry
+    /// counted once, within it): at most the steps' wall time.
+    pub fn total(&self) -> Duration {
+        self.forces
+            + self.failures
+            + self.detection
+            + self.geometry
+            + self.pairs
+            + self.drives
+            + self.update
+            + self.account
+    }
+
     /// The stages' names and their mean time a step, ms, in step order;
     /// stages that took no time (contact in a scene without it, the
     /// device's part on the CPU) left out.

@@ -178,6 +178,7 @@ impl Solver {
             let before = contact.clock;
             contact.pass_with(&self.scene.model, x, v, dt, Some(&mut geometry));
             times.add_pass(&before, &contact.clock);
+            clock = Instant::now();
             let device = self.pipeline.device.as_mut().expect("a resident device");
             // The nodes touched now or at the pass before (zero now where
             // no longer touched), ascending.

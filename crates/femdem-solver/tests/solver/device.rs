@@ -184,12 +184,19 @@ fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
         let mut dev = with_contact();
         dev.use_device(&g, residency).unwrap();
         assert!(dev.device_stages().unwrap().contains("contact") || residency == Residency::ForcesOnly);
+        let start = std::time::Instant::now();
         assert_eq!(run(&mut cpu, 400), 0, "no failure yet");
+        let on_cpu = start.elapsed();
+        let start = std::time::Instant::now();
         assert_eq!(run(&mut dev, 400), 0);
+        let on_dev = start.elapsed();
         // Every step timed by stage; the pairs asked of the device only
         // where the step is resident.
-        for (s, on_device) in [(&cpu, false), (&dev, residency == Residency::Auto)] {
+        for (s, on_device, wall) in [(&cpu, false, on_cpu), (&dev, residency == Residency::Auto, on_dev)] {
             let times = s.stage_times().expect("steps are timed");
+            // Each stretch of a step in one stage at most: nothing counted
+            // twice.
+            assert!(times.total() <= wall, "{:?} of stages in {wall:?} of steps", times.total());
             assert_eq!(times.steps, 400);
             let stages = times.per_step_ms();
             assert!(stages.iter().all(|&(_, ms)| ms > 0.0), "{stages:?}");

@@ -3,15 +3,18 @@
 //! side, for issue 35's measurement:
 //!
 //! ```text
-//! RAYON_NUM_THREADS=16 target/release/examples/gpu_contact 3400 100
+//! RAYON_NUM_THREADS=16 target/release/examples/gpu_contact 3400 100 [SNAPSHOT]
 //! ```
 //!
 //! takes the quick polyaxial cube at step `FROM` (first argument, default
-//! 3400: about 800 joints failed, more at nearly every step;
-//! `femdem_benches::polyaxial_cube_at`, which makes its snapshot under
-//! `target/contact_profile/` on a first run), steps it `STEPS` times
-//! (second argument, default 100) on the CPU and then from the same state
-//! on the device, and prints both rates in tet-steps/s, each run's time by
+//! 3400: 416 joints failed by then with this build, more at nearly every
+//! step) from `SNAPSHOT` where given and taken at that step (the file
+//! `polyaxial_cube_at` writes, `target/contact_profile/cube50_FROM.snap`;
+//! `benches/gpu/prepare.sh` carries it), else from
+//! `femdem_benches::polyaxial_cube_at` (which steps there on a first run),
+//! and steps it `STEPS` times (second argument, default 100) on the CPU
+//! and then from the same state on the device (`STEPS` = 0: only makes the
+//! snapshot), and prints both rates in tet-steps/s, each run's time by
 //! stage (`Solver::stage_times`), whether the two runs broke the same
 //! joints, how far their positions ended apart, and then the device's
 //! `Bulk::timings`: read-back round trips, each kernel, and the contact
@@ -48,8 +51,19 @@ fn main() {
     let from: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(3400);
     let steps: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100);
     let built = Instant::now();
-    let mut cpu = polyaxial_cube_at(from);
-    let snapshot = cpu.snapshot();
+    let carried = args.next().and_then(|f| std::fs::read(f).ok()).filter(|bytes| {
+        let mut s = polyaxial_cube();
+        s.restore(bytes).is_ok() && s.state().step == from
+    });
+    let snapshot = carried.unwrap_or_else(|| polyaxial_cube_at(from).snapshot());
+    if steps == 0 {
+        // Only the snapshot (`benches/gpu/prepare.sh`).
+        return;
+    }
+    // Both runs from the snapshot, so that each one's stage times cover
+    // its window only.
+    let mut cpu = polyaxial_cube();
+    cpu.restore(&snapshot).expect("the snapshot of the same cube");
     println!(
         "model           {} tets, {} joints ({} failed), at step {from} (ready in {:.1} s)",
         cpu.model().num_deformable_tets(),

@@ -23,6 +23,10 @@ strip target/gpu-carry/gpu_step target/gpu-carry/gpu_contact target/gpu-carry/fe
 loader=/usr/lib/x86_64-linux-gnu/libvulkan.so.1
 [ -e "$loader" ] || { echo "no Vulkan loader at $loader: install Debian's libvulkan1" >&2; exit 1; }
 cp -L "$loader" target/gpu-carry/
+# The fragmented cube's state at step 3400 for gpu_contact (made here by a
+# first run, ~20 s on 2 cores, so that the device machine need not).
+target/release/examples/gpu_contact 3400 0 > /dev/null
+cp target/contact_profile/cube50_3400.snap target/gpu-carry/
 rm -f target/gpu-carry/gpu_step_base
 if [ -n "$base" ]; then
     cp "$base" target/gpu-carry/gpu_step_base

@@ -7,9 +7,11 @@ use std::time::{Duration, Instant};
 
 /// Time spent in each stage of [`crate::Solver`]'s steps (on a device,
 /// stages 1 and 5 run there and their time is the host's wait; with stage 1
-/// alone on the device, its uploads and read-backs are in `forces`). Not
-/// counted: what runs between steps (the output, the run guard, the
-/// watched list made again when a crack makes tets contactable).
+/// alone on the device, its uploads and read-backs are in `forces`; the
+/// watched list made again when a crack makes tets contactable is in
+/// `failures`). Not counted: what runs between steps (the output, the run
+/// guard) and, resident, sending a host-side change up before the step (a
+/// decree, a restore) with the watched list made again after it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct StageTimes {
     /// Steps timed.

@@ -199,7 +199,6 @@ fn contact_on_the_host_beside_the_device_steps_as_the_cpu() {
             assert!(times.total() <= wall, "{:?} of stages in {wall:?} of steps", times.total());
             assert_eq!(times.steps, 400);
             let stages = times.per_step_ms();
-            assert!(stages.iter().all(|&(_, ms)| ms > 0.0), "{stages:?}");
             for stage in ["forces", "detection", "pair loop", "update"] {
                 assert!(stages.iter().any(|&(name, _)| name == stage), "{stage} in {stages:?}");
             }

@@ -89,8 +89,20 @@ impl Bulk {
             }),
         ];
         // No sum to time before the update is enabled.
-        let kernels = &kernels[..if self.motion.is_some() { 4 } else { 3 }];
-        for &(what, encode) in kernels {
+        let bulk_kernels = if self.motion.is_some() { 4 } else { 3 };
+        let mut timed: Vec<(&'static str, &Encode<'_>, Option<u64>)> =
+            kernels[..bulk_kernels].iter().map(|&(what, encode)| (what, encode, None)).collect();
+        // The contact pairs' kernel on the last list the contact pass sent
+        // (it writes only its results, which the next pass overwrites).
+        let last = self.last_pairs();
+        let bulk: &Bulk = self;
+        let pairs = last.as_ref().map(|(pipeline, count, within)| {
+            move |e: &mut wgpu::CommandEncoder| bulk.encode_pairs(e, pipeline, *count, *within)
+        });
+        if let (Some(encode), Some((_, count, _))) = (&pairs, &last) {
+            timed.push(("contact pairs (Eq. 17), the last list", encode, Some(u64::from(*count))));
+        }
+        for (what, encode, items) in timed {
             let mut encoder = new_encoder();
             encode(&mut encoder);
             read_one(encoder);
@@ -100,23 +112,7 @@ impl Bulk {
             }
             let start = Instant::now();
             read_one(encoder);
-            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64, items: None });
-        }
-        // The contact pairs' kernel on the last list the contact pass sent
-        // (it writes only its results, which the next pass overwrites).
-        if let Some((pipeline, count, within)) = self.last_pairs() {
-            let mut encoder = new_encoder();
-            self.encode_pairs(&mut encoder, &pipeline, count, within);
-            read_one(encoder);
-            let mut encoder = new_encoder();
-            for _ in 0..reps {
-                self.encode_pairs(&mut encoder, &pipeline, count, within);
-            }
-            let start = Instant::now();
-            read_one(encoder);
-            let what = "contact pairs (Eq. 17), the last list";
-            let seconds = start.elapsed().as_secs_f64() / reps as f64;
-            out.push(Timing { what, seconds, items: Some(u64::from(count)) });
+            out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64, items });
         }
         let mut encoder = new_encoder();
         for (b, copy) in &saved {

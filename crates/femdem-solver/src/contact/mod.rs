@@ -65,6 +65,7 @@ mod certify;
 mod debts;
 mod depth;
 mod detection;
+mod energy;
 mod geometry;
 mod incremental;
 mod onset;
@@ -85,6 +86,7 @@ use crate::model::Model;
 use certify::{Certificates, Verdict};
 use debts::corrected;
 use detection::Update;
+pub use energy::ContactEnergy;
 pub(crate) use geometry::Geometry;
 use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
 pub(crate) use saved::SavedContact;
@@ -97,53 +99,6 @@ use start::NewlyAllowed;
 /// a joint that failed in compression rises from zero to its full value
 /// (the default of [`ContactSettings::ramp_steps`]).
 pub const RAMP_STEPS: u32 = 10;
-
-/// The contact terms of the energy account, J: kept in the solver's ledger
-/// (`crate::ledger`), booked by [`Contact::book_work`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct ContactEnergy {
-    /// Work absorbed by the normal forces up to `t_n` of the last pass,
-    /// plus the elastic energy of the friction springs now.
-    pub contact: Real,
-    /// Energy dissipated by friction up to `t_n`: the work absorbed by the
-    /// friction forces less what the springs still hold.
-    pub friction: Real,
-    /// The work the friction forces absorbed up to `t_n`.
-    friction_absorbed: Real,
-    /// The springs' energy booked into `contact` so far.
-    spring_booked: Real,
-    /// Work of the last pass's normal forces over the half step after
-    /// `t_n`, `½ Δt Σ f_N · v_{n+½}`: booked with the next pass.
-    normal_ahead: Real,
-    /// The same for the friction forces.
-    friction_ahead: Real,
-    /// Work done on the bodies by the normal forces of the pairs that
-    /// started overlapped (`ContactSettings::activation`), while they
-    /// stayed in contact, up to `t_n`: the energy their initial overlap
-    /// gave back (less what they absorbed since), J.
-    pub released: Real,
-    /// The same over the half step after `t_n`, booked with the next pass.
-    released_ahead: Real,
-    /// The compression energy the failed joints held when they failed
-    /// (`JointHistory::compression_energy`), J, for the joints whose couple
-    /// starts without an offset (`Contact::joint_failed`): an upper bound
-    /// on what their overlaps can honestly give back.
-    pub held: Real,
-}
-
-impl ContactEnergy {
-    /// What the pairs that started overlapped gave back, up to the
-    /// compression energy the failed joints held (`clamp(released, 0,
-    /// held)`), J: energy the joints handed over to contact, which the
-    /// account moves from fracture to contact (`Energies::fracture` less
-    /// it, `Energies::contact` plus it). A joint that fails closed leaves
-    /// its two tets overlapping by its opening, and its compression was
-    /// stored work, not fracture; what contact gives back beyond it is
-    /// energy no load supplied, which `Solver::check_contact_energy` sees.
-    pub fn handed(&self) -> Real {
-        self.released.clamp(0.0, self.held.max(0.0))
-    }
-}
 
 /// The contact pass's state.
 #[derive(Clone, Debug)]

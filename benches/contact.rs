@@ -49,7 +49,8 @@ fn nbs(c: &mut Criterion) {
 }
 
 /// One tet–tet potential contact evaluation (both passes: 8 faces clipped
-/// against 4 sub-tets each) for a shallow and a deep overlap.
+/// to the other tet and cut into its 4 sub-tets' regions) for a shallow and
+/// a deep overlap.
 fn kernel(c: &mut Criterion) {
     let a =
         [Vec3::new(1.0, 1.0, 1.0), Vec3::new(1.0, -1.0, -1.0), Vec3::new(-1.0, -1.0, 1.0), Vec3::new(-1.0, 1.0, -1.0)]

@@ -14,8 +14,8 @@
 //! ```
 //!
 //! `n` the outward unit normals and `p` the penalty (Pa). Each face of one
-//! tet is clipped against the four sub-tets of the other (Sutherland–Hodgman
-//! against the sub-tet's four planes); on each piece `φ` is linear, so its
+//! tet is clipped to the other tet (Sutherland–Hodgman) and the part inside
+//! is cut into the other's four sub-tets' regions; on each piece `φ` is linear, so its
 //! integral is the piece's area times `φ` at the piece's centroid `P`. The
 //! piece's force acts at `P`: on the face's three nodes by `P`'s barycentric
 //! coordinates in the face, and, opposite, on the other tet's four nodes by
@@ -48,31 +48,61 @@
 //! tet's largest face area, `ε` the rounding of a computed barycentric
 //! coordinate, 10⁻¹⁶ for unit tets at the origin and up to 10⁻¹¹ far from
 //! it; the tolerance is an estimate of the rounding of both clippings,
-//! the largest difference measured is 5.1 `p L² ε`), and the centre
+//! the largest difference measured is 5.2 `p L² ε`), and the centre
 //! within what those force differences allow.
 //!
 //! **Early-outs.** A face is skipped when its three corners lie outside one
 //! face plane of the other tet (`λ_i < 0` at all three). The rest of a face
 //! is first clipped to the other tet (`λ_j ≥ 0` for the planes some corner
-//! lies outside; every sub-tet is inside all four), and a sub-tet `i` of
-//! that polygon is skipped when one of its planes `λ_j − λ_i ≥ 0` is
-//! negative at every vertex: every vertex the clips make is a convex
-//! combination of the polygon's, so the plane keeps nothing. (The first
-//! clip to the tet replaced clipping each sub-tet by its own `λ_i ≥ 0`:
-//! the same pieces in exact arithmetic, fewer clips.)
+//! lies outside; every sub-tet is inside all four).
+//!
+//! **Sub-tets by a tournament.** The part `Q` of the face inside the other
+//! tet is then cut into the sub-tets' regions, `λ_i ≤ λ_j` for every `j`
+//! on sub-tet `i`. Instead of clipping `Q` to each sub-tet by its three
+//! planes `λ_j − λ_i ≥ 0` (twelve clips, the earlier code), the
+//! coordinates play a knock-out: `Q` starts with the coordinate whose sum
+//! over `Q`'s vertices is least as its *winner* `w`, and each other
+//! coordinate `c` in turn splits every polygon into where `λ_c − λ_w ≥ 0`
+//! (`w` stays the least) and where `λ_w − λ_c ≥ 0` (`c` is the new
+//! winner); a polygon with every vertex on one side passes on unsplit
+//! (every point of it is a convex combination of its vertices). After the
+//! three challengers each polygon lies where its winner is the least, and
+//! together they tile `Q` as the sub-tets do. A face pressed onto a face of
+//! the other tet has one sub-tet over nearly all of `Q` and the other three
+//! in slivers along its edges: the large polygon is split three times (two
+//! clipping passes each) instead of clipped nine times, and the slivers pass
+//! on unsplit. The polygons
+//! of one winner are one piece: their areas and first moments (in `μ` and
+//! in `λ`) are summed, so the piece's area, centroid and `φ` at the
+//! centroid are those of the sub-tet's region as a whole, as before (the
+//! force of a piece is the one-point rule at its centroid, exact for `φ`
+//! but not for its shares on the nodes, so splitting a region into pieces
+//! would change the result by more than rounding). In exact arithmetic the
+//! result is that of the twelve clips but for one case: a part of a face
+//! lying exactly on a boundary plane `λ_i = λ_j` between two sub-tets, which
+//! each sub-tet's clip keeps whole and so counted twice (the earlier code,
+//! and the reference of the tests below), and the tournament counts once
+//! (a test: `a_face_on_a_sub_tet_boundary_counts_once`). In floating point
+//! the results differ by rounding, within the tolerance of the tests below.
 //!
 //! **Faces left out** (only where a caller asks, `contact_in`'s `omit`;
 //! never by [`tet_tet_contact`]). On the part `Q` of a face inside the
 //! other tet, the face's pieces sum to
 //!
 //! ```text
-//! Σ_k |F_k| = p Σ_i A_i φ(P_i) ≤ p A_Q · 4 min_j max_{v ∈ Q} λ_j,
+//! Σ_k |F_k| = p Σ_i A_i φ(P_i) = p ∫_Q 4 min_i λ_i dA ≤ p · 4 min_j ∫_Q λ_j dA,
 //! ```
 //!
-//! because on piece `i` `λ_i` is the least coordinate, so
-//! `λ_i(P_i) ≤ λ_j(P_i) ≤ max_Q λ_j` for every `j`, and the pieces tile
-//! `Q`. The faces are taken in a fixed order (`a`'s four, then `b`'s), and
-//! a face is left out when its bound fits in what is left of a budget of
+//! because `φ` is linear on each piece (so `A_i φ(P_i)` is its integral
+//! there), the pieces tile `Q`, and the least coordinate is at most each
+//! one; `∫_Q λ_j dA` is `Q`'s first moment of `λ_j`, a sum over a fan of
+//! triangles (`4 min_j ∫_Q λ_j dA` is never above the earlier
+//! `A_Q · 4 min_j max_Q λ_j`: a mean over `Q` is at most the largest value
+//! at a vertex). Where one sub-tet covers all of `Q` (common face to face)
+//! the bound is the sum itself, so the computed sum may exceed the computed
+//! bound by the rounding of the two (a relative 10⁻¹⁵ or so, far inside the
+//! tests' `10⁻¹²` of the pair's bound). The faces are taken in a fixed
+//! order (`a`'s four, then `b`'s), and a face is left out when its bound fits in what is left of a budget of
 //! `p · omit`, which it then uses up: the faces left out move each nodal
 //! force (a weighted sum of pieces, weights in `[0, 1]`) and the resultant
 //! by at most the sum of their bounds, at most `p · omit`, the
@@ -82,102 +112,12 @@
 //! share an edge or a vertex across a trace dip into each other, with
 //! forces of second or third order in the overlap (`docs/performance.md`).
 
+mod clip;
+
 use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
 
-/// A convex polygon in a face's coordinates `μ` of at most 16 vertices (a
-/// triangle clipped by the 4 planes of the other tet and then a sub-tet's 3
-/// has at most 10; room is left for the duplicates that Sutherland–Hodgman
-/// makes where a vertex lies on a plane, exactly at shared nodes or within
-/// rounding), each with its barycentric
-/// coordinates `λ` in the other tet.
-#[derive(Clone, Copy)]
-struct Polygon {
-    mu: [[Real; 2]; 16],
-    lam: [[Real; 4]; 16],
-    n: usize,
-}
-
-impl Polygon {
-    const EMPTY: Polygon = Polygon { mu: [[0.0; 2]; 16], lam: [[0.0; 4]; 16], n: 0 };
-
-    /// Writes into `out` the part of this polygon where the linear function
-    /// `f` of the barycentric coordinates is ≥ 0 (Sutherland–Hodgman); a new
-    /// vertex on an edge `a b` is `a + (b − a) t`, `t = f_a / (f_a − f_b)`,
-    /// in `μ` and in `λ` alike. `out` is a buffer reused from clip to clip
-    /// (its old vertices are overwritten, not cleared).
-    #[inline]
-    fn clip_into(&self, out: &mut Polygon, f: impl Fn(&[Real; 4]) -> Real) {
-        out.n = 0;
-        let n = self.n.min(self.mu.len());
-        if n == 0 {
-            return;
-        }
-        let (mu, lam) = (&self.mu[..n], &self.lam[..n]);
-        let mut fb = f(&lam[0]);
-        for k in 0..n {
-            let next = if k + 1 == n { 0 } else { k + 1 };
-            let fa = fb;
-            fb = f(&lam[next]);
-            if fa >= 0.0 {
-                out.push(mu[k], lam[k]);
-            }
-            if (fa >= 0.0) != (fb >= 0.0) {
-                let t = fa / (fa - fb);
-                let (ma, mb, la, lb) = (mu[k], mu[next], lam[k], lam[next]);
-                let m = [ma[0] + (mb[0] - ma[0]) * t, ma[1] + (mb[1] - ma[1]) * t];
-                let l = [0, 1, 2, 3].map(|j| la[j] + (lb[j] - la[j]) * t);
-                out.push(m, l);
-            }
-        }
-    }
-
-    #[inline]
-    fn push(&mut self, mu: [Real; 2], lam: [Real; 4]) {
-        if self.n < self.mu.len() {
-            self.mu[self.n] = mu;
-            self.lam[self.n] = lam;
-            self.n += 1;
-        }
-    }
-
-    /// Area in `μ` (the real area divided by twice the face's; fan from
-    /// the first vertex, as [`Polygon::area_centroid`]).
-    #[inline]
-    fn area(&self) -> Real {
-        let m0 = self.mu[0];
-        (1..self.n.saturating_sub(1))
-            .map(|k| {
-                let (m1, m2) = (self.mu[k], self.mu[k + 1]);
-                0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]))
-            })
-            .sum()
-    }
-
-    /// Area in `μ` (the real area divided by twice the face's), the
-    /// centroid's `μ` and its `λ` (fan from the first vertex; both are
-    /// affine in the point, so the area-weighted mean of the triangles'
-    /// centroids).
-    #[inline]
-    fn area_centroid(&self) -> (Real, [Real; 2], [Real; 4]) {
-        let (mut area, mut mu, mut lam) = (0.0, [0.0; 2], [0.0; 4]);
-        let (m0, l0) = (self.mu[0], self.lam[0]);
-        for k in 1..self.n.saturating_sub(1) {
-            let (m1, m2) = (self.mu[k], self.mu[k + 1]);
-            let w = 0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]));
-            area += w;
-            let w3 = w / 3.0;
-            for c in 0..2 {
-                mu[c] += (m0[c] + m1[c] + m2[c]) * w3;
-            }
-            let (l1, l2) = (self.lam[k], self.lam[k + 1]);
-            for c in 0..4 {
-                lam[c] += (l0[c] + l1[c] + l2[c]) * w3;
-            }
-        }
-        if area > 0.0 { (area, mu.map(|x| x / area), lam.map(|x| x / area)) } else { (0.0, [0.0; 2], [0.0; 4]) }
-    }
-}
+use self::clip::{Moments, Polygon, tournament};
 
 /// Barycentric coordinates of a tet as affine functions: `λ(p) = m (p − x0)`
 /// for `λ1..λ3`, `λ0 = 1 − λ1 − λ2 − λ3`.
@@ -215,13 +155,29 @@ impl Barycentric {
 }
 
 /// What the two directions of a pair share: the budget of the faces left
-/// out (m², `p` times it in N), a face's part inside the other tet and two
-/// clipping buffers (reused from face to face; only their first `n`
-/// vertices are read), and the pieces' `Σ |F_k| P_k` and `Σ |F_k|`.
-struct Shared {
+/// out (m², `p` times it in N), the clipping buffers (a face's part inside
+/// the other tet and a spare, and a pair per level of the tournament; only
+/// their first `n` vertices are read), and the pieces' `Σ |F_k| P_k` and
+/// `Σ |F_k|`.
+struct Shared<'s> {
     budget: Real,
-    buffers: [Polygon; 3],
+    buffers: &'s mut [Polygon; 2],
+    levels: &'s mut [[Polygon; 2]; 3],
     centre: (Vec3, Real),
+}
+
+/// The clipping buffers, kept per thread rather than made (and cleared,
+/// some 6 kB) for every pair. Scratch only: every call writes a buffer's
+/// vertices before it reads them, and no value outlives a call, so the
+/// results never depend on what a thread computed before.
+struct Scratch {
+    buffers: [Polygon; 2],
+    levels: [[Polygon; 2]; 3],
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> =
+        const { std::cell::RefCell::new(Scratch { buffers: [Polygon::EMPTY; 2], levels: [[Polygon::EMPTY; 2]; 3] }) };
 }
 
 /// Adds to `fa` (on the nodes of `a`) and `fb` (on the nodes of `b`) the
@@ -235,11 +191,11 @@ fn one_way(
     a: &[Vec3; 4],
     bary: Option<&Barycentric>,
     penalty: Real,
-    shared: &mut Shared,
+    shared: &mut Shared<'_>,
     fa: &mut [Vec3; 4],
     fb: &mut [Vec3; 4],
 ) {
-    let Shared { budget: omit_face, buffers, centre } = shared;
+    let Shared { budget: omit_face, buffers, levels, centre } = shared;
     // A flat `b` has no coordinates, and no potential to penetrate.
     let Some(bary) = bary else {
         return;
@@ -259,7 +215,7 @@ fn one_way(
         if (0..4).any(|i| lam.iter().all(|l| l[i] < 0.0)) {
             continue;
         }
-        let [inside, poly, spare] = &mut *buffers;
+        let [inside, spare] = &mut **buffers;
         inside.n = 0;
         for (m, l) in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]].into_iter().zip(lam) {
             inside.push(m, l);
@@ -280,39 +236,32 @@ fn one_way(
         let inside = &*inside;
         let vertices = &inside.lam[..inside.n];
         if *omit_face > 0.0 {
-            // Σ |F_k| / p over the face's pieces ≤ A · max φ_b.
-            let highest = (0..4)
-                .map(|j| vertices.iter().map(|l| l[j]).fold(Real::NEG_INFINITY, Real::max))
-                .fold(Real::INFINITY, Real::min);
-            // (An area negative by rounding would add to the budget.)
-            let bound = inside.area().max(0.0) * twice_area * 4.0 * highest.max(0.0);
+            // Σ |F_k| / p over the face's pieces = ∫_Q φ_b ≤ 4 min_j ∫_Q λ_j.
+            let mut whole = Moments::ZERO;
+            whole.add(inside);
+            let least = whole.lam.into_iter().fold(Real::INFINITY, Real::min);
+            // (A moment negative by rounding would add to the budget.)
+            let bound = least.max(0.0) * twice_area * 4.0;
             if bound <= *omit_face {
                 *omit_face -= bound;
                 continue;
             }
         }
-        for i in 0..4 {
-            // Sub-tet i: λ_j − λ_i ≥ 0 for j ≠ i (and λ_i ≥ 0, which the
-            // face inside b has already); a plane negative at every vertex
-            // keeps nothing.
-            if (0..4).any(|j| j != i && vertices.iter().all(|l| l[j] - l[i] < 0.0)) {
+        // The sub-tets' regions by a tournament ("Sub-tets by a
+        // tournament" in the module documentation), their pieces' areas and
+        // first moments summed per sub-tet.
+        let mut pieces = [Moments::ZERO; 4];
+        let sums: [Real; 4] = std::array::from_fn(|i| vertices.iter().map(|l| l[i]).sum());
+        let first = (0..4).min_by(|&i, &j| sums[i].total_cmp(&sums[j])).unwrap_or(0);
+        let mut challengers = [0usize; 3];
+        for (slot, j) in challengers.iter_mut().zip((0..4).filter(|&j| j != first)) {
+            *slot = j;
+        }
+        tournament(inside, first, &challengers, &mut levels[..], &mut pieces);
+        for (i, piece) in pieces.iter().enumerate() {
+            let Some((area_mu, [m1, m2], lb)) = piece.centroid() else {
                 continue;
-            }
-            let (mut poly, mut spare) = (&mut *poly, &mut *spare);
-            let mut first = true;
-            for j in (0..4).filter(|&j| j != i) {
-                let from = if first { inside } else { &*poly };
-                from.clip_into(spare, |l| l[j] - l[i]);
-                std::mem::swap(&mut poly, &mut spare);
-                first = false;
-            }
-            if poly.n < 3 {
-                continue;
-            }
-            let (area_mu, [m1, m2], lb) = poly.area_centroid();
-            if area_mu <= 0.0 {
-                continue;
-            }
+            };
             let phi = 4.0 * lb[i].max(0.0);
             let magnitude = penalty * (area_mu * twice_area) * phi;
             let force = n * -magnitude;
@@ -368,10 +317,12 @@ pub(crate) fn contact_in(
 ) -> (TetTetContact, Real) {
     let mut fa = [Vec3::zeros(); 4];
     let mut fb = [Vec3::zeros(); 4];
-    let mut shared = Shared { budget: omit, buffers: [Polygon::EMPTY; 3], centre: (Vec3::zeros(), 0.0) };
-    one_way(a, in_b, penalty, &mut shared, &mut fa, &mut fb);
-    one_way(b, in_a, penalty, &mut shared, &mut fb, &mut fa);
-    let (moment, weight) = shared.centre;
+    let (moment, weight) = SCRATCH.with_borrow_mut(|Scratch { buffers, levels }| {
+        let mut shared = Shared { budget: omit, buffers, levels, centre: (Vec3::zeros(), 0.0) };
+        one_way(a, in_b, penalty, &mut shared, &mut fa, &mut fb);
+        one_way(b, in_a, penalty, &mut shared, &mut fb, &mut fa);
+        shared.centre
+    });
     (TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }, weight)
 }
 
@@ -393,7 +344,10 @@ mod tests {
     //! overlapping, flat and needle-shaped ones included; on face-to-face
     //! contacts from 10⁻¹⁶ to 0.3 deep or apart, with nodes shared exactly or
     //! moved by 10⁻¹⁷ to 10⁻³; on tets sharing a vertex or an edge; at sizes
-    //! 10⁻³ to 10² and up to 10⁵ sizes from the origin.
+    //! 10⁻³ to 10² and up to 10⁵ sizes from the origin. (The reference clips
+    //! each sub-tet on its own, so it counts twice a part of a face lying
+    //! exactly on a boundary plane between two sub-tets; random pairs do not
+    //! make one, and `a_face_on_a_sub_tet_boundary_counts_once` tests it.)
 
     use super::*;
     use crate::test_pairs::{face_pair, point, shared_pair, tet};
@@ -546,7 +500,7 @@ mod tests {
     /// keeps and the other drops moves its sliver to the neighbouring
     /// sub-tet, where `φ` is the same on the boundary: `8 · 4 · 10 ≈ 320`,
     /// rounded up to 1,024 for the areas' own rounding. The largest
-    /// difference measured is 5.1. Where the pair is shallow and far from
+    /// difference measured is 5.2. Where the pair is shallow and far from
     /// the origin the tolerance exceeds the forces themselves, and the
     /// comparison says little there.
     const FORCE_TOLERANCE: Real = 1024.0;
@@ -632,6 +586,31 @@ mod tests {
             );
             assert!(touching >= 5_000, "{name}: {touching} touch");
             assert!(force <= FORCE_TOLERANCE && centre <= 1.0, "{name}: {force:e} {centre:e}");
+        }
+    }
+
+    /// A face of `a` lying exactly on the plane `λ_1 = λ_2` of `b` (the unit
+    /// corner tet, whose coordinates are the points' own, so the two are
+    /// equal bit for bit) belongs to two sub-tets' closed regions; it is
+    /// counted once, as a copy of `a` moved off the plane by 2⁻⁴⁰ is (the
+    /// clip per sub-tet, the earlier code, counted it twice: the forces
+    /// were then a whole face's apart).
+    #[test]
+    fn a_face_on_a_sub_tet_boundary_counts_once() {
+        let b = [Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()];
+        let a = crate::test_pairs::positive([
+            Vec3::new(0.1, 0.1, 0.3),
+            Vec3::new(0.2, 0.2, 0.3),
+            Vec3::new(0.1, 0.1, 0.6),
+            Vec3::new(0.3, 0.0, 0.4),
+        ]);
+        let off = Vec3::new(1.0, -1.0, 0.0) * 2f64.powi(-40);
+        let on = tet_tet_contact(&a, &b, 1.0);
+        let moved = tet_tet_contact(&a.map(|p| p + off), &b, 1.0);
+        let largest = on.on_b.iter().map(|f| f.norm()).fold(0.0, Real::max);
+        assert!(largest > 1e-3, "the pair touches: {largest}");
+        for (x, y) in on.on_a.iter().chain(&on.on_b).zip(moved.on_a.iter().chain(&moved.on_b)) {
+            assert!((x - y).norm() <= 1e-9 * largest, "{x:?} against {y:?} moved off the plane");
         }
     }
 

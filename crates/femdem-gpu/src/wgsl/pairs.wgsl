@@ -1,7 +1,12 @@
 // The penalty-function potential contact force between two tets (Munjiza &
 // Andrews 2000; reference paper Eq. 17): `femdem_contact::tet_tet_contact`
-// on the device, one invocation per pair, operation for operation (the
-// derivation is in `femdem-contact/src/potential.rs`):
+// on the device, one invocation per pair (the derivation is in
+// `femdem-contact/src/potential.rs`). The face's part inside the other tet,
+// its bound and each piece's force are the CPU's operation for operation;
+// the pieces are made by clipping that part to each sub-tet on its own (the
+// CPU's earlier order, fewer buffers), where the CPU now splits it by a
+// tournament: the same pieces in exact arithmetic, within rounding in
+// floating point (the tests' tolerance, `tests/gpu/pairs.rs`):
 //
 //   f_A = -p ∫_{∂A ∩ B} φ_B n_A dS + p ∫_{∂B ∩ A} φ_A n_B dS,   f_B = -f_A,
 //
@@ -116,8 +121,8 @@ fn clip_into(src: u32, to: u32, j: u32, i: u32) {
     }
 }
 
-// Whether some vertex of bufs[b] has plane(λ, j, i) < 0 (any), or every
-// vertex has (all).
+// Whether some vertex of bufs[b] has plane(λ, j, i) < 0 (any_below), every
+// vertex has it exactly 0 (all_zero), or every vertex has it < 0 (all_below).
 fn any_below(b: u32, j: u32, i: u32) -> bool {
     for (var k = 0u; k < bufs[b].n; k++) {
         if (plane(bufs[b].lam[k], j, i) < 0.0) {
@@ -125,6 +130,15 @@ fn any_below(b: u32, j: u32, i: u32) -> bool {
         }
     }
     return false;
+}
+
+fn all_zero(b: u32, j: u32, i: u32) -> bool {
+    for (var k = 0u; k < bufs[b].n; k++) {
+        if (plane(bufs[b].lam[k], j, i) != 0.0) {
+            return false;
+        }
+    }
+    return true;
 }
 
 fn all_below(b: u32, j: u32, i: u32) -> bool {
@@ -144,35 +158,30 @@ struct Piece {
     lam: vec4<f64>,
 }
 
-// Area in μ of bufs[b] (a fan from the first vertex, as area_centroid).
-fn area(b: u32) -> f64 {
-    var sum: f64 = 0.0;
-    let m0 = bufs[b].mu[0];
-    let n = bufs[b].n;
-    for (var k = 1u; k + 1u < n; k++) {
-        let m1 = bufs[b].mu[k];
-        let m2 = bufs[b].mu[k + 1u];
-        sum = sum + 0.5 * ((m1.x - m0.x) * (m2.y - m0.y) - (m1.y - m0.y) * (m2.x - m0.x));
-    }
-    return sum;
-}
-
-// Whether the face inside the other tet (bufs[b]) is left out: its
-// pieces' Σ |F| / p is at most A · 4 min_j max λ_j, and that fits in what
-// is left of the budget, which it then uses up.
+// Whether the face inside the other tet (bufs[b], Q) is left out: its
+// pieces' Σ |F| / p = ∫_Q φ is at most 4 min_j ∫_Q λ_j (the first moments
+// of a fan from the first vertex, as area_centroid's), and that fits in
+// what is left of the budget, which it then uses up.
 fn left_out(b: u32, twice_area: f64) -> bool {
     if (!(budget > 0.0)) {
         return false;
     }
-    var highest = infinity();
-    for (var j = 0u; j < 4u; j++) {
-        var top = -infinity();
-        for (var k = 0u; k < bufs[b].n; k++) {
-            top = rmax(top, bufs[b].lam[k][j]);
-        }
-        highest = rmin(highest, top);
+    var lam = vec4<f64>(0.0, 0.0, 0.0, 0.0);
+    let m0 = bufs[b].mu[0];
+    let l0 = bufs[b].lam[0];
+    let n = bufs[b].n;
+    for (var k = 1u; k + 1u < n; k++) {
+        let m1 = bufs[b].mu[k];
+        let m2 = bufs[b].mu[k + 1u];
+        let w = 0.5 * ((m1.x - m0.x) * (m2.y - m0.y) - (m1.y - m0.y) * (m2.x - m0.x));
+        let w3 = w / 3.0;
+        let l1 = bufs[b].lam[k];
+        let l2 = bufs[b].lam[k + 1u];
+        lam = lam + (l0 + l1 + l2) * w3;
     }
-    let bound = rmax(area(b), 0.0) * twice_area * 4.0 * rmax(highest, 0.0);
+    // Seeded as the CPU's fold (infinite where every moment is NaN).
+    let least = rmin(rmin(rmin(rmin(infinity(), lam.x), lam.y), lam.z), lam.w);
+    let bound = rmax(least, 0.0) * twice_area * 4.0;
     if (bound <= budget) {
         budget = budget - bound;
         return true;
@@ -312,10 +321,13 @@ fn one_way(tet: array<vec3<f64>, 4>, bary: Bary, penalty: f64, own: u32, other: 
         }
         for (var i = 0u; i < 4u; i++) {
             // Sub-tet i: a plane λ_j - λ_i negative at every vertex keeps
-            // nothing.
+            // nothing; one zero at every vertex (the face's part lies on the
+            // boundary between sub-tets j and i) has its region counted with
+            // the sub-tet j < i already, as the CPU's tournament counts it
+            // once.
             var empty = false;
             for (var j = 0u; j < 4u; j++) {
-                if (j != i && all_below(ins, j, i)) {
+                if (j != i && (all_below(ins, j, i) || (j < i && all_zero(ins, j, i)))) {
                     empty = true;
                 }
             }

@@ -9,15 +9,17 @@
 //!
 //! # The tolerance
 //!
-//! The kernel is the CPU's operation for operation, but a driver may fuse
-//! a product and a sum (Vulkan allows it unless told not to), so a
+//! The kernel clips each sub-tet on its own where the CPU splits the face
+//! by a tournament (`potential.rs`): the same pieces in exact arithmetic,
+//! whose areas and moments round differently; and a driver may fuse a
+//! product and a sum (Vulkan allows it unless told not to), so a
 //! barycentric coordinate may round differently, and a vertex within
 //! rounding of a clipping plane may be kept by one and dropped by the
 //! other. That is the difference `femdem-contact`'s tests bound between its
 //! two clippings: every nodal force within `1024 p L² ε` (`L²` the larger
 //! tet's largest face area, `ε = u (1 + M (R + X))` the rounding of a
 //! computed coordinate: the derivation is in `potential.rs`'s tests, with
-//! the largest difference measured there, 5.1), and the contact centre
+//! the largest difference measured there, 5.2), and the contact centre
 //! within what those force differences allow. The largest difference and
 //! how many pairs agree to the last bit are printed.
 //!
@@ -203,6 +205,20 @@ fn face_to_face_pairs_agree_with_the_cpu() {
 #[test]
 fn node_sharing_pairs_agree_with_the_cpu() {
     compare("sharing nodes", shared_pair, 20_000, 3);
+}
+
+/// A face of `a` exactly on the plane `λ_1 = λ_2` of `b`, the unit corner
+/// tet (`femdem-contact`'s `a_face_on_a_sub_tet_boundary_counts_once`):
+/// the part of the face there is counted once on the device too, not
+/// once for each of the two sub-tets whose closed regions hold it.
+fn boundary_pair(_: &mut ChaCha8Rng) -> ([Vec3; 4], [Vec3; 4]) {
+    let a = [Vec3::new(0.1, 0.1, 0.3), Vec3::new(0.2, 0.2, 0.3), Vec3::new(0.1, 0.1, 0.6), Vec3::new(0.3, 0.0, 0.4)];
+    (positive(a), [Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()])
+}
+
+#[test]
+fn a_face_on_a_sub_tet_boundary_counts_once_on_the_device() {
+    compare("a face on a sub-tet boundary", boundary_pair, 2, 4);
 }
 
 /// Relative tolerance of a bound (module documentation).

@@ -577,7 +577,6 @@ impl Contact {
                 let nodes = [ta, tb];
                 let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
                 let fresh = newly.is_some_and(|n| n.contains(a, b));
-                let volumes = [model.tet_ref[a as usize].volume, model.tet_ref[b as usize].volume];
                 let size = sizes[a as usize].min(sizes[b as usize]);
                 let mut verdict = Verdict::default();
                 // Within its certificate's radius: skipped (not a pair newly
@@ -620,7 +619,9 @@ impl Contact {
                 if certifying && negligible_bound.is_some_and(|b| b > 0.0) {
                     verdict.bounded = true;
                     if radius != certify::BOUNDED {
-                        let (volume, at) = (volumes[0].min(volumes[1]), at());
+                        // (Read here: most candidates never need it.)
+                        let volume = model.tet_ref[a as usize].volume.min(model.tet_ref[b as usize].volume);
+                        let at = at();
                         // A lapsed pair's deviation is known already.
                         let d = deviation.unwrap_or_else(|| certify::deviation(&xs, &at));
                         verdict.update = Some(certify::certify(&at, d, volume, negligible));

@@ -5,6 +5,8 @@
 //! the steps after the ramp, once every pre-existing fracture face carries
 //! its full load (the contact-dominated regime of issue 28's target), and
 //! over the first 130 steps. Some 15 minutes on 2 cores; not run by CI.
+//! A prebuilt `femdem` named by the environment variable `FEMDEM_BIN` is
+//! run instead of building one (an earlier build, to measure against).
 //!
 //! The rates come from femdem's progress lines, which give the cumulative
 //! throughput since the loop started: `steps · tets / throughput` is the
@@ -23,14 +25,20 @@ const END: f64 = 1.9e-4;
 
 /// Runs the benchmark (see the module documentation).
 pub fn run(threads: &str, size: &str) -> Result<()> {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    crate::run_in_root(Command::new(&cargo).args(["build", "--release", "-p", "femdem-cli"]))?;
     let root = crate::root();
+    let femdem = match std::env::var_os("FEMDEM_BIN") {
+        Some(bin) => std::path::PathBuf::from(bin),
+        None => {
+            let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+            crate::run_in_root(Command::new(&cargo).args(["build", "--release", "-p", "femdem-cli"]))?;
+            root.join("target").join("release").join("femdem")
+        }
+    };
     let out = root.join("target").join("bench-paper");
     let mut sets = vec![format!("mesh.parts.0.element_size={size}"), format!("solver.end_time={END}")];
     sets.push("output.interval=1.0".into());
     sets.extend((0..6).map(|k| format!("loads.{k}.ramp_time={RAMP}")));
-    let mut cmd = Command::new(root.join("target").join("release").join("femdem"));
+    let mut cmd = Command::new(&femdem);
     let run = ["run", "cases/paper/multilayer.toml", "--overwrite", "--progress-interval", "2", "--threads"];
     cmd.args(run)
         .arg(threads)

@@ -90,19 +90,13 @@
 //! other tet, the face's pieces sum to
 //!
 //! ```text
-//! Σ_k |F_k| = p Σ_i A_i φ(P_i) = p ∫_Q 4 min_i λ_i dA ≤ p · 4 min_j ∫_Q λ_j dA,
+//! Σ_k |F_k| = p Σ_i A_i φ(P_i) ≤ p A_Q · 4 min_j max_{v ∈ Q} λ_j,
 //! ```
 //!
-//! because `φ` is linear on each piece (so `A_i φ(P_i)` is its integral
-//! there), the pieces tile `Q`, and the least coordinate is at most each
-//! one; `∫_Q λ_j dA` is `Q`'s first moment of `λ_j`, a sum over a fan of
-//! triangles (`4 min_j ∫_Q λ_j dA` is never above the earlier
-//! `A_Q · 4 min_j max_Q λ_j`: a mean over `Q` is at most the largest value
-//! at a vertex). Where one sub-tet covers all of `Q` (common face to face)
-//! the bound is the sum itself, so the computed sum may exceed the computed
-//! bound by the rounding of the two (a relative 10⁻¹⁵ or so, far inside the
-//! tests' `10⁻¹²` of the pair's bound). The faces are taken in a fixed
-//! order (`a`'s four, then `b`'s), and a face is left out when its bound fits in what is left of a budget of
+//! because on piece `i` `λ_i` is the least coordinate, so
+//! `λ_i(P_i) ≤ λ_j(P_i) ≤ max_Q λ_j` for every `j`, and the pieces tile
+//! `Q`. The faces are taken in a fixed order (`a`'s four, then `b`'s), and
+//! a face is left out when its bound fits in what is left of a budget of
 //! `p · omit`, which it then uses up: the faces left out move each nodal
 //! force (a weighted sum of pieces, weights in `[0, 1]`) and the resultant
 //! by at most the sum of their bounds, at most `p · omit`, the
@@ -236,12 +230,12 @@ fn one_way(
         let inside = &*inside;
         let vertices = &inside.lam[..inside.n];
         if *omit_face > 0.0 {
-            // Σ |F_k| / p over the face's pieces = ∫_Q φ_b ≤ 4 min_j ∫_Q λ_j.
-            let mut whole = Moments::ZERO;
-            whole.add(inside);
-            let least = whole.lam.into_iter().fold(Real::INFINITY, Real::min);
-            // (A moment negative by rounding would add to the budget.)
-            let bound = least.max(0.0) * twice_area * 4.0;
+            // Σ |F_k| / p over the face's pieces ≤ A · max φ_b.
+            let highest = (0..4)
+                .map(|j| vertices.iter().map(|l| l[j]).fold(Real::NEG_INFINITY, Real::max))
+                .fold(Real::INFINITY, Real::min);
+            // (An area negative by rounding would add to the budget.)
+            let bound = inside.area().max(0.0) * twice_area * 4.0 * highest.max(0.0);
             if bound <= *omit_face {
                 *omit_face -= bound;
                 continue;

@@ -53,6 +53,19 @@ impl Polygon {
         }
     }
 
+    /// Area in `μ` (the real area divided by twice the face's; fan from
+    /// the first vertex, as [`Moments::add`]).
+    #[inline]
+    pub(super) fn area(&self) -> Real {
+        let m0 = self.mu[0];
+        (1..self.n.saturating_sub(1))
+            .map(|k| {
+                let (m1, m2) = (self.mu[k], self.mu[k + 1]);
+                0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]))
+            })
+            .sum()
+    }
+
     #[inline]
     pub(super) fn push(&mut self, mu: [Real; 2], lam: [Real; 4]) {
         if self.n < self.mu.len() {

@@ -158,30 +158,35 @@ struct Piece {
     lam: vec4<f64>,
 }
 
-// Whether the face inside the other tet (bufs[b], Q) is left out: its
-// pieces' Σ |F| / p = ∫_Q φ is at most 4 min_j ∫_Q λ_j (the first moments
-// of a fan from the first vertex, as area_centroid's), and that fits in
-// what is left of the budget, which it then uses up.
-fn left_out(b: u32, twice_area: f64) -> bool {
-    if (!(budget > 0.0)) {
-        return false;
-    }
-    var lam = vec4<f64>(0.0, 0.0, 0.0, 0.0);
+// Area in μ of bufs[b] (a fan from the first vertex, as area_centroid).
+fn area(b: u32) -> f64 {
+    var sum: f64 = 0.0;
     let m0 = bufs[b].mu[0];
-    let l0 = bufs[b].lam[0];
     let n = bufs[b].n;
     for (var k = 1u; k + 1u < n; k++) {
         let m1 = bufs[b].mu[k];
         let m2 = bufs[b].mu[k + 1u];
-        let w = 0.5 * ((m1.x - m0.x) * (m2.y - m0.y) - (m1.y - m0.y) * (m2.x - m0.x));
-        let w3 = w / 3.0;
-        let l1 = bufs[b].lam[k];
-        let l2 = bufs[b].lam[k + 1u];
-        lam = lam + (l0 + l1 + l2) * w3;
+        sum = sum + 0.5 * ((m1.x - m0.x) * (m2.y - m0.y) - (m1.y - m0.y) * (m2.x - m0.x));
     }
-    // Seeded as the CPU's fold (infinite where every moment is NaN).
-    let least = rmin(rmin(rmin(rmin(infinity(), lam.x), lam.y), lam.z), lam.w);
-    let bound = rmax(least, 0.0) * twice_area * 4.0;
+    return sum;
+}
+
+// Whether the face inside the other tet (bufs[b]) is left out: its
+// pieces' Σ |F| / p is at most A · 4 min_j max λ_j, and that fits in what
+// is left of the budget, which it then uses up.
+fn left_out(b: u32, twice_area: f64) -> bool {
+    if (!(budget > 0.0)) {
+        return false;
+    }
+    var highest = infinity();
+    for (var j = 0u; j < 4u; j++) {
+        var top = -infinity();
+        for (var k = 0u; k < bufs[b].n; k++) {
+            top = rmax(top, bufs[b].lam[k][j]);
+        }
+        highest = rmin(highest, top);
+    }
+    let bound = rmax(area(b), 0.0) * twice_area * 4.0 * rmax(highest, 0.0);
     if (bound <= budget) {
         budget = budget - bound;
         return true;

@@ -26,14 +26,7 @@ const END: f64 = 1.9e-4;
 /// Runs the benchmark (see the module documentation).
 pub fn run(threads: &str, size: &str) -> Result<()> {
     let root = crate::root();
-    let femdem = match std::env::var_os("FEMDEM_BIN") {
-        Some(bin) => std::path::PathBuf::from(bin),
-        None => {
-            let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-            crate::run_in_root(Command::new(&cargo).args(["build", "--release", "-p", "femdem-cli"]))?;
-            root.join("target").join("release").join("femdem")
-        }
-    };
+    let femdem = crate::validate::runner::binary("bench --paper")?;
     let out = root.join("target").join("bench-paper");
     let mut sets = vec![format!("mesh.parts.0.element_size={size}"), format!("solver.end_time={END}")];
     sets.push("output.interval=1.0".into());

@@ -175,6 +175,29 @@ pub fn with_checkpoints(case: &str) -> Result<String> {
     Ok(format!("{header}{}", toml::to_string(&table)?))
 }
 
+/// The `femdem` to run: the prebuilt binary the environment names in
+/// `FEMDEM_BIN` (a machine without cargo, a cluster node, an earlier build
+/// to measure against), or else `femdem` built in release mode. `task`
+/// prefixes the line that says a prebuilt one is used.
+pub fn binary(task: &str) -> Result<PathBuf> {
+    if let Some(bin) = std::env::var_os("FEMDEM_BIN") {
+        let bin = PathBuf::from(bin);
+        if !bin.is_file() {
+            bail!("FEMDEM_BIN = {} is not a file", bin.display());
+        }
+        eprintln!("{task}: using the prebuilt {} (FEMDEM_BIN)", bin.display());
+        return Ok(bin);
+    }
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    crate::run_in_root(Command::new(cargo).args(["build", "--release", "--quiet", "-p", "femdem-cli"]))?;
+    let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| crate::root().join("target"), PathBuf::from);
+    let bin = target.join("release").join(if cfg!(windows) { "femdem.exe" } else { "femdem" });
+    if !bin.exists() {
+        bail!("{} was not built", bin.display());
+    }
+    Ok(bin)
+}
+
 impl Femdem {
     /// Builds `femdem` in release mode and returns it; or, when the
     /// environment names a prebuilt binary in `FEMDEM_BIN` (a machine
@@ -187,21 +210,7 @@ impl Femdem {
             // validate as usual (and femdem only if sent to its group too).
             let _ = ctrlc::set_handler(move || stop.signal());
         }
-        if let Some(bin) = std::env::var_os("FEMDEM_BIN") {
-            let bin = PathBuf::from(bin);
-            if !bin.is_file() {
-                bail!("FEMDEM_BIN = {} is not a file", bin.display());
-            }
-            eprintln!("validate: using the prebuilt {} (FEMDEM_BIN)", bin.display());
-            return Ok(Femdem { bin, stop });
-        }
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        crate::run_in_root(Command::new(cargo).args(["build", "--release", "--quiet", "-p", "femdem-cli"]))?;
-        let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| crate::root().join("target"), PathBuf::from);
-        let bin = target.join("release").join(if cfg!(windows) { "femdem.exe" } else { "femdem" });
-        if !bin.exists() {
-            bail!("{} was not built", bin.display());
-        }
+        let bin = binary("validate")?;
         Ok(Femdem { bin, stop })
     }
 

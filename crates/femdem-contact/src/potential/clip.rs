@@ -58,12 +58,7 @@ impl Polygon {
     #[inline]
     pub(super) fn area(&self) -> Real {
         let m0 = self.mu[0];
-        (1..self.n.saturating_sub(1))
-            .map(|k| {
-                let (m1, m2) = (self.mu[k], self.mu[k + 1]);
-                0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]))
-            })
-            .sum()
+        (1..self.n.saturating_sub(1)).map(|k| triangle_area(m0, self.mu[k], self.mu[k + 1])).sum()
     }
 
     #[inline]
@@ -74,6 +69,12 @@ impl Polygon {
             self.n += 1;
         }
     }
+}
+
+/// The signed area in `μ` of the triangle `m0 m1 m2` (a fan's triangle).
+#[inline]
+fn triangle_area(m0: [Real; 2], m1: [Real; 2], m2: [Real; 2]) -> Real {
+    0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]))
 }
 
 /// The area (in `μ`) of a sub-tet's region of a face and its first
@@ -94,7 +95,7 @@ impl Moments {
         let (m0, l0) = (poly.mu[0], poly.lam[0]);
         for k in 1..poly.n.saturating_sub(1) {
             let (m1, m2) = (poly.mu[k], poly.mu[k + 1]);
-            let w = 0.5 * ((m1[0] - m0[0]) * (m2[1] - m0[1]) - (m1[1] - m0[1]) * (m2[0] - m0[0]));
+            let w = triangle_area(m0, m1, m2);
             self.area += w;
             let w3 = w / 3.0;
             for c in 0..2 {

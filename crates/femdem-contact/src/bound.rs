@@ -246,16 +246,21 @@ fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, eta: Real, hull: &m
             hull.add(t[k], &unit(k), &l[k], swapped);
         }
     }
+    // Bit j of `below[k]` (`above[k]`): node k's coordinate j is negative
+    // (positive); an edge crosses plane j strictly where its ends' bits
+    // differ so, tested once per edge instead of plane by plane.
+    let below = l.map(|lk| (0..4).fold(0u8, |m, j| m | (u8::from(lk[j] < 0.0) << j)));
+    let above = l.map(|lk| (0..4).fold(0u8, |m, j| m | (u8::from(lk[j] > 0.0) << j)));
     for [p, q] in EDGES {
         // Both ends beyond one plane: no point of the edge is inside.
         if out[p] & out[q] != 0 {
             continue;
         }
-        for j in 0..4 {
+        let mut crossed = (below[p] & above[q]) | (above[p] & below[q]);
+        while crossed != 0 {
+            let j = crossed.trailing_zeros() as usize;
+            crossed &= crossed - 1;
             let (sp, sq) = (l[p][j], l[q][j]);
-            if !(sp < 0.0 && sq > 0.0 || sp > 0.0 && sq < 0.0) {
-                continue;
-            }
             let s = sp / (sp - sq);
             let mut other = [0.0; 4];
             for (m, o) in other.iter_mut().enumerate() {

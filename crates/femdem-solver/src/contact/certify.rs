@@ -174,6 +174,45 @@ impl Certificates {
     }
 }
 
+/// A tet's nodes' displacement from their anchors, summarised: `mean` is
+/// `m = ¼ Σ_k u_k` and `spread` `r = max_k |u_k − m|` over its four nodes
+/// (`u_k = x_k − X_k`, m).
+///
+/// For a pair of tets `a`, `b` the mean of the eight is `ū = ½ (m_a + m_b)`,
+/// so each node's `|u_k − ū| ≤ |u_k − m_s| + |m_s − ū|`: the pair's
+/// [`deviation`] is at most `max(r_a, r_b) + ½ |m_a − m_b|`
+/// ([`Drift::surely_within`]). A certified pair whose bound is within its
+/// radius is skipped from these two summaries, without reading its eight
+/// nodes and their anchors; the others are decided by the deviation
+/// itself, so the decisions are those of the deviation alone.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Drift {
+    mean: Vec3,
+    spread: Real,
+}
+
+impl Drift {
+    /// The summary of tet `nodes` at positions `x` with anchors `anchor`.
+    pub fn of(nodes: &[u32; 4], x: &[Vec3], anchor: &[Vec3]) -> Drift {
+        let u = nodes.map(|n| x[n as usize] - anchor[n as usize]);
+        let mean = (u[0] + u[1] + u[2] + u[3]) / 4.0;
+        let spread = u.iter().map(|uk| (uk - mean).norm_squared()).fold(0.0, Real::max).sqrt();
+        Drift { mean, spread }
+    }
+
+    /// Whether the [`deviation`] of the pair of tets summarised by `self`
+    /// and `other` is surely at most `radius`, as computed: their bound
+    /// (the type's documentation) with a margin of `10⁻¹³` of the
+    /// displacements' size, far above the rounding of the two
+    /// computations (a few ulps of the displacements each), so that this
+    /// answers yes only where [`deviation`] would.
+    pub fn surely_within(&self, other: &Drift, radius: Real) -> bool {
+        let bound = self.spread.max(other.spread) + 0.5 * (self.mean - other.mean).norm();
+        let size = self.mean.norm() + other.mean.norm() + self.spread + other.spread;
+        bound + 1e-13 * (size + bound) <= radius
+    }
+}
+
 /// The anchors of tets `nodes` (a pair's) from `anchor`.
 pub(super) fn anchors(anchor: &[Vec3], nodes: &[[u32; 4]; 2]) -> [[Vec3; 4]; 2] {
     nodes.map(|t| t.map(|n| anchor[n as usize]))
@@ -234,6 +273,58 @@ mod tests {
         let mut one = at;
         one[1][2] += Vec3::new(0.0, 0.0, 1e-3);
         assert!((deviation(&one, &at) - 7e-3 / 8.0).abs() < 1e-15);
+    }
+
+    /// The two tets' summaries bound the pair's deviation (random
+    /// displacements of one tet or both, at three scales, on top of a
+    /// common shift); where `surely_within` says yes, `deviation` is within
+    /// the radius; and for two tets that only translate, by different
+    /// vectors and with no common shift, the bound is the deviation itself,
+    /// so a radius above it by 10⁻⁹ is surely within.
+    #[test]
+    fn the_drifts_bound_the_deviation() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let nodes = [[0, 1, 2, 3], [4, 5, 6, 7]];
+        for case in 0..3000 {
+            let at: Vec<Vec3> =
+                (0..8).map(|_| Vec3::new(next(), next(), next()) * 0.05 + Vec3::new(1.5, -2.0, 0.7)).collect();
+            let rigid = case % 4 == 3;
+            // (Rigid motions large against the coordinates' rounding.)
+            let scale = if rigid { 1e-3 } else { [1e-9, 1e-6, 1e-3][case % 3] };
+            // (The margin grows with a common shift, as the rounding does.)
+            let shift = if rigid { Vec3::zeros() } else { Vec3::new(next(), next(), next()) * 1e-2 };
+            let moves = [Vec3::new(next(), next(), next()) * scale, Vec3::new(next(), next(), next()) * scale];
+            let x: Vec<Vec3> = (0..8)
+                .map(|k| {
+                    let own = if rigid {
+                        moves[k / 4]
+                    } else if case % 4 == 0 || k < 4 {
+                        Vec3::new(next(), next(), next()) * scale
+                    } else {
+                        Vec3::zeros()
+                    };
+                    at[k] + shift + own
+                })
+                .collect();
+            let xs = nodes.map(|t| t.map(|n| x[n as usize]));
+            let ats = nodes.map(|t| t.map(|n| at[n as usize]));
+            let d = deviation(&xs, &ats);
+            let [da, db] = nodes.map(|t| Drift::of(&t, &x, &at));
+            for radius in [d * (1.0 - 1e-12), d, d * (1.0 + 1e-9), d * 1.5, d * 3.0] {
+                if da.surely_within(&db, radius) {
+                    assert!(d <= radius, "case {case}: said within {radius:e}, deviation {d:e}");
+                }
+            }
+            if rigid {
+                assert!(da.surely_within(&db, d * (1.0 + 1e-9)), "case {case}: rigid motions, deviation {d:e}");
+            }
+        }
     }
 
     /// A new epoch anchors the contactable tets' nodes and forgets every

@@ -208,6 +208,9 @@ pub struct Contact {
     /// pass (then clipped before it is bounded: the order of work only,
     /// `femdem_contact::tet_tet_contact_within`).
     was_in_contact: Vec<bool>,
+    /// Scratch: each contactable tet's displacement from its anchors,
+    /// summarised (`certify::Drift`), when certifying.
+    drifts: Vec<certify::Drift>,
 }
 
 impl Contact {
@@ -273,6 +276,7 @@ impl Contact {
             held_next: PairMap::default(),
             primed: false,
             was_in_contact: Vec::new(),
+            drifts: Vec::new(),
         };
         // A pre-existing fracture face activates its vertices as a failed
         // joint does: its tets are those of the vertices the pair shares.
@@ -544,6 +548,13 @@ impl Contact {
             } else {
                 cert.anchor_new(&model.tets, x);
             }
+            self.drifts.resize(model.tets.len(), certify::Drift::default());
+            let (contactable, anchor) = (&self.contactable, &cert.anchor);
+            self.drifts.par_iter_mut().zip(&model.tets).zip(contactable).for_each(|((d, t), &on)| {
+                if on {
+                    *d = certify::Drift::of(t, x, anchor);
+                }
+            });
         }
         // Both lists ascending: one merge.
         self.was_in_contact.clear();
@@ -565,7 +576,7 @@ impl Contact {
         let (negligible, activation, contact_model) =
             (self.settings.negligible, self.settings.activation, self.settings.model);
         let newly = self.newly.any().then_some(&self.newly);
-        let anchor = &self.certificates.anchor;
+        let (anchor, drifts) = (&self.certificates.anchor, &self.drifts);
         let (held, onsets, primed) = (&self.held, contact_model == ContactModel::Gradient, self.primed);
         self.candidates
             .par_iter()
@@ -573,16 +584,22 @@ impl Contact {
             .zip(self.certificates.cached.par_iter())
             .zip(self.was_in_contact.par_iter())
             .map(|(((k, &(a, b)), &radius), &clip_first)| {
+                let fresh = newly.is_some_and(|n| n.contains(a, b));
+                let mut verdict = Verdict::default();
+                // Within its certificate's radius: skipped (not a pair newly
+                // allowed, whose start is decided at this pass); surely so
+                // by the two tets' drifts, else by the deviation.
+                let certified = certifying && radius > 0.0 && !fresh;
+                if certified && drifts[a as usize].surely_within(&drifts[b as usize], radius) {
+                    verdict.skipped = true;
+                    return (None, verdict);
+                }
                 let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
                 let nodes = [ta, tb];
                 let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
-                let fresh = newly.is_some_and(|n| n.contains(a, b));
                 let size = sizes[a as usize].min(sizes[b as usize]);
-                let mut verdict = Verdict::default();
-                // Within its certificate's radius: skipped (not a pair newly
-                // allowed, whose start is decided at this pass).
                 let at = || certify::anchors(anchor, &nodes);
-                let deviation = (certifying && radius > 0.0 && !fresh).then(|| certify::deviation(&xs, &at()));
+                let deviation = certified.then(|| certify::deviation(&xs, &at()));
                 if deviation.is_some_and(|d| d <= radius) {
                     verdict.skipped = true;
                     return (None, verdict);

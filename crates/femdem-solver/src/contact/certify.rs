@@ -17,12 +17,18 @@
 //! shows an overlapping pair (bound `> 0`) negligible at a pass and the
 //! pair holds no certificate valid there, it is certified: with `D` the
 //! deviation of its nodes from `X` now (below), the radius `δ = D + δ₀` is
-//! certified when [`contact_bound_near`]`(X, δ)` passes the same test as
-//! the bound (`δ₀ = ℓ ν^{1/3} / 4`, else an eighth of that; `ℓ` the
-//! smaller tet's `V^{1/3}`, `ν` the `negligible` setting: the bound of a
-//! vertex contact grows as the cube of the radius, so `δ₀³ / ℓ` stays below
-//! `ν ℓ²`); otherwise the pair is marked *bounded* (bounded at every pass)
-//! until the next epoch. At every pass a pair whose deviation is at most
+//! certified when `D ≤ δ₀` and [`contact_bound_near`]`(X, δ)` passes the
+//! same test as the bound (`δ₀ = ℓ ν^{1/3} / 32`; `ℓ` the smaller tet's
+//! `V^{1/3}`, `ν` the `negligible` setting: the bound of a vertex contact
+//! grows as the cube of the radius, so `δ₀³ / ℓ` stays below `ν ℓ²` up to
+//! the bound's constant factors); otherwise the pair is marked *bounded*
+//! (bounded at every pass) until the next epoch. Why these two choices
+//! (measured, `docs/performance.md`): a first try at `ℓ ν^{1/3} / 4`
+//! passed for no pair at all on the multi-layer and README runs (0 of
+//! 190,676 at an epoch's start on the first, 0 of 42,848 on the second),
+//! one eighth of it for 48–80%; and a lapsed certificate (`D` above its
+//! old radius, so above `δ₀`) asks for a radius more than twice `δ₀`, whose
+//! bound is some eight times larger: 7% passed, not worth the try. At every pass a pair whose deviation is at most
 //! its radius is skipped: its forces are below `p` times the bound near `X`
 //! (`femdem_contact::bound_near`'s module documentation), so below the
 //! threshold, for every configuration within the radius — the decision
@@ -239,22 +245,20 @@ pub(super) fn deviation(x: &[[Vec3; 4]; 2], at: &[[Vec3; 4]; 2]) -> Real {
 
 /// The radius a pair negligible now is certified for around its anchors
 /// `at`, from which its positions deviate by `d` ([`deviation`]): `d + δ₀`
-/// for the first `δ₀` whose bound near `at` passes `negligible` (the module
-/// documentation), or [`BOUNDED`]. `volume` is the smaller tet's reference
-/// volume, m³.
+/// where `d ≤ δ₀` and the bound near `at` passes `negligible` (the module
+/// documentation), else [`BOUNDED`]. `volume` is the smaller tet's
+/// reference volume, m³.
 pub(super) fn certify(at: &[[Vec3; 4]; 2], d: Real, volume: Real, negligible: Real) -> Real {
-    let base = volume.cbrt() * negligible.cbrt() / 4.0;
-    for delta0 in [base, base / 8.0] {
-        let delta = d + delta0;
-        let r = contact_bound_near(&at[0], &at[1], delta) / negligible;
-        // At most `ν ℓ²`, as cubes (`pair::evaluate` compares `bound ≤ ν ℓ²`
-        // with the kept `ℓ = V^{1/3}`: the same test but for rounding at
-        // the threshold itself).
-        if r * r * r <= volume * volume {
-            return delta;
-        }
+    let delta0 = volume.cbrt() * negligible.cbrt() / 32.0;
+    if !(d <= delta0) {
+        return BOUNDED;
     }
-    BOUNDED
+    let delta = d + delta0;
+    let r = contact_bound_near(&at[0], &at[1], delta) / negligible;
+    // At most `ν ℓ²`, as cubes (`pair::evaluate` compares `bound ≤ ν ℓ²`
+    // with the kept `ℓ = V^{1/3}`: the same test but for rounding at the
+    // threshold itself).
+    if r * r * r <= volume * volume { delta } else { BOUNDED }
 }
 
 #[cfg(test)]

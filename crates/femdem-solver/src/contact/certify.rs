@@ -250,7 +250,8 @@ pub(super) fn deviation(x: &[[Vec3; 4]; 2], at: &[[Vec3; 4]; 2]) -> Real {
 /// reference volume, m³.
 pub(super) fn certify(at: &[[Vec3; 4]; 2], d: Real, volume: Real, negligible: Real) -> Real {
     let delta0 = volume.cbrt() * negligible.cbrt() / 32.0;
-    if !(d <= delta0) {
+    // (A deviation that is not a number certifies nothing.)
+    if d.is_nan() || d > delta0 {
         return BOUNDED;
     }
     let delta = d + delta0;

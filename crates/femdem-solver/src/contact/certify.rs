@@ -28,8 +28,10 @@
 //! 190,676 at an epoch's start on the first, 0 of 42,848 on the second),
 //! one eighth of it for 48–80%; and a lapsed certificate (`D` above its
 //! old radius, so above `δ₀`) asks for a radius more than twice `δ₀`, whose
-//! bound is some eight times larger: 7% passed, not worth the try. At every pass a pair whose deviation is at most
-//! its radius is skipped: its forces are below `p` times the bound near `X`
+//! bound is some eight times larger: 7% passed, not worth the try.
+//!
+//! At every pass a pair whose deviation is at most its radius is skipped:
+//! its forces are below `p` times the bound near `X`
 //! (`femdem_contact::bound_near`'s module documentation), so below the
 //! threshold, for every configuration within the radius — the decision
 //! depends on the positions of the pass alone, not on the path there.

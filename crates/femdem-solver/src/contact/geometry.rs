@@ -71,20 +71,23 @@ impl Contact {
             return None;
         }
         let certifying = self.certifying();
-        let anchor = &self.certificates.anchor;
+        let (anchor, drifts) = (&self.certificates.anchor, &self.drifts);
         let newly = self.newly.any().then_some(&self.newly);
         let clipped: Vec<bool> = self
             .candidates
             .par_iter()
             .zip(self.certificates.cached.par_iter())
             .map(|(&(a, b), &radius)| {
+                let fresh = newly.is_some_and(|n| n.contains(a, b));
+                let certified = certifying && radius > 0.0 && !fresh;
+                // The pass's own decision: surely within by the drifts, else
+                // by the deviation.
+                if certified && drifts[a as usize].surely_within(&drifts[b as usize], radius) {
+                    return false;
+                }
                 let nodes = [model.tets[a as usize], model.tets[b as usize]];
                 let xs = nodes.map(|t| t.map(|n| x[n as usize]));
-                let fresh = newly.is_some_and(|n| n.contains(a, b));
-                let skipped = certifying
-                    && radius > 0.0
-                    && !fresh
-                    && certify::deviation(&xs, &certify::anchors(anchor, &nodes)) <= radius;
+                let skipped = certified && certify::deviation(&xs, &certify::anchors(anchor, &nodes)) <= radius;
                 !skipped && boxes_overlap(&xs[0], &xs[1])
             })
             .collect();

@@ -95,6 +95,9 @@ pub use settings::{Activation, ContactModel, ContactSettings, NEGLIGIBLE};
 use stars::Stars;
 use start::NewlyAllowed;
 
+/// `Contact::spring_of` for a candidate with no friction spring.
+const NO_SPRING: u32 = u32::MAX;
+
 /// The paper's `n_total` of Eq. 18: steps over which the contact force of
 /// a joint that failed in compression rises from zero to its full value
 /// (the default of [`ContactSettings::ramp_steps`]).
@@ -175,9 +178,11 @@ pub struct Contact {
     /// last pass, `Σ W`, J, with [`ContactModel::Gradient`] (see
     /// `PairForce::energy`); 0 with [`ContactModel::Potential`].
     pub potential: Real,
-    /// Tangential spring stretch of each pair in contact (friction history).
-    stick: PairMap<Vec3>,
-    stick_next: PairMap<Vec3>,
+    /// Tangential spring stretch of each pair in contact (friction
+    /// history), ascending by pair: built in the sums' pair order and
+    /// matched to the candidates by one merge, with no hashing.
+    stick: Vec<((u32, u32), Vec3)>,
+    stick_next: Vec<((u32, u32), Vec3)>,
     /// Pairs of joints that failed in compression, with their step count
     /// `n_c` of Eq. 18.
     ramp: PairMap<u32>,
@@ -208,6 +213,9 @@ pub struct Contact {
     /// pass (then clipped before it is bounded: the order of work only,
     /// `femdem_contact::tet_tet_contact_within`).
     was_in_contact: Vec<bool>,
+    /// Scratch: for each candidate, the index of its friction spring in
+    /// `stick`, or [`NO_SPRING`].
+    spring_of: Vec<u32>,
     /// Scratch: each contactable tet's displacement from its anchors,
     /// summarised (`certify::Drift`), when certifying.
     drifts: Vec<certify::Drift>,
@@ -263,8 +271,8 @@ impl Contact {
             additions: 0,
             spring_energy: 0.0,
             potential: 0.0,
-            stick: PairMap::default(),
-            stick_next: PairMap::default(),
+            stick: Vec::new(),
+            stick_next: Vec::new(),
             ramp: PairMap::default(),
             started: PairMap::default(),
             started_next: PairMap::default(),
@@ -276,6 +284,7 @@ impl Contact {
             held_next: PairMap::default(),
             primed: false,
             was_in_contact: Vec::new(),
+            spring_of: Vec::new(),
             drifts: Vec::new(),
         };
         // A pre-existing fracture face activates its vertices as a failed
@@ -558,10 +567,15 @@ impl Contact {
         }
         // Both lists ascending: one merge.
         self.was_in_contact.clear();
+        self.spring_of.clear();
         let mut last = self.in_contact.iter().peekable();
+        let mut springs = self.stick.iter().map(|s| &s.0).enumerate().peekable();
         for c in &self.candidates {
             while last.next_if(|&p| p < c).is_some() {}
             self.was_in_contact.push(last.peek().is_some_and(|&p| p == c));
+            while springs.next_if(|&(_, p)| p < c).is_some() {}
+            let spring = springs.peek().filter(|&&(_, p)| p == c);
+            self.spring_of.push(spring.map_or(NO_SPRING, |&(i, _)| i as u32));
         }
         lap(&mut clock, &mut self.clock.detection);
         let precomputed = geometry.and_then(|g| {
@@ -578,12 +592,16 @@ impl Contact {
         let newly = self.newly.any().then_some(&self.newly);
         let (anchor, drifts) = (&self.certificates.anchor, &self.drifts);
         let (held, onsets, primed) = (&self.held, contact_model == ContactModel::Gradient, self.primed);
+        // Last pass's forces freed in parallel (`collect_into_vec` would
+        // drop them one by one).
+        self.results.par_iter_mut().for_each(|r| r.0 = None);
         self.candidates
             .par_iter()
             .enumerate()
             .zip(self.certificates.cached.par_iter())
             .zip(self.was_in_contact.par_iter())
-            .map(|(((k, &(a, b)), &radius), &clip_first)| {
+            .zip(self.spring_of.par_iter())
+            .map(|((((k, &(a, b)), &radius), &clip_first), &spring)| {
                 let fresh = newly.is_some_and(|n| n.contains(a, b));
                 let mut verdict = Verdict::default();
                 // Within its certificate's radius: skipped (not a pair newly
@@ -620,7 +638,7 @@ impl Contact {
                         regions: &model.tet_region,
                         ramps: ramp,
                         n_total,
-                        springs: stick,
+                        spring: stick.get(spring as usize).map_or_else(Vec3::zeros, |s| s.1),
                         dt,
                         fresh,
                         couple: newly.is_some_and(|n| n.is_couple(a, b)),
@@ -647,11 +665,8 @@ impl Contact {
                 (force.map(Box::new), verdict)
             })
             .collect_into_vec(&mut self.results);
-        if certifying {
-            self.certificates.book(&self.candidates, self.results.iter().map(|r| r.1));
-        }
         let orphans = if contact_model == ContactModel::Gradient { self.orphans(model, x, v, dt) } else { Vec::new() };
-        self.sum_into_nodes(model, &orphans, v);
+        self.sum_into_nodes(model, &orphans, v, certifying);
         // Eq. 18: n_c counts the steps since the joint failed.
         let n_total = self.settings.ramp_steps;
         self.ramp.retain(|_, n_c| {

@@ -151,13 +151,13 @@ pub(crate) struct PairInput<'a> {
     pub clip_first: bool,
     /// What is read only for a pair in contact (most candidates are not):
     /// μ per pair of regions and the tets' regions, the Eq. 18 ramps
-    /// (`n_c` per pair, out of `n_total`) and the friction springs of the
-    /// last step.
+    /// (`n_c` per pair, out of `n_total`) and this pair's friction spring
+    /// from the last step (zero where it has none).
     pub friction: &'a FrictionTable,
     pub regions: &'a [u16],
     pub ramps: &'a PairMap<u32>,
     pub n_total: Real,
-    pub springs: &'a PairMap<Vec3>,
+    pub spring: Vec3,
     pub dt: Real,
     /// Whether the pair is newly allowed to touch at this pass (`start.rs`),
     /// how such a pair starts if it overlaps
@@ -337,7 +337,7 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         let vt = rel - n * rel.dot(&n);
         // Springs are stored as (larger index) relative to (smaller index).
         let sign = if a < b { 1.0 } else { -1.0 };
-        let mut spring = input.springs.get(&key).copied().unwrap_or_else(Vec3::zeros) * sign;
+        let mut spring = input.spring * sign;
         spring -= n * spring.dot(&n);
         spring += vt * input.dt;
         let kt = input.penalty * input.size;

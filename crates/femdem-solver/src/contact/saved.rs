@@ -105,7 +105,7 @@ impl Contact {
             additions: self.additions,
             spring_energy: self.spring_energy,
             potential: self.potential,
-            stick: sorted(&self.stick),
+            stick: self.stick.clone(),
             ramp: sorted(&self.ramp),
             started: sorted(&self.started),
             // Empty between the steps of a run; not after
@@ -182,8 +182,9 @@ impl Contact {
         c.potential = s.potential;
         c.stick.clear();
         for ((a, b), x) in s.stick {
-            c.stick.insert((tet(a)?, tet(b)?), x);
+            c.stick.push(((tet(a)?, tet(b)?), x));
         }
+        c.stick.sort_unstable_by_key(|s| s.0);
         c.stick_next.clear();
         c.ramp.clear();
         for ((a, b), n) in s.ramp {

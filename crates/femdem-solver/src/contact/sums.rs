@@ -4,12 +4,11 @@
 //! offsets and ramps the next pass reads, and the velocities the account
 //! books them with.
 
-use femdem_core::{Real, Vec3};
+use femdem_core::Vec3;
 use rayon::prelude::*;
 
 use super::debts::by_pair;
-use super::onset::Held;
-use super::pair::{PairForce, PairMap, spring_key};
+use super::pair::{PairForce, spring_key};
 use super::{Activation, Contact};
 use crate::model::Model;
 
@@ -69,23 +68,41 @@ impl Contact {
                 });
         };
         let ramp_fresh = self.settings.activation == Activation::Ramp && self.settings.ramp_steps > 0;
-        let books = Books {
-            active_pairs: &mut self.active_pairs,
-            spring_energy: &mut self.spring_energy,
-            potential: &mut self.potential,
-            in_contact: &mut self.in_contact,
-            held_next: &mut self.held_next,
-            stick_next: &mut self.stick_next,
-            started_next: &mut self.started_next,
-            ramp: &mut self.ramp,
-        };
-        let (certificates, candidates) = (&mut self.certificates, &self.candidates);
-        rayon::join(sums, || {
-            books.book(&pairs, ramp_fresh);
-            if certifying {
-                certificates.book(candidates, results.iter().map(|r| r.1));
+        // What the sums book per pair besides the nodal forces, in the
+        // pairs' order, beside them.
+        let books = || {
+            self.active_pairs = 0;
+            self.spring_energy = 0.0;
+            self.potential = 0.0;
+            self.in_contact.clear();
+            for r in &pairs {
+                let [a, b] = r.tets;
+                if let Some(held) = r.onset {
+                    self.held_next.insert(spring_key(a, b), held);
+                }
+                if r.touching {
+                    self.active_pairs += 1;
+                    self.in_contact.push((a, b));
+                }
+                if r.friction != Vec3::zeros() || r.spring_energy > 0.0 {
+                    let key = spring_key(a, b);
+                    debug_assert!(self.stick_next.last().is_none_or(|s| s.0 < key), "pairs out of order");
+                    self.stick_next.push((key, r.spring));
+                    self.spring_energy += r.spring_energy;
+                }
+                self.potential += r.energy;
+                if let Some(off) = r.started {
+                    self.started_next.insert(spring_key(a, b), off);
+                }
+                if r.fresh && ramp_fresh {
+                    self.ramp.entry(spring_key(a, b)).or_insert(0);
+                }
             }
-        });
+            if certifying {
+                self.certificates.book(&self.candidates, results.iter().map(|r| r.1));
+            }
+        };
+        rayon::join(sums, books);
         drop(pairs);
         self.results = results;
         // The chunks' lists, each ascending, in the chunks' order.
@@ -106,51 +123,3 @@ impl Contact {
 /// over every pair, in the pairs' order); a fixed number, so that no
 /// result depends on the threads.
 const NODE_CHUNKS: usize = 4;
-
-/// What the sums book per pair besides the nodal forces, in the pairs'
-/// order: the pairs in contact, the friction springs and their energy, the
-/// offsets and ramps the next pass reads, the kicks' debts.
-struct Books<'a> {
-    active_pairs: &'a mut usize,
-    spring_energy: &'a mut Real,
-    potential: &'a mut Real,
-    in_contact: &'a mut Vec<(u32, u32)>,
-    held_next: &'a mut PairMap<Held>,
-    stick_next: &'a mut Vec<((u32, u32), Vec3)>,
-    started_next: &'a mut PairMap<Real>,
-    ramp: &'a mut PairMap<u32>,
-}
-
-impl Books<'_> {
-    /// Books `pairs` (ascending); `ramp_fresh`: a pair starting now enters
-    /// the Eq. 18 ramp.
-    fn book(self, pairs: &[&PairForce], ramp_fresh: bool) {
-        *self.active_pairs = 0;
-        *self.spring_energy = 0.0;
-        *self.potential = 0.0;
-        self.in_contact.clear();
-        for r in pairs {
-            let [a, b] = r.tets;
-            if let Some(held) = r.onset {
-                self.held_next.insert(spring_key(a, b), held);
-            }
-            if r.touching {
-                *self.active_pairs += 1;
-                self.in_contact.push((a, b));
-            }
-            if r.friction != Vec3::zeros() || r.spring_energy > 0.0 {
-                let key = spring_key(a, b);
-                debug_assert!(self.stick_next.last().is_none_or(|s| s.0 < key), "pairs out of order");
-                self.stick_next.push((key, r.spring));
-                *self.spring_energy += r.spring_energy;
-            }
-            *self.potential += r.energy;
-            if let Some(off) = r.started {
-                self.started_next.insert(spring_key(a, b), off);
-            }
-            if r.fresh && ramp_fresh {
-                self.ramp.entry(spring_key(a, b)).or_insert(0);
-            }
-        }
-    }
-}

@@ -1,5 +1,5 @@
 //! Four joints at a time: the intact, elastic regime of the joint law
-//! (Eq. 3, 5–7, 11) in SIMD lanes (`wide::f64x4`), with no branch in the
+//! (Eq. 3, 5–7, 11) in SIMD lanes ([`F4`], four `f64` a lane group), with no branch in the
 //! lane arithmetic.
 //!
 //! In a step most joints are intact and stay so: no point damaged before
@@ -18,14 +18,14 @@
 //! asks for them uses the scalar kernel.
 
 use femdem_core::{Real, Vec3};
-use wide::f64x4;
 
+use crate::lane4::{F4, M4};
 use crate::{Coupling, GAUSS, Joint, JointHistory, KernelConsts};
 
 /// Joints per lane group.
 pub const LANES: usize = 4;
 
-type V = f64x4;
+type V = F4;
 
 /// Three lanes of vectors, component by component.
 #[derive(Clone, Copy)]
@@ -36,9 +36,11 @@ struct V3 {
 }
 
 impl V3 {
+    #[inline(always)]
     fn zero() -> V3 {
         V3 { x: V::ZERO, y: V::ZERO, z: V::ZERO }
     }
+    #[inline(always)]
     fn gather(v: [Vec3; LANES]) -> V3 {
         V3 {
             x: V::from([v[0].x, v[1].x, v[2].x, v[3].x]),
@@ -46,44 +48,55 @@ impl V3 {
             z: V::from([v[0].z, v[1].z, v[2].z, v[3].z]),
         }
     }
+    #[inline(always)]
     fn lane(&self, l: usize) -> Vec3 {
         Vec3::new(self.x.as_array()[l], self.y.as_array()[l], self.z.as_array()[l])
     }
+    #[inline(always)]
     fn add(self, o: V3) -> V3 {
         V3 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
     }
+    #[inline(always)]
     fn sub(self, o: V3) -> V3 {
         V3 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
     }
+    #[inline(always)]
     fn scale(self, s: V) -> V3 {
         V3 { x: self.x * s, y: self.y * s, z: self.z * s }
     }
+    #[inline(always)]
     fn div(self, s: V) -> V3 {
         V3 { x: self.x / s, y: self.y / s, z: self.z / s }
     }
     /// nalgebra's order: `(x x′ + y y′) + z z′`.
+    #[inline(always)]
     fn dot(self, o: V3) -> V {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
     /// nalgebra's cross product, term for term.
+    #[inline(always)]
     fn cross(self, b: V3) -> V3 {
         V3 { x: self.y * b.z - self.z * b.y, y: self.z * b.x - self.x * b.z, z: self.x * b.y - self.y * b.x }
     }
+    #[inline(always)]
     fn norm(self) -> V {
         self.dot(self).sqrt()
     }
-    fn select(mask: V, a: V3, b: V3) -> V3 {
+    #[inline(always)]
+    fn select(mask: M4, a: V3, b: V3) -> V3 {
         V3 { x: mask.select(a.x, b.x), y: mask.select(a.y, b.y), z: mask.select(a.z, b.z) }
     }
 }
 
 /// A lane of one value per joint.
+#[inline(always)]
 fn per_joint(joints: &[&Joint; LANES], f: impl Fn(&Joint) -> Real) -> V {
     V::from([f(joints[0]), f(joints[1]), f(joints[2]), f(joints[3])])
 }
 
 /// The hardening branch of Eq. 11 for a direction that has not softened
 /// and an undamaged point (`Coupling::hardening_branch` with `z(0)`).
+#[inline(always)]
 fn hardening_branch(coupling: Coupling, f: V, r: V, z0: V) -> V {
     let h = (V::splat(2.0) * r - r * r) * f;
     match coupling {
@@ -99,6 +112,7 @@ fn hardening_branch(coupling: Coupling, f: V, r: V, z0: V) -> V {
 /// doc: writes the new histories and the nodal forces into `forces` and
 /// returns `true`, the scalar law's results bit for bit. Otherwise returns
 /// `false` and writes nothing.
+#[inline(always)]
 pub fn joint_update_lanes(
     c: &KernelConsts,
     joints: [&Joint; LANES],
@@ -137,9 +151,12 @@ pub fn joint_update_lanes(
     let two = V::splat(2.0);
     let mut work = V::from([history[0].work, history[1].work, history[2].work, history[3].work]);
     let mut out = [V3::zero(); 6];
-    // Each point in turn (`from_fn` calls in index order), returning what
-    // its history will keep: `[δn, δs]` and `[σ, τ]`.
-    let points: [([V; 4], [V; 2]); 3] = std::array::from_fn(|i| {
+    // Each point in turn, keeping what its history will keep: `[δn, δs]`
+    // and `[σ, τ]`. (A loop, not `array::from_fn`, whose closure the
+    // compiler keeps out of line, i.e. out of a dispatched caller's
+    // instruction set.)
+    let mut points = [([V::ZERO; 4], [V::ZERO; 2]); 3];
+    for (i, point) in points.iter_mut().enumerate() {
         let w = &GAUSS[i];
         let (w0, w1, w2) = (V::splat(w[0]), V::splat(w[1]), V::splat(w[2]));
         let pa = n[0].scale(w0).add(n[1].scale(w1)).add(n[2].scale(w2));
@@ -176,8 +193,8 @@ pub fn joint_update_lanes(
             out[node_a] = out[node_a].add(f.scale(xi));
             out[node_b] = out[node_b].sub(f.scale(xi));
         }
-        ([dn, slip.x, slip.y, slip.z], [sigma, tau])
-    });
+        *point = ([dn, slip.x, slip.y, slip.z], [sigma, tau]);
+    }
     if !ok.all() {
         return false;
     }

@@ -14,6 +14,7 @@ use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
 use rayon::prelude::*;
 
 use crate::model::Model;
+use crate::widest::{Pass, Path, widest};
 
 /// Elements per parallel work item.
 pub const CHUNK: usize = 512;
@@ -97,6 +98,9 @@ pub struct Workspace {
     /// How each joint that failed in the last evaluation failed (`None`
     /// for the others).
     pub failed_now: Vec<Option<FailureMode>>,
+    /// Which compilation of the joint pass runs
+    /// ([`Path::Widest`] unless a test compares the two).
+    pub path: Path,
     tet_partials: Vec<ForceSums>,
     joint_partials: Vec<ForceSums>,
 }
@@ -110,6 +114,7 @@ impl Workspace {
             internal: vec![Vec3::zeros(); model.num_nodes()],
             stress: vec![Mat3::zeros(); model.tets.len()],
             failed_now: vec![None; model.joints.len()],
+            path: Path::Widest,
             tet_partials: vec![ForceSums::default(); model.tets.len().div_ceil(CHUNK)],
             joint_partials: vec![ForceSums::default(); model.joints.len().div_ceil(CHUNK)],
         }
@@ -151,7 +156,9 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
 }
 
 /// The tets `first..first + slots.len()` (one chunk of the tet pass; not
-/// inlined, so that profiles name it).
+/// inlined, so that profiles name it). Not dispatched to a wider unit
+/// ([`widest`]): compiled for AVX2 the scalar kernel ran no faster
+/// (`docs/performance.md`).
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 fn tet_chunk(
@@ -202,6 +209,7 @@ fn tet_chunk(
 }
 
 fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut Workspace, want: Want) {
+    let path = ws.path;
     ws.joint_slots
         .par_chunks_mut(CHUNK)
         .zip(history.par_chunks_mut(CHUNK))
@@ -209,7 +217,7 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
         .zip(ws.joint_partials.par_iter_mut())
         .enumerate()
         .for_each(|(c, (((slots, hist), failed), partial))| {
-            *partial = joint_chunk(model, x, c * CHUNK, slots, hist, failed, want);
+            *partial = joint_chunk(model, x, c * CHUNK, slots, hist, failed, want, path);
         });
 }
 
@@ -219,8 +227,41 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
 /// the others one by one ([`joint_update_fast`]); both give the law's
 /// results bit for bit, so which one runs changes nothing. A step that asks
 /// for energies runs the scalar kernel throughout (the lanes compute none).
+/// Compiled for the widest vector unit on `path` ([`widest`]).
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 fn joint_chunk(
+    model: &Model,
+    x: &[Vec3],
+    first: usize,
+    slots: &mut [[Vec3; 6]],
+    hist: &mut [JointHistory],
+    failed: &mut [Option<FailureMode>],
+    want: Want,
+    path: Path,
+) -> ForceSums {
+    struct JointChunk<'a> {
+        model: &'a Model,
+        x: &'a [Vec3],
+        first: usize,
+        slots: &'a mut [[Vec3; 6]],
+        hist: &'a mut [JointHistory],
+        failed: &'a mut [Option<FailureMode>],
+        want: Want,
+    }
+    impl Pass for JointChunk<'_> {
+        type Output = ForceSums;
+        #[inline(always)]
+        fn run(self) -> ForceSums {
+            joint_chunk_body(self.model, self.x, self.first, self.slots, self.hist, self.failed, self.want)
+        }
+    }
+    widest(path, JointChunk { model, x, first, slots, hist, failed, want })
+}
+
+/// [`joint_chunk`]'s work, inlined into each compilation of it.
+#[inline(always)]
+fn joint_chunk_body(
     model: &Model,
     x: &[Vec3],
     first: usize,

@@ -81,6 +81,8 @@ pub mod snapshot;
 mod state;
 mod step;
 mod timestep;
+mod widest;
+pub use widest::{Path, widest_name};
 
 pub use clock::StageTimes;
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};

@@ -404,6 +404,13 @@ impl Solver {
         Some(self.pipeline.times).filter(|t| t.steps > 0)
     }
 
+    /// Which compilation of the CPU's joint pass the following steps run
+    /// ([`Path::Widest`](crate::Path::Widest) by default). Both give the same results bit for
+    /// bit; the choice exists to compare them (tests, `step_profile`).
+    pub fn set_vector_path(&mut self, path: crate::Path) {
+        self.pipeline.workspace.path = path;
+    }
+
     /// [`Solver::step`]'s work.
     fn advance(&mut self, want: Want) {
         let dt = self.scene.params.dt;

@@ -4,19 +4,25 @@
 //! passes write per-element slots summed per node in a fixed order, and
 //! every sum over elements is taken per fixed-size chunk, then in chunk
 //! order). Nor on which joint kernel ran: the SIMD lanes (steps that ask
-//! for no energy) and the scalar kernel (steps that do) give the same bits.
+//! for no energy) and the scalar kernel (steps that do) give the same bits;
+//! nor on which compilation of the joint pass ran (the processor's widest
+//! vector unit or the baseline build's, `femdem_solver::Path`).
 
 use crate::common::{box_mesh, model, rock, solver};
 use femdem_core::Vec3;
 use femdem_material::Law;
 use femdem_solver::select::{NodeSelection, group_faces, select_nodes};
-use femdem_solver::{Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want};
+use femdem_solver::{Fixed, Loads, Path, Ramp, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want, widest_name};
 
 fn run() -> Solver {
     run_asking(|n| Want { energy: n % 10 == 0, stress: n == 299 })
 }
 
 fn run_asking(want: impl Fn(usize) -> Want) -> Solver {
+    run_on(Path::Widest, want)
+}
+
+fn run_on(path: Path, want: impl Fn(usize) -> Want) -> Solver {
     let mesh = box_mesh([0.0; 3], [0.1, 0.05, 0.05], 0.008, 0.12, true);
     let (jointed, m) = model(&mesh, Law::NeoHookean, rock(200.0), 10.0 * 26e9);
     let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
@@ -39,6 +45,7 @@ fn run_asking(want: impl Fn(usize) -> Want) -> Solver {
         }],
     };
     let mut s = solver(m, loads, 0.9);
+    s.set_vector_path(path);
     for n in 0..300 {
         s.step(want(n));
     }
@@ -68,4 +75,24 @@ fn lanes_and_scalar_joint_kernels_give_identical_bits() {
     assert_eq!(lanes.state(), scalar.state(), "positions/velocities/joint histories differ");
     assert_eq!(lanes.failures(), scalar.failures());
     assert!(lanes.state().joints.iter().any(|h| h.damage.iter().any(|&d| d > 0.0) || h.failed), "no joint was damaged");
+}
+
+/// The joint pass runs compiled for the processor's widest vector unit
+/// (x86-64-v3 where it has AVX2) or as the baseline build compiled it; both
+/// do the same IEEE-754 operations in the same order (no fused
+/// multiply-add), so the lanes, the scalar kernel and the joints' histories
+/// agree bit for bit. On a processor without AVX2 both paths are the same
+/// code and the test shows only that.
+#[test]
+fn widest_and_baseline_joint_passes_give_identical_bits() {
+    eprintln!("widest vector unit here: {}", widest_name());
+    let widest = run_on(Path::Widest, |_| Want::default());
+    let baseline = run_on(Path::Baseline, |_| Want::default());
+    assert_eq!(widest.state(), baseline.state(), "positions/velocities/joint histories differ");
+    assert_eq!(widest.failures(), baseline.failures());
+    assert_eq!(widest.record(), baseline.record());
+    assert!(
+        widest.state().joints.iter().any(|h| h.damage.iter().any(|&d| d > 0.0) || h.failed),
+        "no joint was damaged"
+    );
 }

@@ -1,0 +1,78 @@
+//! The widest vector unit the processor has, chosen at run time.
+//!
+//! A binary built for baseline x86-64 may only use SSE2 (two `f64` a
+//! register), yet most machines that run femdem have AVX2 (four). [`widest`] runs a
+//! [`Pass`] compiled a second time for x86-64-v3 (AVX, AVX2, FMA, BMI1/2,
+//! F16C, LZCNT, MOVBE) when the processor has it, through `pulp`'s
+//! `Simd::vectorize`, which keeps the `unsafe` of `#[target_feature]` inside
+//! `pulp`. The code inlined into a [`Pass`] is compiled for those features;
+//! functions it calls without inlining are not.
+//!
+//! # Same numbers on every path
+//!
+//! Rust never contracts `a * b + c` into a fused multiply-add (no
+//! floating-point contraction without an explicit `mul_add`), and the
+//! kernels call no `mul_add`; the wider unit only packs the same IEEE-754
+//! operations, in the same order, into wider registers. Both paths therefore
+//! give identical bits, which the tests check by running each pass on both
+//! ([`Path::Baseline`] forces the baseline).
+//!
+//! Only the joint pass is dispatched: its lanes (`femdem_fracture`'s
+//! `lane4.rs`) are written to be packed. The tet kernel is scalar
+//! `nalgebra` code, and compiled for x86-64-v3 it ran no faster
+//! (`docs/performance.md`).
+
+/// Which compilation of a pass runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Path {
+    /// The widest the processor has (x86-64-v3 where available).
+    Widest,
+    /// The baseline build's own code, whatever the processor has.
+    Baseline,
+}
+
+/// A pass to run on [`widest`]: its work, in [`Pass::run`], must be
+/// `#[inline(always)]` all the way down to the arithmetic, so that each
+/// compilation of it is compiled for its own instruction set.
+pub(crate) trait Pass {
+    /// What the pass returns.
+    type Output;
+    /// The pass's work.
+    fn run(self) -> Self::Output;
+}
+
+/// `pulp`'s handle on a [`Pass`]: `with_simd` is generic over the
+/// instruction set, so each set gets its own monomorphised, inlined copy.
+struct Op<P>(P);
+
+impl<P: Pass> pulp::WithSimd for Op<P> {
+    type Output = P::Output;
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> P::Output {
+        self.0.run()
+    }
+}
+
+/// Runs `pass` on `path`: compiled for x86-64-v3 where `path` is
+/// [`Path::Widest`] and the processor has it, as built otherwise.
+#[inline(always)]
+pub(crate) fn widest<P: Pass>(path: Path, pass: P) -> P::Output {
+    #[cfg(target_arch = "x86_64")]
+    if path == Path::Widest {
+        if let Some(v3) = pulp::x86::V3::try_new() {
+            return pulp::Simd::vectorize(v3, Op(pass));
+        }
+    }
+    let _ = path;
+    pulp::Simd::vectorize(pulp::Scalar::new(), Op(pass))
+}
+
+/// The name of the unit [`widest`] uses on this processor, for a run's
+/// summary.
+pub fn widest_name() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if pulp::x86::V3::try_new().is_some() {
+        return "x86-64-v3 (AVX2)";
+    }
+    "baseline"
+}

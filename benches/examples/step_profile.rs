@@ -10,8 +10,8 @@
 //!
 //! counts the steps alone (see `docs/performance.md`). Every fifth step
 //! asks for energies with a third argument `energy`, as an output frame
-//! would. With a third argument `paths` it alternates the joint pass's two
-//! compilations (the widest vector unit and the baseline build's,
+//! would. With a third argument `paths` it alternates the tet and joint
+//! passes' two compilations (the widest vector unit and the baseline build's,
 //! `femdem_solver::Path`) five steps at a time and prints each one's time.
 //! Prints the tets, joints and steps, to turn counts into instructions per
 //! tet-step, and the steps' wall-clock time.
@@ -28,7 +28,7 @@ fn main() {
     let paths = mode.as_deref() == Some("paths");
     let mut s = disc_solver(h_mm * 1e-3, true);
     let mut failed = 0;
-    // With `paths`, five steps on each compilation of the joint pass in
+    // With `paths`, five steps on each compilation of the passes in
     // turn, timed apart: a comparison in one process, which this noisy
     // machine's run-to-run drift does not blur.
     let mut on_path = [0.0f64; 2];

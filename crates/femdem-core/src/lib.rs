@@ -10,6 +10,10 @@
 //!   edge table [`tet::EDGES`], [`tet::triangle_area`],
 //!   [`tet::surface_area`], [`tet::inradius`], [`tet::edge_lengths`],
 //!   [`tet::aspect_ratio`] and [`tet::centroid`].
+//! - [`lanes`] (`lanes.rs`): four `f64` lanes ([`lanes::F4`]) and lanes of
+//!   3-vectors ([`lanes::F4x3`]) on plain arrays, for kernels that evaluate
+//!   four elements at once and are compiled for the widest vector unit at
+//!   run time.
 //!
 //! # Conventions
 //!
@@ -60,6 +64,7 @@
 //! assert!(signed_volume(&[p[0], p[2], p[1], p[3]]) < 0.0);
 //! ```
 
+pub mod lanes;
 pub mod tet;
 
 /// The floating-point type of every physical quantity (SI units throughout).

@@ -19,74 +19,13 @@
 
 use femdem_core::{Real, Vec3};
 
-use crate::lane4::{F4, M4};
 use crate::{Coupling, GAUSS, Joint, JointHistory, KernelConsts};
+use femdem_core::lanes::{F4, F4x3 as V3};
 
 /// Joints per lane group.
 pub const LANES: usize = 4;
 
 type V = F4;
-
-/// Three lanes of vectors, component by component.
-#[derive(Clone, Copy)]
-struct V3 {
-    x: V,
-    y: V,
-    z: V,
-}
-
-impl V3 {
-    #[inline(always)]
-    fn zero() -> V3 {
-        V3 { x: V::ZERO, y: V::ZERO, z: V::ZERO }
-    }
-    #[inline(always)]
-    fn gather(v: [Vec3; LANES]) -> V3 {
-        V3 {
-            x: V::from([v[0].x, v[1].x, v[2].x, v[3].x]),
-            y: V::from([v[0].y, v[1].y, v[2].y, v[3].y]),
-            z: V::from([v[0].z, v[1].z, v[2].z, v[3].z]),
-        }
-    }
-    #[inline(always)]
-    fn lane(&self, l: usize) -> Vec3 {
-        Vec3::new(self.x.as_array()[l], self.y.as_array()[l], self.z.as_array()[l])
-    }
-    #[inline(always)]
-    fn add(self, o: V3) -> V3 {
-        V3 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
-    }
-    #[inline(always)]
-    fn sub(self, o: V3) -> V3 {
-        V3 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
-    }
-    #[inline(always)]
-    fn scale(self, s: V) -> V3 {
-        V3 { x: self.x * s, y: self.y * s, z: self.z * s }
-    }
-    #[inline(always)]
-    fn div(self, s: V) -> V3 {
-        V3 { x: self.x / s, y: self.y / s, z: self.z / s }
-    }
-    /// nalgebra's order: `(x x′ + y y′) + z z′`.
-    #[inline(always)]
-    fn dot(self, o: V3) -> V {
-        self.x * o.x + self.y * o.y + self.z * o.z
-    }
-    /// nalgebra's cross product, term for term.
-    #[inline(always)]
-    fn cross(self, b: V3) -> V3 {
-        V3 { x: self.y * b.z - self.z * b.y, y: self.z * b.x - self.x * b.z, z: self.x * b.y - self.y * b.x }
-    }
-    #[inline(always)]
-    fn norm(self) -> V {
-        self.dot(self).sqrt()
-    }
-    #[inline(always)]
-    fn select(mask: M4, a: V3, b: V3) -> V3 {
-        V3 { x: mask.select(a.x, b.x), y: mask.select(a.y, b.y), z: mask.select(a.z, b.z) }
-    }
-}
 
 /// A lane of one value per joint.
 #[inline(always)]

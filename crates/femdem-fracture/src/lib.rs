@@ -27,7 +27,7 @@
 //!   force pass: `z` only where the damage is not zero and changed, the
 //!   stored energy only when asked for or released.
 //! - [`joint_update_lanes`] (`lanes.rs`): four intact joints in SIMD lanes
-//!   (`lane4.rs`: four `f64` a lane group), bit for bit the same, for the elastic regime.
+//!   (`femdem_core::lanes`: four `f64` a lane group), bit for bit the same, for the elastic regime.
 //! - [`Coupling`] (`coupling.rs`): how damage acts on the hardening branches
 //!   of Eq. 11 (capped, as printed, multiplicative).
 //! - [`FailureMode`] (`failure.rs`): the label of a failure, from the shares
@@ -91,7 +91,6 @@ mod failure;
 pub mod heterogeneity;
 mod kernel;
 mod kinematics;
-mod lane4;
 mod lanes;
 mod law;
 mod params;

@@ -19,6 +19,8 @@
 //!   [`deformation_gradient`], [`velocity_gradient`], [`nodal_forces`] and
 //!   [`tet_forces`], which returns forces, stress and stored energy of one
 //!   tet in one call. No allocation; plain nalgebra stack types.
+//! - [`tet_lanes`]: [`tet_forces_lanes`], the forces of four neo-Hookean
+//!   tets at once in SIMD lanes, bit for bit those of [`tet_forces`].
 //! - [`invariants`]: [`principal_stresses`] and [`von_mises`] for output.
 //!
 //! # Conventions
@@ -79,8 +81,10 @@ pub mod invariants;
 pub mod law;
 pub mod params;
 pub mod tet;
+pub mod tet_lanes;
 
 pub use invariants::{principal_stresses, von_mises};
 pub use law::{J_FLOOR, Law, cauchy_stress, first_piola_kirchhoff, strain_energy_density};
 pub use params::{ElasticParams, Material, MaterialError, critical_viscosity};
 pub use tet::{TetReference, TetResult, deformation_gradient, nodal_forces, tet_forces, velocity_gradient};
+pub use tet_lanes::{TET_LANES, tet_forces_lanes};

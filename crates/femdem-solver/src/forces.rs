@@ -10,7 +10,9 @@
 
 use femdem_core::{Mat3, Real, Vec3};
 use femdem_fracture::{FailureMode, JointHistory, KernelConsts, LANES, joint_update_fast, joint_update_lanes};
-use femdem_material::{deformation_gradient, tet_forces, velocity_gradient};
+use femdem_material::{
+    Material, TET_LANES, TetReference, deformation_gradient, tet_forces, tet_forces_lanes, velocity_gradient,
+};
 use rayon::prelude::*;
 
 use crate::model::Model;
@@ -98,7 +100,7 @@ pub struct Workspace {
     /// How each joint that failed in the last evaluation failed (`None`
     /// for the others).
     pub failed_now: Vec<Option<FailureMode>>,
-    /// Which compilation of the joint pass runs
+    /// Which compilation of the tet and joint passes runs
     /// ([`Path::Widest`] unless a test compares the two).
     pub path: Path,
     tet_partials: Vec<ForceSums>,
@@ -144,6 +146,7 @@ pub fn internal_forces(
 }
 
 fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Want, dissipation: Dissipation<'_>) {
+    let path = ws.path;
     let stress_out = &mut ws.stress;
     ws.tet_slots
         .par_chunks_mut(CHUNK)
@@ -151,14 +154,16 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
         .zip(ws.tet_partials.par_iter_mut())
         .enumerate()
         .for_each(|(c, ((slots, stresses), partial))| {
-            *partial = tet_chunk(model, x, v, c * CHUNK, slots, stresses, want, dissipation);
+            *partial = tet_chunk(model, x, v, c * CHUNK, slots, stresses, want, dissipation, path);
         });
 }
 
 /// The tets `first..first + slots.len()` (one chunk of the tet pass; not
-/// inlined, so that profiles name it). Not dispatched to a wider unit
-/// ([`widest`]): compiled for AVX2 the scalar kernel ran no faster
-/// (`docs/performance.md`).
+/// inlined, so that profiles name it): four at a time in SIMD lanes where
+/// all four are neo-Hookean and the step asks for no stress or energy
+/// ([`tet_forces_lanes`]), the others one by one ([`tet_forces`]); both
+/// give the same forces bit for bit. Compiled for the widest vector unit on
+/// `path` ([`widest`]).
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 fn tet_chunk(
@@ -170,42 +175,132 @@ fn tet_chunk(
     stresses: &mut [Mat3],
     want: Want,
     dissipation: Dissipation<'_>,
+    path: Path,
+) -> ForceSums {
+    struct TetChunk<'a> {
+        model: &'a Model,
+        x: &'a [Vec3],
+        v: &'a [Vec3],
+        first: usize,
+        slots: &'a mut [[Vec3; 4]],
+        stresses: &'a mut [Mat3],
+        want: Want,
+        dissipation: Dissipation<'a>,
+    }
+    impl Pass for TetChunk<'_> {
+        type Output = ForceSums;
+        #[inline(always)]
+        fn run(self) -> ForceSums {
+            tet_chunk_body(
+                self.model,
+                self.x,
+                self.v,
+                self.first,
+                self.slots,
+                self.stresses,
+                self.want,
+                self.dissipation,
+            )
+        }
+    }
+    widest(path, TetChunk { model, x, v, first, slots, stresses, want, dissipation })
+}
+
+/// [`tet_chunk`]'s work, inlined into each compilation of it.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn tet_chunk_body(
+    model: &Model,
+    x: &[Vec3],
+    v: &[Vec3],
+    first: usize,
+    slots: &mut [[Vec3; 4]],
+    stresses: &mut [Mat3],
+    want: Want,
+    dissipation: Dissipation<'_>,
 ) -> ForceSums {
     let mut sums = ForceSums::default();
-    for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
-        let t = first + k;
-        let Some(mat) = model.tet_material[t].index() else {
-            *slot = [Vec3::zeros(); 4];
-            continue;
-        };
-        let (law, material) = &model.materials[mat];
-        let tet = model.tets[t];
-        let xp = tet.map(|n| x[n as usize]);
-        let vp = tet.map(|n| v[n as usize]);
-        let reference = &model.tet_ref[t];
-        let out = tet_forces(*law, material, reference, &xp, &vp);
-        *slot = out.forces;
-        if want.stress {
-            *stress_slot = out.stress;
-        }
-        if want.energy {
-            sums.tet_energy += out.energy;
-        }
-        if let (Dissipation::Since(before), true) = (dissipation, material.viscosity() > 0.0) {
-            // R_n = ∫ η D(v_{n−½}) : D(v̄) dv (`Dissipation`).
-            let l = velocity_gradient(&xp, &vp);
-            let d = (l + l.transpose()) * 0.5;
-            let mean = tet.map(|n| (v[n as usize] + before[n as usize]) * 0.5);
-            let l_mean = velocity_gradient(&xp, &mean);
-            let d_mean = (l_mean + l_mean.transpose()) * 0.5;
-            let j = deformation_gradient(reference, &xp).determinant();
-            let rate = material.viscosity() * d.dot(&d_mean) * reference.volume * j;
-            if rate.is_finite() {
-                sums.dissipation_rate += rate;
+    let groups = slots.chunks_mut(TET_LANES).zip(stresses.chunks_mut(TET_LANES));
+    for (g, (slots, stresses)) in groups.enumerate() {
+        let t0 = first + g * TET_LANES;
+        if !want.stress && !want.energy && slots.len() == TET_LANES {
+            let group_slots = <&mut [[Vec3; 4]; TET_LANES]>::try_from(&mut *slots).expect("a full group");
+            let mats: [_; TET_LANES] = std::array::from_fn(|l| model.tet_material[t0 + l].index());
+            if let [Some(m0), Some(m1), Some(m2), Some(m3)] = mats {
+                let [(l0, a0), (l1, a1), (l2, a2), (l3, a3)] = [m0, m1, m2, m3].map(|m| &model.materials[m]);
+                let xp: [[Vec3; 4]; TET_LANES] = std::array::from_fn(|l| model.tets[t0 + l].map(|n| x[n as usize]));
+                let vp: [[Vec3; 4]; TET_LANES] = std::array::from_fn(|l| model.tets[t0 + l].map(|n| v[n as usize]));
+                let references = std::array::from_fn(|l| &model.tet_ref[t0 + l]);
+                if tet_forces_lanes([*l0, *l1, *l2, *l3], [a0, a1, a2, a3], references, &xp, &vp, group_slots) {
+                    for (l, material) in [a0, a1, a2, a3].into_iter().enumerate() {
+                        let t = t0 + l;
+                        viscous_dissipation(
+                            &mut sums,
+                            dissipation,
+                            material,
+                            &model.tet_ref[t],
+                            model.tets[t],
+                            &xp[l],
+                            &vp[l],
+                            v,
+                        );
+                    }
+                    continue;
+                }
             }
+        }
+        for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
+            let t = t0 + k;
+            let Some(mat) = model.tet_material[t].index() else {
+                *slot = [Vec3::zeros(); 4];
+                continue;
+            };
+            let (law, material) = &model.materials[mat];
+            let tet = model.tets[t];
+            let xp = tet.map(|n| x[n as usize]);
+            let vp = tet.map(|n| v[n as usize]);
+            let reference = &model.tet_ref[t];
+            let out = tet_forces(*law, material, reference, &xp, &vp);
+            *slot = out.forces;
+            if want.stress {
+                *stress_slot = out.stress;
+            }
+            if want.energy {
+                sums.tet_energy += out.energy;
+            }
+            viscous_dissipation(&mut sums, dissipation, material, reference, tet, &xp, &vp, v);
         }
     }
     sums
+}
+
+/// Adds the viscous dissipation rate of one tet to `sums` where asked for
+/// and the material is viscous: `R_n = ∫ η D(v_{n−½}) : D(v̄) dv`
+/// ([`Dissipation`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn viscous_dissipation(
+    sums: &mut ForceSums,
+    dissipation: Dissipation<'_>,
+    material: &Material,
+    reference: &TetReference,
+    tet: [u32; 4],
+    xp: &[Vec3; 4],
+    vp: &[Vec3; 4],
+    v: &[Vec3],
+) {
+    if let (Dissipation::Since(before), true) = (dissipation, material.viscosity() > 0.0) {
+        let l = velocity_gradient(xp, vp);
+        let d = (l + l.transpose()) * 0.5;
+        let mean = tet.map(|n| (v[n as usize] + before[n as usize]) * 0.5);
+        let l_mean = velocity_gradient(xp, &mean);
+        let d_mean = (l_mean + l_mean.transpose()) * 0.5;
+        let j = deformation_gradient(reference, xp).determinant();
+        let rate = material.viscosity() * d.dot(&d_mean) * reference.volume * j;
+        if rate.is_finite() {
+            sums.dissipation_rate += rate;
+        }
+    }
 }
 
 fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut Workspace, want: Want) {

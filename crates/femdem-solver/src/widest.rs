@@ -17,10 +17,10 @@
 //! give identical bits, which the tests check by running each pass on both
 //! ([`Path::Baseline`] forces the baseline).
 //!
-//! Only the joint pass is dispatched: its lanes (`femdem_fracture`'s
-//! `lane4.rs`) are written to be packed. The tet kernel is scalar
-//! `nalgebra` code, and compiled for x86-64-v3 it ran no faster
-//! (`docs/performance.md`).
+//! The tet and joint passes are dispatched; what gains is their lanes
+//! (`femdem_material::tet_lanes`, `femdem_fracture`'s `lanes.rs`, on
+//! `femdem_core::lanes`), written to be packed: scalar `nalgebra` code
+//! compiled for x86-64-v3 ran no faster (`docs/performance.md`).
 
 /// Which compilation of a pass runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

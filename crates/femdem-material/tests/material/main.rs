@@ -5,6 +5,7 @@ mod common;
 
 mod balance;
 mod energy_consistency;
+mod lanes;
 mod objectivity;
 mod params;
 mod single_element;

@@ -404,7 +404,8 @@ impl Solver {
         Some(self.pipeline.times).filter(|t| t.steps > 0)
     }
 
-    /// Which compilation of the CPU's joint pass the following steps run
+    /// Which compilation of the CPU's tet and joint passes the following
+    /// steps run
     /// ([`Path::Widest`](crate::Path::Widest) by default). Both give the same results bit for
     /// bit; the choice exists to compare them (tests, `step_profile`).
     pub fn set_vector_path(&mut self, path: crate::Path) {

@@ -5,7 +5,7 @@
 //! every sum over elements is taken per fixed-size chunk, then in chunk
 //! order). Nor on which joint kernel ran: the SIMD lanes (steps that ask
 //! for no energy) and the scalar kernel (steps that do) give the same bits;
-//! nor on which compilation of the joint pass ran (the processor's widest
+//! nor on which compilation of the tet and joint passes ran (the processor's widest
 //! vector unit or the baseline build's, `femdem_solver::Path`).
 
 use crate::common::{box_mesh, model, rock, solver};
@@ -77,14 +77,14 @@ fn lanes_and_scalar_joint_kernels_give_identical_bits() {
     assert!(lanes.state().joints.iter().any(|h| h.damage.iter().any(|&d| d > 0.0) || h.failed), "no joint was damaged");
 }
 
-/// The joint pass runs compiled for the processor's widest vector unit
+/// The tet and joint passes run compiled for the processor's widest vector unit
 /// (x86-64-v3 where it has AVX2) or as the baseline build compiled it; both
 /// do the same IEEE-754 operations in the same order (no fused
-/// multiply-add), so the lanes, the scalar kernel and the joints' histories
-/// agree bit for bit. On a processor without AVX2 both paths are the same
+/// multiply-add), so the tet and joint lanes, the scalar kernels and the
+/// joints' histories agree bit for bit. On a processor without AVX2 both paths are the same
 /// code and the test shows only that.
 #[test]
-fn widest_and_baseline_joint_passes_give_identical_bits() {
+fn widest_and_baseline_passes_give_identical_bits() {
     eprintln!("widest vector unit here: {}", widest_name());
     let widest = run_on(Path::Widest, |_| Want::default());
     let baseline = run_on(Path::Baseline, |_| Want::default());

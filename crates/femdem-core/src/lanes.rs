@@ -51,7 +51,7 @@ impl F4 {
     /// `√` lane by lane.
     #[inline(always)]
     pub fn sqrt(self) -> F4 {
-        F4(self.0.map(f64::sqrt))
+        self.each(f64::sqrt)
     }
     /// `self < o` lane by lane.
     #[inline(always)]
@@ -77,7 +77,13 @@ impl F4 {
     /// same bits as the scalar code).
     #[inline(always)]
     pub fn ln(self) -> F4 {
-        F4(self.0.map(f64::ln))
+        self.each(f64::ln)
+    }
+    /// `f` lane by lane, written out (`array::map` is not always inlined,
+    /// which would take it out of a dispatched caller's instruction set).
+    #[inline(always)]
+    fn each(self, f: impl Fn(f64) -> f64) -> F4 {
+        F4([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
     }
 }
 
@@ -125,7 +131,7 @@ impl Neg for F4 {
     type Output = F4;
     #[inline(always)]
     fn neg(self) -> F4 {
-        F4(self.0.map(|a| -a))
+        self.each(|a| -a)
     }
 }
 impl Sub for F4 {
@@ -168,6 +174,9 @@ pub struct F4x3 {
     pub z: F4,
 }
 
+// Named methods rather than operator traits, so the kernels written on
+// them read as the nalgebra code they stand in for (`a.add(b)`).
+#[allow(clippy::should_implement_trait)]
 impl F4x3 {
     /// Zero in every lane.
     #[inline(always)]

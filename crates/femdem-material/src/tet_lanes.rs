@@ -23,57 +23,76 @@ use crate::{Material, TetReference};
 /// Tets per lane group.
 pub const TET_LANES: usize = 4;
 
-/// Four 3×3 matrices, column by column.
+/// Four 3×3 matrices, `m[c][r]` the entry in row `r` and column `c`.
+/// Every operation is written out entry by entry (no `array::map` or
+/// `from_fn`, which the compiler may keep out of line, i.e. out of a
+/// dispatched caller's instruction set).
 #[derive(Clone, Copy)]
-struct M3([F4x3; 3]);
+struct M3([[F4; 3]; 3]);
+
+/// Builds an [`M3`] from an expression in `r` and `c` (literals).
+macro_rules! m3 {
+    (|$r:ident, $c:ident| $e:expr) => {
+        M3([m3!(@col $r, $c, 0, $e), m3!(@col $r, $c, 1, $e), m3!(@col $r, $c, 2, $e)])
+    };
+    (@col $r:ident, $c:ident, $cc:literal, $e:expr) => {
+        [m3!(@at $r, $c, 0, $cc, $e), m3!(@at $r, $c, 1, $cc, $e), m3!(@at $r, $c, 2, $cc, $e)]
+    };
+    (@at $r:ident, $c:ident, $rr:literal, $cc:literal, $e:expr) => {{
+        let ($r, $c): (usize, usize) = ($rr, $cc);
+        $e
+    }};
+}
 
 impl M3 {
-    /// Entry `(r, c)`.
-    #[inline(always)]
-    fn at(&self, r: usize, c: usize) -> F4 {
-        let col = &self.0[c];
-        [col.x, col.y, col.z][r]
-    }
-    #[inline(always)]
-    fn from_fn(f: impl Fn(usize, usize) -> F4) -> M3 {
-        M3([0, 1, 2].map(|c| F4x3 { x: f(0, c), y: f(1, c), z: f(2, c) }))
-    }
     /// The matrices `m` (one a lane).
     #[inline(always)]
     fn gather(m: [&femdem_core::Mat3; TET_LANES]) -> M3 {
-        M3::from_fn(|r, c| F4([m[0][(r, c)], m[1][(r, c)], m[2][(r, c)], m[3][(r, c)]]))
+        m3!(|r, c| F4([m[0][(r, c)], m[1][(r, c)], m[2][(r, c)], m[3][(r, c)]]))
     }
     /// `self b`, in nalgebra's order.
     #[inline(always)]
     fn mul(&self, b: &M3) -> M3 {
-        M3::from_fn(|i, j| self.at(i, 0) * b.at(0, j) + self.at(i, 1) * b.at(1, j) + self.at(i, 2) * b.at(2, j))
+        let (a, b) = (&self.0, &b.0);
+        m3!(|i, j| a[0][i] * b[j][0] + a[1][i] * b[j][1] + a[2][i] * b[j][2])
     }
     #[inline(always)]
     fn transpose(&self) -> M3 {
-        M3::from_fn(|r, c| self.at(c, r))
+        let a = &self.0;
+        m3!(|r, c| a[r][c])
     }
     #[inline(always)]
     fn add(&self, o: &M3) -> M3 {
-        M3::from_fn(|r, c| self.at(r, c) + o.at(r, c))
+        let (a, b) = (&self.0, &o.0);
+        m3!(|r, c| a[c][r] + b[c][r])
     }
     #[inline(always)]
     fn scale(&self, s: F4) -> M3 {
-        M3::from_fn(|r, c| self.at(r, c) * s)
+        let a = &self.0;
+        m3!(|r, c| a[c][r] * s)
     }
     #[inline(always)]
     fn div(&self, s: F4) -> M3 {
-        M3::from_fn(|r, c| self.at(r, c) / s)
+        let a = &self.0;
+        m3!(|r, c| a[c][r] / s)
     }
     /// `Mat3::identity() * s`, entry by entry.
     #[inline(always)]
     fn identity_times(s: F4) -> M3 {
-        M3::from_fn(|r, c| F4::splat(if r == c { 1.0 } else { 0.0 }) * s)
+        m3!(|r, c| F4::splat(if r == c { 1.0 } else { 0.0 }) * s)
+    }
+    /// Column `c`.
+    #[inline(always)]
+    fn col(&self, c: usize) -> F4x3 {
+        let [x, y, z] = self.0[c];
+        F4x3 { x, y, z }
     }
     /// `cof A`: columns `a₁ × a₂`, `a₂ × a₀`, `a₀ × a₁` (`law::cofactor`).
     #[inline(always)]
     fn cofactor(&self) -> M3 {
-        let [c0, c1, c2] = self.0;
-        M3([c1.cross(c2), c2.cross(c0), c0.cross(c1)])
+        let (c0, c1, c2) = (self.col(0), self.col(1), self.col(2));
+        let col = |v: F4x3| [v.x, v.y, v.z];
+        M3([col(c1.cross(c2)), col(c2.cross(c0)), col(c0.cross(c1))])
     }
 }
 
@@ -82,7 +101,8 @@ impl M3 {
 fn edge_matrix(p: &[[Vec3; 4]; TET_LANES]) -> M3 {
     let node = |k: usize| F4x3::gather([p[0][k], p[1][k], p[2][k], p[3][k]]);
     let p0 = node(0);
-    M3([node(1).sub(p0), node(2).sub(p0), node(3).sub(p0)])
+    let col = |v: F4x3| [v.x, v.y, v.z];
+    M3([col(node(1).sub(p0)), col(node(2).sub(p0)), col(node(3).sub(p0))])
 }
 
 /// The forces of four neo-Hookean tets with current nodes `x` and nodal
@@ -101,16 +121,17 @@ pub fn tet_forces_lanes(
     if laws.iter().any(|&l| l != Law::NeoHookean) {
         return false;
     }
-    let per_tet = |f: &dyn Fn(usize) -> f64| F4([f(0), f(1), f(2), f(3)]);
-    let lambda = per_tet(&|l| materials[l].lambda());
-    let mu = per_tet(&|l| materials[l].mu());
-    let eta = per_tet(&|l| materials[l].viscosity());
-    let volume = per_tet(&|l| references[l].volume);
-    let inv_dm = M3::gather(references.map(|r| &r.inv_dm));
+    let [m0, m1, m2, m3] = materials;
+    let [r0, r1, r2, r3] = references;
+    let lambda = F4([m0.lambda(), m1.lambda(), m2.lambda(), m3.lambda()]);
+    let mu = F4([m0.mu(), m1.mu(), m2.mu(), m3.mu()]);
+    let eta = F4([m0.viscosity(), m1.viscosity(), m2.viscosity(), m3.viscosity()]);
+    let volume = F4([r0.volume, r1.volume, r2.volume, r3.volume]);
+    let inv_dm = M3::gather([&r0.inv_dm, &r1.inv_dm, &r2.inv_dm, &r3.inv_dm]);
     // `tet_forces`: F, cof F, J, Ḟ and the guarded L̂ = Ḟ cof(F)ᵀ / Ĵ.
     let f = edge_matrix(x).mul(&inv_dm);
     let cof = f.cofactor();
-    let j = f.0[0].dot(cof.0[0]);
+    let j = f.col(0).dot(cof.col(0));
     let f_dot = edge_matrix(v).mul(&inv_dm);
     let floor = F4::splat(J_FLOOR);
     let l = f_dot.mul(&cof.transpose()).div(j.max(floor));
@@ -123,11 +144,14 @@ pub fn tet_forces_lanes(
     let p = f.scale(mu).add(&M3::identity_times(du).add(&d.scale(eta)).mul(&cof));
     // [f₁ f₂ f₃] = −V₀ P Dm⁻ᵀ, f₀ = −(f₁ + f₂ + f₃).
     let h = p.mul(&inv_dm.transpose()).scale(-volume);
-    let [f1, f2, f3] = h.0;
+    let (f1, f2, f3) = (h.col(0), h.col(1), h.col(2));
     let sum = f1.add(f2).add(f3);
     let f0 = F4x3 { x: -sum.x, y: -sum.y, z: -sum.z };
     for (lane, out) in forces.iter_mut().enumerate() {
-        *out = [f0.lane(lane), f1.lane(lane), f2.lane(lane), f3.lane(lane)];
+        out[0] = f0.lane(lane);
+        out[1] = f1.lane(lane);
+        out[2] = f2.lane(lane);
+        out[3] = f3.lane(lane);
     }
     true
 }

@@ -220,30 +220,29 @@ fn tet_chunk_body(
     dissipation: Dissipation<'_>,
 ) -> ForceSums {
     let mut sums = ForceSums::default();
+    let (mut xp, mut vp) = ([[Vec3::zeros(); 4]; TET_LANES], [[Vec3::zeros(); 4]; TET_LANES]);
     let groups = slots.chunks_mut(TET_LANES).zip(stresses.chunks_mut(TET_LANES));
     for (g, (slots, stresses)) in groups.enumerate() {
         let t0 = first + g * TET_LANES;
         if !want.stress && !want.energy && slots.len() == TET_LANES {
             let group_slots = <&mut [[Vec3; 4]; TET_LANES]>::try_from(&mut *slots).expect("a full group");
-            let mats: [_; TET_LANES] = std::array::from_fn(|l| model.tet_material[t0 + l].index());
-            if let [Some(m0), Some(m1), Some(m2), Some(m3)] = mats {
-                let [(l0, a0), (l1, a1), (l2, a2), (l3, a3)] = [m0, m1, m2, m3].map(|m| &model.materials[m]);
-                let xp: [[Vec3; 4]; TET_LANES] = std::array::from_fn(|l| model.tets[t0 + l].map(|n| x[n as usize]));
-                let vp: [[Vec3; 4]; TET_LANES] = std::array::from_fn(|l| model.tets[t0 + l].map(|n| v[n as usize]));
-                let references = std::array::from_fn(|l| &model.tet_ref[t0 + l]);
-                if tet_forces_lanes([*l0, *l1, *l2, *l3], [a0, a1, a2, a3], references, &xp, &vp, group_slots) {
-                    for (l, material) in [a0, a1, a2, a3].into_iter().enumerate() {
+            let mat = |l: usize| model.tet_material[t0 + l].index().map(|m| &model.materials[m]);
+            if let (Some((l0, a0)), Some((l1, a1)), Some((l2, a2)), Some((l3, a3))) = (mat(0), mat(1), mat(2), mat(3)) {
+                // The group's nodes, gathered in place (arrays built by
+                // `from_fn` or `map` may be moved with `memmove` calls,
+                // as in the joint pass).
+                for (l, (row_x, row_v)) in xp.iter_mut().zip(vp.iter_mut()).enumerate() {
+                    for (k, &n) in model.tets[t0 + l].iter().enumerate() {
+                        row_x[k] = x[n as usize];
+                        row_v[k] = v[n as usize];
+                    }
+                }
+                let r = |l: usize| &model.tet_ref[t0 + l];
+                let (laws, materials) = ([*l0, *l1, *l2, *l3], [a0, a1, a2, a3]);
+                if tet_forces_lanes(laws, materials, [r(0), r(1), r(2), r(3)], &xp, &vp, group_slots) {
+                    for (l, material) in materials.into_iter().enumerate() {
                         let t = t0 + l;
-                        viscous_dissipation(
-                            &mut sums,
-                            dissipation,
-                            material,
-                            &model.tet_ref[t],
-                            model.tets[t],
-                            &xp[l],
-                            &vp[l],
-                            v,
-                        );
+                        viscous_dissipation(&mut sums, dissipation, material, r(l), model.tets[t], &xp[l], &vp[l], v);
                     }
                     continue;
                 }

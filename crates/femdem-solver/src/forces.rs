@@ -154,7 +154,8 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
         .zip(ws.tet_partials.par_iter_mut())
         .enumerate()
         .for_each(|(c, ((slots, stresses), partial))| {
-            *partial = tet_chunk(model, x, v, c * CHUNK, slots, stresses, want, dissipation, path);
+            let first = c * CHUNK;
+            *partial = tet_chunk(TetChunk { model, x, v, first, slots, stresses, want, dissipation }, path);
         });
 }
 
@@ -165,112 +166,93 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
 /// give the same forces bit for bit. Compiled for the widest vector unit on
 /// `path` ([`widest`]).
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
-fn tet_chunk(
-    model: &Model,
-    x: &[Vec3],
-    v: &[Vec3],
-    first: usize,
-    slots: &mut [[Vec3; 4]],
-    stresses: &mut [Mat3],
-    want: Want,
-    dissipation: Dissipation<'_>,
-    path: Path,
-) -> ForceSums {
-    struct TetChunk<'a> {
-        model: &'a Model,
-        x: &'a [Vec3],
-        v: &'a [Vec3],
-        first: usize,
-        slots: &'a mut [[Vec3; 4]],
-        stresses: &'a mut [Mat3],
-        want: Want,
-        dissipation: Dissipation<'a>,
-    }
-    impl Pass for TetChunk<'_> {
-        type Output = ForceSums;
-        #[inline(always)]
-        fn run(self) -> ForceSums {
-            tet_chunk_body(
-                self.model,
-                self.x,
-                self.v,
-                self.first,
-                self.slots,
-                self.stresses,
-                self.want,
-                self.dissipation,
-            )
-        }
-    }
-    widest(path, TetChunk { model, x, v, first, slots, stresses, want, dissipation })
+fn tet_chunk(chunk: TetChunk<'_>, path: Path) -> ForceSums {
+    widest(path, chunk)
 }
 
-/// [`tet_chunk`]'s work, inlined into each compilation of it.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn tet_chunk_body(
-    model: &Model,
-    x: &[Vec3],
-    v: &[Vec3],
+/// One chunk of the tet pass: the tets `first..first + slots.len()`.
+struct TetChunk<'a> {
+    model: &'a Model,
+    x: &'a [Vec3],
+    v: &'a [Vec3],
     first: usize,
-    slots: &mut [[Vec3; 4]],
-    stresses: &mut [Mat3],
+    slots: &'a mut [[Vec3; 4]],
+    stresses: &'a mut [Mat3],
     want: Want,
-    dissipation: Dissipation<'_>,
-) -> ForceSums {
-    let mut sums = ForceSums::default();
-    let (mut xp, mut vp) = ([[Vec3::zeros(); 4]; TET_LANES], [[Vec3::zeros(); 4]; TET_LANES]);
-    let groups = slots.chunks_mut(TET_LANES).zip(stresses.chunks_mut(TET_LANES));
-    for (g, (slots, stresses)) in groups.enumerate() {
-        let t0 = first + g * TET_LANES;
-        if !want.stress && !want.energy && slots.len() == TET_LANES {
-            let group_slots = <&mut [[Vec3; 4]; TET_LANES]>::try_from(&mut *slots).expect("a full group");
-            let mat = |l: usize| model.tet_material[t0 + l].index().map(|m| &model.materials[m]);
-            if let (Some((l0, a0)), Some((l1, a1)), Some((l2, a2)), Some((l3, a3))) = (mat(0), mat(1), mat(2), mat(3)) {
-                // The group's nodes, gathered in place (arrays built by
-                // `from_fn` or `map` may be moved with `memmove` calls,
-                // as in the joint pass).
-                for (l, (row_x, row_v)) in xp.iter_mut().zip(vp.iter_mut()).enumerate() {
-                    for (k, &n) in model.tets[t0 + l].iter().enumerate() {
-                        row_x[k] = x[n as usize];
-                        row_v[k] = v[n as usize];
+    dissipation: Dissipation<'a>,
+}
+
+impl Pass for TetChunk<'_> {
+    type Output = ForceSums;
+
+    /// [`tet_chunk`]'s work, inlined into each compilation of it.
+    #[inline(always)]
+    fn run(self) -> ForceSums {
+        let TetChunk { model, x, v, first, slots, stresses, want, dissipation } = self;
+        let mut sums = ForceSums::default();
+        let (mut xp, mut vp) = ([[Vec3::zeros(); 4]; TET_LANES], [[Vec3::zeros(); 4]; TET_LANES]);
+        let groups = slots.chunks_mut(TET_LANES).zip(stresses.chunks_mut(TET_LANES));
+        for (g, (slots, stresses)) in groups.enumerate() {
+            let t0 = first + g * TET_LANES;
+            if !want.stress && !want.energy && slots.len() == TET_LANES {
+                let group_slots = <&mut [[Vec3; 4]; TET_LANES]>::try_from(&mut *slots).expect("a full group");
+                let mat = |l: usize| model.tet_material[t0 + l].index().map(|m| &model.materials[m]);
+                if let (Some((l0, a0)), Some((l1, a1)), Some((l2, a2)), Some((l3, a3))) =
+                    (mat(0), mat(1), mat(2), mat(3))
+                {
+                    // The group's nodes, gathered in place (arrays built by
+                    // `from_fn` or `map` may be moved with `memmove` calls,
+                    // as in the joint pass).
+                    for (l, (row_x, row_v)) in xp.iter_mut().zip(vp.iter_mut()).enumerate() {
+                        for (k, &n) in model.tets[t0 + l].iter().enumerate() {
+                            row_x[k] = x[n as usize];
+                            row_v[k] = v[n as usize];
+                        }
+                    }
+                    let r = |l: usize| &model.tet_ref[t0 + l];
+                    let (laws, materials) = ([*l0, *l1, *l2, *l3], [a0, a1, a2, a3]);
+                    if tet_forces_lanes(laws, materials, [r(0), r(1), r(2), r(3)], &xp, &vp, group_slots) {
+                        for (l, material) in materials.into_iter().enumerate() {
+                            let t = t0 + l;
+                            viscous_dissipation(
+                                &mut sums,
+                                dissipation,
+                                material,
+                                r(l),
+                                model.tets[t],
+                                &xp[l],
+                                &vp[l],
+                                v,
+                            );
+                        }
+                        continue;
                     }
                 }
-                let r = |l: usize| &model.tet_ref[t0 + l];
-                let (laws, materials) = ([*l0, *l1, *l2, *l3], [a0, a1, a2, a3]);
-                if tet_forces_lanes(laws, materials, [r(0), r(1), r(2), r(3)], &xp, &vp, group_slots) {
-                    for (l, material) in materials.into_iter().enumerate() {
-                        let t = t0 + l;
-                        viscous_dissipation(&mut sums, dissipation, material, r(l), model.tets[t], &xp[l], &vp[l], v);
-                    }
+            }
+            for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
+                let t = t0 + k;
+                let Some(mat) = model.tet_material[t].index() else {
+                    *slot = [Vec3::zeros(); 4];
                     continue;
+                };
+                let (law, material) = &model.materials[mat];
+                let tet = model.tets[t];
+                let xp = tet.map(|n| x[n as usize]);
+                let vp = tet.map(|n| v[n as usize]);
+                let reference = &model.tet_ref[t];
+                let out = tet_forces(*law, material, reference, &xp, &vp);
+                *slot = out.forces;
+                if want.stress {
+                    *stress_slot = out.stress;
                 }
+                if want.energy {
+                    sums.tet_energy += out.energy;
+                }
+                viscous_dissipation(&mut sums, dissipation, material, reference, tet, &xp, &vp, v);
             }
         }
-        for (k, (slot, stress_slot)) in slots.iter_mut().zip(stresses.iter_mut()).enumerate() {
-            let t = t0 + k;
-            let Some(mat) = model.tet_material[t].index() else {
-                *slot = [Vec3::zeros(); 4];
-                continue;
-            };
-            let (law, material) = &model.materials[mat];
-            let tet = model.tets[t];
-            let xp = tet.map(|n| x[n as usize]);
-            let vp = tet.map(|n| v[n as usize]);
-            let reference = &model.tet_ref[t];
-            let out = tet_forces(*law, material, reference, &xp, &vp);
-            *slot = out.forces;
-            if want.stress {
-                *stress_slot = out.stress;
-            }
-            if want.energy {
-                sums.tet_energy += out.energy;
-            }
-            viscous_dissipation(&mut sums, dissipation, material, reference, tet, &xp, &vp, v);
-        }
+        sums
     }
-    sums
 }
 
 /// Adds the viscous dissipation rate of one tet to `sums` where asked for
@@ -311,7 +293,8 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
         .zip(ws.joint_partials.par_iter_mut())
         .enumerate()
         .for_each(|(c, (((slots, hist), failed), partial))| {
-            *partial = joint_chunk(model, x, c * CHUNK, slots, hist, failed, want, path);
+            let first = c * CHUNK;
+            *partial = joint_chunk(JointChunk { model, x, first, slots, hist, failed, want }, path);
         });
 }
 
@@ -323,98 +306,80 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
 /// for energies runs the scalar kernel throughout (the lanes compute none).
 /// Compiled for the widest vector unit on `path` ([`widest`]).
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
-fn joint_chunk(
-    model: &Model,
-    x: &[Vec3],
-    first: usize,
-    slots: &mut [[Vec3; 6]],
-    hist: &mut [JointHistory],
-    failed: &mut [Option<FailureMode>],
-    want: Want,
-    path: Path,
-) -> ForceSums {
-    struct JointChunk<'a> {
-        model: &'a Model,
-        x: &'a [Vec3],
-        first: usize,
-        slots: &'a mut [[Vec3; 6]],
-        hist: &'a mut [JointHistory],
-        failed: &'a mut [Option<FailureMode>],
-        want: Want,
-    }
-    impl Pass for JointChunk<'_> {
-        type Output = ForceSums;
-        #[inline(always)]
-        fn run(self) -> ForceSums {
-            joint_chunk_body(self.model, self.x, self.first, self.slots, self.hist, self.failed, self.want)
-        }
-    }
-    widest(path, JointChunk { model, x, first, slots, hist, failed, want })
+fn joint_chunk(chunk: JointChunk<'_>, path: Path) -> ForceSums {
+    widest(path, chunk)
 }
 
-/// [`joint_chunk`]'s work, inlined into each compilation of it.
-#[inline(always)]
-fn joint_chunk_body(
-    model: &Model,
-    x: &[Vec3],
+/// One chunk of the joint pass: the joints `first..first + slots.len()`.
+struct JointChunk<'a> {
+    model: &'a Model,
+    x: &'a [Vec3],
     first: usize,
-    slots: &mut [[Vec3; 6]],
-    hist: &mut [JointHistory],
-    failed: &mut [Option<FailureMode>],
+    slots: &'a mut [[Vec3; 6]],
+    hist: &'a mut [JointHistory],
+    failed: &'a mut [Option<FailureMode>],
     want: Want,
-) -> ForceSums {
-    let consts = KernelConsts::new();
-    let mut sums = ForceSums::default();
-    // The group's node positions, gathered in place: built by `from_fn`
-    // and `map`, the arrays were moved with a `memmove` call each, 7% of
-    // the 1.2 mm disc's step (perf, 2026-11-25).
-    let mut xp = [[Vec3::zeros(); 6]; LANES];
-    let groups = slots.chunks_mut(LANES).zip(hist.chunks_mut(LANES)).zip(failed.chunks_mut(LANES));
-    for (g, ((slots, hist), failed)) in groups.enumerate() {
-        let j0 = first + g * LANES;
-        if !want.energy && slots.len() == LANES {
-            let (group_slots, group_hist) = (
-                <&mut [[Vec3; 6]; LANES]>::try_from(&mut *slots).expect("a full group"),
-                <&mut [JointHistory; LANES]>::try_from(&mut *hist).expect("a full group"),
-            );
-            let law = |l: usize| &model.joint_law[j0 + l];
-            for (l, row) in xp.iter_mut().enumerate() {
-                for (p, &n) in row.iter_mut().zip(&model.joints[j0 + l]) {
-                    *p = x[n as usize];
+}
+
+impl Pass for JointChunk<'_> {
+    type Output = ForceSums;
+
+    /// [`joint_chunk`]'s work, inlined into each compilation of it.
+    #[inline(always)]
+    fn run(self) -> ForceSums {
+        let JointChunk { model, x, first, slots, hist, failed, want } = self;
+        let consts = KernelConsts::new();
+        let mut sums = ForceSums::default();
+        // The group's node positions, gathered in place: built by `from_fn`
+        // and `map`, the arrays were moved with a `memmove` call each, 7% of
+        // the 1.2 mm disc's step (perf, 2026-11-25).
+        let mut xp = [[Vec3::zeros(); 6]; LANES];
+        let groups = slots.chunks_mut(LANES).zip(hist.chunks_mut(LANES)).zip(failed.chunks_mut(LANES));
+        for (g, ((slots, hist), failed)) in groups.enumerate() {
+            let j0 = first + g * LANES;
+            if !want.energy && slots.len() == LANES {
+                let (group_slots, group_hist) = (
+                    <&mut [[Vec3; 6]; LANES]>::try_from(&mut *slots).expect("a full group"),
+                    <&mut [JointHistory; LANES]>::try_from(&mut *hist).expect("a full group"),
+                );
+                let law = |l: usize| &model.joint_law[j0 + l];
+                for (l, row) in xp.iter_mut().enumerate() {
+                    for (p, &n) in row.iter_mut().zip(&model.joints[j0 + l]) {
+                        *p = x[n as usize];
+                    }
+                }
+                if joint_update_lanes(&consts, [law(0), law(1), law(2), law(3)], group_hist, &xp, group_slots) {
+                    failed.fill(None);
+                    continue;
                 }
             }
-            if joint_update_lanes(&consts, [law(0), law(1), law(2), law(3)], group_hist, &xp, group_slots) {
-                failed.fill(None);
-                continue;
-            }
-        }
-        for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
-            let j = j0 + k;
-            *f = None;
-            if h.failed {
-                // Left the force loop when it failed (naturally, or by
-                // `Solver::break_joints`): no force, all its work lost.
-                *slot = [Vec3::zeros(); 6];
+            for (k, ((slot, h), f)) in slots.iter_mut().zip(hist.iter_mut()).zip(failed.iter_mut()).enumerate() {
+                let j = j0 + k;
+                *f = None;
+                if h.failed {
+                    // Left the force loop when it failed (naturally, or by
+                    // `Solver::break_joints`): no force, all its work lost.
+                    *slot = [Vec3::zeros(); 6];
+                    if want.energy {
+                        sums.fracture += h.work;
+                    }
+                    continue;
+                }
+                let xp = model.joints[j].map(|n| x[n as usize]);
+                let out = joint_update_fast(&consts, &model.joint_law[j], h, &xp, want.energy);
+                *slot = out.forces;
+                if out.failed.is_some() {
+                    *f = out.failed;
+                    sums.newly_failed += 1;
+                }
                 if want.energy {
-                    sums.fracture += h.work;
+                    sums.joint_energy += out.energy;
+                    sums.fracture += if h.failed { h.work } else { h.work - out.energy };
                 }
-                continue;
-            }
-            let xp = model.joints[j].map(|n| x[n as usize]);
-            let out = joint_update_fast(&consts, &model.joint_law[j], h, &xp, want.energy);
-            *slot = out.forces;
-            if out.failed.is_some() {
-                *f = out.failed;
-                sums.newly_failed += 1;
-            }
-            if want.energy {
-                sums.joint_energy += out.energy;
-                sums.fracture += if h.failed { h.work } else { h.work - out.energy };
             }
         }
+        sums
     }
-    sums
 }
 
 fn gather(model: &Model, ws: &mut Workspace) {

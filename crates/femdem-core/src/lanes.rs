@@ -238,3 +238,34 @@ impl F4x3 {
         F4x3 { x: mask.select(a.x, b.x), y: mask.select(a.y, b.y), z: mask.select(a.z, b.z) }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each lane is the scalar operation's result, bit for bit (signed
+    /// zeros and infinities included), and a select keeps the chosen
+    /// operand's bits.
+    #[test]
+    fn lanes_are_the_scalar_operations() {
+        let a = F4([1.5, -0.0, f64::INFINITY, 3e-310]);
+        let b = F4([-2.25, 0.0, 1.0, 7.0]);
+        let bits = |v: F4| v.0.map(f64::to_bits);
+        for (lanes, scalar) in [
+            (a + b, [0, 1, 2, 3].map(|l| a.0[l] + b.0[l])),
+            (a - b, [0, 1, 2, 3].map(|l| a.0[l] - b.0[l])),
+            (a * b, [0, 1, 2, 3].map(|l| a.0[l] * b.0[l])),
+            (a / b, [0, 1, 2, 3].map(|l| a.0[l] / b.0[l])),
+            (-a, [0, 1, 2, 3].map(|l| -a.0[l])),
+            (a.max(b), [0, 1, 2, 3].map(|l| a.0[l].max(b.0[l]))),
+            (b.sqrt(), [0, 1, 2, 3].map(|l| b.0[l].sqrt())),
+        ] {
+            assert_eq!(bits(lanes), scalar.map(f64::to_bits));
+        }
+        let lt = a.simd_lt(b);
+        assert_eq!(bits(lt.select(a, b)), [b.0[0], b.0[1], b.0[2], a.0[3]].map(f64::to_bits));
+        assert!(!lt.all());
+        assert!(F4::splat(-1.0).simd_lt(F4::ZERO).all());
+        assert!(!F4::splat(f64::NAN).simd_gt(F4::ZERO).all(), "a NaN lane fails a comparison");
+    }
+}

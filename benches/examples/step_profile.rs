@@ -12,12 +12,12 @@
 //! asks for energies with a third argument `energy`, as an output frame
 //! would. With a third argument `paths` it alternates the tet and joint
 //! passes' two compilations (the widest vector unit and the baseline build's,
-//! `femdem_solver::Path`) five steps at a time and prints each one's time.
+//! `femdem_solver::VectorPath`) five steps at a time and prints each one's time.
 //! Prints the tets, joints and steps, to turn counts into instructions per
 //! tet-step, and the steps' wall-clock time.
 
 use femdem_benches::disc_solver;
-use femdem_solver::{Path, Want, widest_name};
+use femdem_solver::{VectorPath, Want, widest_name};
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -36,7 +36,7 @@ fn main() {
     for n in 0..steps {
         let want = Want { stress: false, energy: energy && n % 5 == 0 };
         let k = usize::from(paths && (n / 5) % 2 == 1);
-        s.set_vector_path([Path::Widest, Path::Baseline][k]);
+        s.set_vector_path([VectorPath::Widest, VectorPath::Baseline][k]);
         let lap = std::time::Instant::now();
         failed += s.step(want).new_failures.len();
         on_path[k] += lap.elapsed().as_secs_f64();

@@ -262,6 +262,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         }),
         wall,
         throughput: steps.saturating_sub(first) as f64 * elements as f64 / wall.max(1e-9),
+        vector_unit: femdem_solver::widest_name(),
         failed_joints: solver.failures().len(),
         dir,
         frames: output.pvd(),

@@ -16,7 +16,7 @@ use femdem_material::{
 use rayon::prelude::*;
 
 use crate::model::Model;
-use crate::widest::{Pass, Path, widest};
+use crate::widest::{Pass, VectorPath, widest};
 
 /// Elements per parallel work item.
 pub const CHUNK: usize = 512;
@@ -101,8 +101,8 @@ pub struct Workspace {
     /// for the others).
     pub failed_now: Vec<Option<FailureMode>>,
     /// Which compilation of the tet and joint passes runs
-    /// ([`Path::Widest`] unless a test compares the two).
-    pub path: Path,
+    /// ([`VectorPath::Widest`] unless a test compares the two).
+    pub path: VectorPath,
     tet_partials: Vec<ForceSums>,
     joint_partials: Vec<ForceSums>,
 }
@@ -116,7 +116,7 @@ impl Workspace {
             internal: vec![Vec3::zeros(); model.num_nodes()],
             stress: vec![Mat3::zeros(); model.tets.len()],
             failed_now: vec![None; model.joints.len()],
-            path: Path::Widest,
+            path: VectorPath::Widest,
             tet_partials: vec![ForceSums::default(); model.tets.len().div_ceil(CHUNK)],
             joint_partials: vec![ForceSums::default(); model.joints.len().div_ceil(CHUNK)],
         }
@@ -166,7 +166,7 @@ fn tet_pass(model: &Model, x: &[Vec3], v: &[Vec3], ws: &mut Workspace, want: Wan
 /// give the same forces bit for bit. Compiled for the widest vector unit on
 /// `path` ([`widest`]).
 #[inline(never)]
-fn tet_chunk(chunk: TetChunk<'_>, path: Path) -> ForceSums {
+fn tet_chunk(chunk: TetChunk<'_>, path: VectorPath) -> ForceSums {
     widest(path, chunk)
 }
 
@@ -306,7 +306,7 @@ fn joint_pass(model: &Model, x: &[Vec3], history: &mut [JointHistory], ws: &mut 
 /// for energies runs the scalar kernel throughout (the lanes compute none).
 /// Compiled for the widest vector unit on `path` ([`widest`]).
 #[inline(never)]
-fn joint_chunk(chunk: JointChunk<'_>, path: Path) -> ForceSums {
+fn joint_chunk(chunk: JointChunk<'_>, path: VectorPath) -> ForceSums {
     widest(path, chunk)
 }
 

@@ -82,7 +82,7 @@ mod state;
 mod step;
 mod timestep;
 mod widest;
-pub use widest::{Path, widest_name};
+pub use widest::{VectorPath, widest_name};
 
 pub use clock::StageTimes;
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};

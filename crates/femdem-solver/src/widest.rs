@@ -15,7 +15,7 @@
 //! kernels call no `mul_add`; the wider unit only packs the same IEEE-754
 //! operations, in the same order, into wider registers. Both paths therefore
 //! give identical bits, which the tests check by running each pass on both
-//! ([`Path::Baseline`] forces the baseline).
+//! ([`VectorPath::Baseline`] forces the baseline).
 //!
 //! The tet and joint passes are dispatched; what gains is their lanes
 //! (`femdem_material::tet_lanes`, `femdem_fracture`'s `lanes.rs`, on
@@ -24,7 +24,7 @@
 
 /// Which compilation of a pass runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Path {
+pub enum VectorPath {
     /// The widest the processor has (x86-64-v3 where available).
     Widest,
     /// The baseline build's own code, whatever the processor has.
@@ -54,11 +54,11 @@ impl<P: Pass> pulp::WithSimd for Op<P> {
 }
 
 /// Runs `pass` on `path`: compiled for x86-64-v3 where `path` is
-/// [`Path::Widest`] and the processor has it, as built otherwise.
+/// [`VectorPath::Widest`] and the processor has it, as built otherwise.
 #[inline(always)]
-pub(crate) fn widest<P: Pass>(path: Path, pass: P) -> P::Output {
+pub(crate) fn widest<P: Pass>(path: VectorPath, pass: P) -> P::Output {
     #[cfg(target_arch = "x86_64")]
-    if path == Path::Widest {
+    if path == VectorPath::Widest {
         if let Some(v3) = pulp::x86::V3::try_new() {
             return pulp::Simd::vectorize(v3, Op(pass));
         }
@@ -67,8 +67,8 @@ pub(crate) fn widest<P: Pass>(path: Path, pass: P) -> P::Output {
     pulp::Simd::vectorize(pulp::Scalar::new(), Op(pass))
 }
 
-/// The name of the unit [`widest`] uses on this processor, for a run's
-/// summary.
+/// The name of the unit [`widest`] uses on this processor (the run
+/// summary's `throughput` line names it).
 pub fn widest_name() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     if pulp::x86::V3::try_new().is_some() {

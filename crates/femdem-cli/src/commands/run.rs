@@ -70,7 +70,12 @@ pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> 
         println!("ended       past the peak: load {:.6e} N below {} of its peak {:.6e} N", w.last, w.fraction, w.peak);
     }
     println!("wall time   {:.2} s", s.wall);
-    println!("throughput  {:.3e} tet-steps/s ({} threads)", s.throughput, rayon::current_num_threads());
+    println!(
+        "throughput  {:.3e} tet-steps/s ({} threads, vector unit {})",
+        s.throughput,
+        rayon::current_num_threads(),
+        s.vector_unit
+    );
     if let Some(adapter) = &s.device {
         println!(
             "device      {adapter}; {} bytes a step between host and device (more on output steps)",

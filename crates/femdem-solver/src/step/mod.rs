@@ -405,10 +405,10 @@ impl Solver {
     }
 
     /// Which compilation of the CPU's tet and joint passes the following
-    /// steps run
-    /// ([`Path::Widest`](crate::Path::Widest) by default). Both give the same results bit for
-    /// bit; the choice exists to compare them (tests, `step_profile`).
-    pub fn set_vector_path(&mut self, path: crate::Path) {
+    /// steps run ([`VectorPath::Widest`](crate::VectorPath::Widest) by
+    /// default). Both give the same results bit for bit; the choice exists
+    /// to compare them (tests, `step_profile`).
+    pub fn set_vector_path(&mut self, path: crate::VectorPath) {
         self.pipeline.workspace.path = path;
     }
 

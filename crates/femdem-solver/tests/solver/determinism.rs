@@ -6,23 +6,25 @@
 //! order). Nor on which joint kernel ran: the SIMD lanes (steps that ask
 //! for no energy) and the scalar kernel (steps that do) give the same bits;
 //! nor on which compilation of the tet and joint passes ran (the processor's widest
-//! vector unit or the baseline build's, `femdem_solver::Path`).
+//! vector unit or the baseline build's, `femdem_solver::VectorPath`).
 
 use crate::common::{box_mesh, model, rock, solver};
 use femdem_core::Vec3;
 use femdem_material::Law;
 use femdem_solver::select::{NodeSelection, group_faces, select_nodes};
-use femdem_solver::{Fixed, Loads, Path, Ramp, Solver, SurfaceKind, SurfaceLoad, VelocityDrive, Want, widest_name};
+use femdem_solver::{
+    Fixed, Loads, Ramp, Solver, SurfaceKind, SurfaceLoad, VectorPath, VelocityDrive, Want, widest_name,
+};
 
 fn run() -> Solver {
     run_asking(|n| Want { energy: n % 10 == 0, stress: n == 299 })
 }
 
 fn run_asking(want: impl Fn(usize) -> Want) -> Solver {
-    run_on(Path::Widest, want)
+    run_on(VectorPath::Widest, want)
 }
 
-fn run_on(path: Path, want: impl Fn(usize) -> Want) -> Solver {
+fn run_on(path: VectorPath, want: impl Fn(usize) -> Want) -> Solver {
     let mesh = box_mesh([0.0; 3], [0.1, 0.05, 0.05], 0.008, 0.12, true);
     let (jointed, m) = model(&mesh, Law::NeoHookean, rock(200.0), 10.0 * 26e9);
     let sel = |g: &str| select_nodes(&jointed, &NodeSelection { group: Some(g.into()), ..Default::default() }).unwrap();
@@ -86,8 +88,8 @@ fn lanes_and_scalar_joint_kernels_give_identical_bits() {
 #[test]
 fn widest_and_baseline_passes_give_identical_bits() {
     eprintln!("widest vector unit here: {}", widest_name());
-    let widest = run_on(Path::Widest, |_| Want::default());
-    let baseline = run_on(Path::Baseline, |_| Want::default());
+    let widest = run_on(VectorPath::Widest, |_| Want::default());
+    let baseline = run_on(VectorPath::Baseline, |_| Want::default());
     assert_eq!(widest.state(), baseline.state(), "positions/velocities/joint histories differ");
     assert_eq!(widest.failures(), baseline.failures());
     assert_eq!(widest.record(), baseline.record());

@@ -1,6 +1,6 @@
 //! Four joints at a time: the intact, elastic regime of the joint law
-//! (Eq. 3, 5–7, 11) in SIMD lanes ([`F4`], four `f64` a lane group), with no branch in the
-//! lane arithmetic.
+//! (Eq. 3, 5–7, 11) in SIMD lanes ([`F4`], four `f64` a lane group), with
+//! no branch in the lane arithmetic.
 //!
 //! In a step most joints are intact and stay so: no point damaged before
 //! or after, every point below its peaks (`δn < δnp`, `δs < δsp`, `f_s > 0`,
@@ -17,10 +17,10 @@
 //! [`crate::joint_update_fast`]. It never computes energies: a step that
 //! asks for them uses the scalar kernel.
 
+use femdem_core::lanes::{F4, F4x3 as V3};
 use femdem_core::{Real, Vec3};
 
 use crate::{Coupling, GAUSS, Joint, JointHistory, KernelConsts};
-use femdem_core::lanes::{F4, F4x3 as V3};
 
 /// Joints per lane group.
 pub const LANES: usize = 4;

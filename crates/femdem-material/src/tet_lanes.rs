@@ -81,6 +81,12 @@ impl M3 {
     fn identity_times(s: F4) -> M3 {
         m3!(|r, c| F4::splat(if r == c { 1.0 } else { 0.0 }) * s)
     }
+    /// The matrices with columns `c`.
+    #[inline(always)]
+    fn from_cols(c: [F4x3; 3]) -> M3 {
+        let [a, b, d] = c;
+        M3([[a.x, a.y, a.z], [b.x, b.y, b.z], [d.x, d.y, d.z]])
+    }
     /// Column `c`.
     #[inline(always)]
     fn col(&self, c: usize) -> F4x3 {
@@ -91,8 +97,7 @@ impl M3 {
     #[inline(always)]
     fn cofactor(&self) -> M3 {
         let (c0, c1, c2) = (self.col(0), self.col(1), self.col(2));
-        let col = |v: F4x3| [v.x, v.y, v.z];
-        M3([col(c1.cross(c2)), col(c2.cross(c0)), col(c0.cross(c1))])
+        M3::from_cols([c1.cross(c2), c2.cross(c0), c0.cross(c1)])
     }
 }
 
@@ -101,8 +106,7 @@ impl M3 {
 fn edge_matrix(p: &[[Vec3; 4]; TET_LANES]) -> M3 {
     let node = |k: usize| F4x3::gather([p[0][k], p[1][k], p[2][k], p[3][k]]);
     let p0 = node(0);
-    let col = |v: F4x3| [v.x, v.y, v.z];
-    M3([col(node(1).sub(p0)), col(node(2).sub(p0)), col(node(3).sub(p0))])
+    M3::from_cols([node(1).sub(p0), node(2).sub(p0), node(3).sub(p0)])
 }
 
 /// The forces of four neo-Hookean tets with current nodes `x` and nodal
@@ -133,12 +137,11 @@ pub fn tet_forces_lanes(
     let cof = f.cofactor();
     let j = f.col(0).dot(cof.col(0));
     let f_dot = edge_matrix(v).mul(&inv_dm);
-    let floor = F4::splat(J_FLOOR);
-    let l = f_dot.mul(&cof.transpose()).div(j.max(floor));
+    let jh = j.max(F4::splat(J_FLOOR));
+    let l = f_dot.mul(&cof.transpose()).div(jh);
     // `law::response`, neo-Hookean: D = sym(L̂), U′(Ĵ), and
     // P = μF + (U′(Ĵ) I + η D) cof F.
     let d = l.add(&l.transpose()).scale(F4::splat(0.5));
-    let jh = j.max(floor);
     let ln_jh = jh.ln();
     let du = (lambda * ln_jh - mu) / jh;
     let p = f.scale(mu).add(&M3::identity_times(du).add(&d.scale(eta)).mul(&cof));

@@ -1,6 +1,7 @@
 //! What produced a result: the femdem version and commit, the processor,
-//! the vector instructions the build uses, the worker threads and the GPU
-//! (none: femdem has no GPU path yet). Written at the head of every
+//! the vector instructions the build uses and those the tet and joint
+//! passes chose at run time, the worker threads and the GPU the step ran on
+//! (if any). Written at the head of every
 //! `history.csv` and at the end of every run summary, so that a number in a
 //! report can be traced to what computed it.
 
@@ -24,9 +25,10 @@ pub fn cpu() -> String {
     }
 }
 
-/// The vector instructions the build targets, fixed at compile time: the
-/// joint kernel's lanes (`wide`) and the compiler's auto-vectorisation use
-/// these and nothing wider, whatever the processor has.
+/// The vector instructions the build targets, fixed at compile time (all
+/// code but the dispatched passes uses these and nothing wider), and the
+/// unit the tet and joint passes run on, chosen at run time
+/// (`femdem_solver::widest_name`).
 pub fn simd() -> String {
     let mut on: Vec<&str> = Vec::new();
     macro_rules! feature {
@@ -35,7 +37,8 @@ pub fn simd() -> String {
         };
     }
     feature!("sse2", "sse4.1", "avx", "avx2", "fma", "avx512f", "neon");
-    if on.is_empty() { "none (scalar)".to_owned() } else { format!("{} (fixed at build)", on.join(", ")) }
+    let build = if on.is_empty() { "none (scalar)".to_owned() } else { on.join(", ") };
+    format!("{build} (fixed at build); tet and joint passes on {} (chosen at run time)", femdem_solver::widest_name())
 }
 
 /// The provenance lines, `key: value`, for a history header (each behind

@@ -52,6 +52,7 @@
 use femdem_core::tet::EDGES;
 use femdem_core::{Real, Vec3};
 
+use crate::frame::{Frame, Plain};
 use crate::potential::{Barycentric, TetTetContact, contact_in};
 
 /// The least slack `η` of the tests against a plane (barycentric
@@ -66,6 +67,7 @@ pub const MAX_SLACK: Real = 1e-6;
 /// The slack of the tests of `t`'s points against the planes of `bary`
 /// (the module documentation, "Rounding"); NaN when a coordinate is not
 /// finite.
+#[inline]
 fn slack(t: &[Vec3; 4], bary: &Barycentric) -> Real {
     SLACK.max(1024.0 * bary.rounding(t))
 }
@@ -77,7 +79,7 @@ fn slack(t: &[Vec3; 4], bary: &Barycentric) -> Real {
 /// times it. Zero when the tets are apart (then the forces are zero);
 /// infinite when a tet is flat or a coordinate is not finite (no bound).
 pub fn contact_bound(a: &[Vec3; 4], b: &[Vec3; 4]) -> Real {
-    bound_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref())
+    bound_in(Plain, a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref())
 }
 
 /// What [`tet_tet_contact_within`] found. (Returned by value and matched at
@@ -114,21 +116,36 @@ pub enum Bounded {
 /// negligible costs both. (With a penalty that is not positive the pieces
 /// prove nothing, and the bound comes first whatever `clip_first` says.)
 pub fn tet_tet_contact_within(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real, omit: Real, clip_first: bool) -> Bounded {
+    tet_tet_contact_within_in(Plain, a, b, penalty, omit, clip_first)
+}
+
+/// [`tet_tet_contact_within`] with its large functions run through `frame`
+/// ([`Frame`]; the same bits in every frame). It is inlined into the
+/// caller, which should itself run in `frame`'s work.
+#[inline(always)]
+pub fn tet_tet_contact_within_in<F: Frame>(
+    frame: F,
+    a: &[Vec3; 4],
+    b: &[Vec3; 4],
+    penalty: Real,
+    omit: Real,
+    clip_first: bool,
+) -> Bounded {
     let (in_a, in_b) = (Barycentric::new(a), Barycentric::new(b));
     let (in_a, in_b) = (in_a.as_ref(), in_b.as_ref());
     if clip_first && penalty > 0.0 {
-        let (contact, pieces) = contact_in(a, b, in_a, in_b, penalty, omit);
+        let (contact, pieces) = contact_in(frame, a, b, in_a, in_b, penalty, omit);
         if pieces > penalty * omit * (1.0 + 1e-6) {
             return Bounded::Contact(contact);
         }
-        let bound = bound_in(a, b, in_a, in_b);
+        let bound = bound_in(frame, a, b, in_a, in_b);
         return if bound <= omit { Bounded::Negligible(bound) } else { Bounded::Contact(contact) };
     }
-    let bound = bound_in(a, b, in_a, in_b);
+    let bound = bound_in(frame, a, b, in_a, in_b);
     if bound <= omit {
         return Bounded::Negligible(bound);
     }
-    Bounded::Contact(contact_in(a, b, in_a, in_b, penalty, omit).0)
+    Bounded::Contact(contact_in(frame, a, b, in_a, in_b, penalty, omit).0)
 }
 
 /// Whether [`contact_bound`] of `a` and `b` is finite as far as rounding
@@ -142,14 +159,24 @@ pub(crate) fn within_slack(a: &[Vec3; 4], b: &[Vec3; 4]) -> bool {
 
 /// [`contact_bound`] with the two tets' barycentric coordinates given
 /// (`None` for a flat tet: no bound).
-fn bound_in(a: &[Vec3; 4], b: &[Vec3; 4], in_a: Option<&Barycentric>, in_b: Option<&Barycentric>) -> Real {
-    weighted_bound(a, b, in_a, in_b, [1.0, 1.0])
+#[inline(always)]
+fn bound_in<F: Frame>(
+    frame: F,
+    a: &[Vec3; 4],
+    b: &[Vec3; 4],
+    in_a: Option<&Barycentric>,
+    in_b: Option<&Barycentric>,
+) -> Real {
+    weighted_bound(frame, a, b, in_a, in_b, [1.0, 1.0])
 }
 
 /// `S (w_A φ_A + w_B φ_B)`: [`bound_in`] with the two tets' potential
 /// terms weighted (`[1, 1]` is the bound itself; `bound_near.rs` weighs
-/// them by the tets' shape factors).
-pub(crate) fn weighted_bound(
+/// them by the tets' shape factors). Each direction runs through `frame`
+/// (`frame.rs`).
+#[inline(always)]
+pub(crate) fn weighted_bound<F: Frame>(
+    frame: F,
     a: &[Vec3; 4],
     b: &[Vec3; 4],
     in_a: Option<&Barycentric>,
@@ -165,11 +192,17 @@ pub(crate) fn weighted_bound(
         return Real::INFINITY;
     }
     // λ^B at a's nodes, λ^A at b's nodes.
-    let la = a.map(|p| in_b.at(&p));
-    let lb = b.map(|p| in_a.at(&p));
+    let la = in_b.at_nodes(a);
+    let lb = in_a.at_nodes(b);
     let mut hull = Hull::EMPTY;
-    one_way(a, &la, false, eta, &mut hull);
-    one_way(b, &lb, true, eta, &mut hull);
+    frame.call(
+        #[inline(always)]
+        |_| one_way(a, &la, false, eta, &mut hull),
+    );
+    frame.call(
+        #[inline(always)]
+        |_| one_way(b, &lb, true, eta, &mut hull),
+    );
     hull.bound(eta, weights)
 }
 
@@ -205,6 +238,7 @@ impl Hull {
         }
     }
 
+    #[inline(always)]
     fn bound(&self, eta: Real, [wa, wb]: [Real; 2]) -> Real {
         if !self.any {
             return 0.0;
@@ -226,8 +260,8 @@ impl Hull {
 
 /// Adds to `hull` the nodes of `t` inside the other tet and the crossings
 /// of `t`'s edges with the other tet's face planes inside it; `l[k]` are
-/// node `k`'s coordinates in the other tet.
-#[inline]
+/// node `k`'s coordinates in the other tet. Runs in a frame's work.
+#[inline(always)]
 fn one_way(t: &[Vec3; 4], l: &[[Real; 4]; 4], swapped: bool, eta: Real, hull: &mut Hull) {
     let unit = |k: usize| {
         let mut e = [0.0; 4];
@@ -294,7 +328,7 @@ mod tests {
     /// The full clipping of `a` and `b` (every face) and the sum of its
     /// pieces' magnitudes `Σ |F_k|`, N.
     fn full(a: &[Vec3; 4], b: &[Vec3; 4]) -> (TetTetContact, Real) {
-        crate::potential::contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), P, 0.0)
+        crate::potential::contact_in(Plain, a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), P, 0.0)
     }
 
     /// Checks the bound on one pair; returns `(bound, largest nodal force)`.

@@ -61,6 +61,7 @@
 use femdem_core::{Real, Vec3};
 
 use crate::bound::{weighted_bound, within_slack};
+use crate::frame::Plain;
 use crate::potential::Barycentric;
 
 /// The tet scaled about its incentre so that each face plane moves
@@ -104,6 +105,7 @@ pub fn contact_bound_near(a: &[Vec3; 4], b: &[Vec3; 4], delta: Real) -> Real {
         return Real::INFINITY;
     };
     let bound = weighted_bound(
+        Plain,
         &a_out,
         &b_out,
         Barycentric::new(&a_out).as_ref(),

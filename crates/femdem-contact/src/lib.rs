@@ -117,6 +117,7 @@
 
 mod bound;
 mod bound_near;
+mod frame;
 mod gradient;
 mod nbs;
 mod potential;
@@ -124,8 +125,9 @@ mod separation;
 #[cfg(test)]
 mod test_pairs;
 
-pub use bound::{Bounded, MAX_SLACK, SLACK, contact_bound, tet_tet_contact_within};
+pub use bound::{Bounded, MAX_SLACK, SLACK, contact_bound, tet_tet_contact_within, tet_tet_contact_within_in};
 pub use bound_near::contact_bound_near;
+pub use frame::{Frame, Plain};
 pub use gradient::{GradientContact, tet_tet_gradient};
 pub use nbs::{Nbs, Pair};
 pub use potential::{TetTetContact, tet_tet_contact, tet_tet_forces};

@@ -112,6 +112,7 @@ use femdem_core::tet::FACES;
 use femdem_core::{Mat3, Real, Vec3};
 
 use self::clip::{Moments, Polygon, tournament};
+use crate::frame::{Frame, Plain};
 
 /// Barycentric coordinates of a tet as affine functions: `λ(p) = m (p − x0)`
 /// for `λ1..λ3`, `λ0 = 1 − λ1 − λ2 − λ3`.
@@ -121,15 +122,24 @@ pub(crate) struct Barycentric {
 }
 
 impl Barycentric {
+    #[inline]
     pub(crate) fn new(x: &[Vec3; 4]) -> Option<Barycentric> {
         let t = Mat3::from_columns(&[x[1] - x[0], x[2] - x[0], x[3] - x[0]]);
         t.try_inverse().map(|m| Barycentric { x0: x[0], m })
     }
 
-    #[inline]
+    #[inline(always)]
     pub(crate) fn at(&self, p: &Vec3) -> [Real; 4] {
         let l = self.m * (p - self.x0);
         [1.0 - l.x - l.y - l.z, l.x, l.y, l.z]
+    }
+
+    /// [`Barycentric::at`] at each node of `t` (written out, not
+    /// `t.map(..)`, whose out-of-line helper a frame would not compile for
+    /// its unit: `frame.rs`).
+    #[inline(always)]
+    pub(crate) fn at_nodes(&self, t: &[Vec3; 4]) -> [[Real; 4]; 4] {
+        [self.at(&t[0]), self.at(&t[1]), self.at(&t[2]), self.at(&t[3])]
     }
 
     /// The scale of the rounding of [`Barycentric::at`] at the nodes of
@@ -140,6 +150,7 @@ impl Barycentric {
     /// coordinate at a point made from `t`'s nodes by a few clips lies
     /// within some ten of it of the exact one (the derivation the earlier
     /// kernel's `margin` carried: `16u + 96uMR + 30uMX` after three clips).
+    #[inline]
     pub(crate) fn rounding(&self, t: &[Vec3; 4]) -> Real {
         let m: Real = self.m.iter().map(|x| x.abs()).sum();
         let (r, x) =
@@ -180,8 +191,11 @@ thread_local! {
 /// pieces' `Σ |F_k|` is at most `p` times what is left of `shared.budget`
 /// by the bound of the module documentation ("Faces left out") adds
 /// nothing, and its bound is taken from the budget; a budget of 0 keeps
-/// every face.
-fn one_way(
+/// every face. Runs in `frame`'s work (inlined into it, the tournament
+/// called through it: `frame.rs`).
+#[inline(always)]
+fn one_way<F: Frame>(
+    frame: F,
     a: &[Vec3; 4],
     bary: Option<&Barycentric>,
     penalty: Real,
@@ -194,7 +208,7 @@ fn one_way(
     let Some(bary) = bary else {
         return;
     };
-    let corners = a.map(|p| bary.at(&p));
+    let corners = bary.at_nodes(a);
     for face in FACES {
         let [p0, p1, p2] = face.map(|k| a[k]);
         let (e1, e2) = (p1 - p0, p2 - p0);
@@ -251,7 +265,7 @@ fn one_way(
         for (slot, j) in challengers.iter_mut().zip((0..4).filter(|&j| j != first)) {
             *slot = j;
         }
-        tournament(inside, first, &challengers, &mut levels[..], &mut pieces);
+        tournament(frame, inside, first, &challengers, &mut levels[..], &mut pieces);
         for (i, piece) in pieces.iter().enumerate() {
             let Some((area_mu, [m1, m2], lb)) = piece.centroid() else {
                 continue;
@@ -293,15 +307,18 @@ pub struct TetTetContact {
 /// orientation) for penalty `penalty` (Pa): the forces on their nodes and
 /// the contact centre. Zero forces and no centre when they do not overlap.
 pub fn tet_tet_contact(a: &[Vec3; 4], b: &[Vec3; 4], penalty: Real) -> TetTetContact {
-    contact_in(a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), penalty, 0.0).0
+    contact_in(Plain, a, b, Barycentric::new(a).as_ref(), Barycentric::new(b).as_ref(), penalty, 0.0).0
 }
 
 /// [`tet_tet_contact`] with the two tets' barycentric coordinates given
 /// (`None` for a flat tet), for a caller that has them already, leaving out
 /// faces while the bounds on their pieces' `Σ |F_k|` sum to at most
 /// `p · omit` (module documentation, "Faces left out"; `omit = 0` leaves
-/// out none); with the sum `Σ |F_k|` over the pieces kept, N.
-pub(crate) fn contact_in(
+/// out none); with the sum `Σ |F_k|` over the pieces kept, N. Each
+/// direction runs through `frame` (`frame.rs`).
+#[inline(always)]
+pub(crate) fn contact_in<F: Frame>(
+    frame: F,
     a: &[Vec3; 4],
     b: &[Vec3; 4],
     in_a: Option<&Barycentric>,
@@ -313,8 +330,14 @@ pub(crate) fn contact_in(
     let mut fb = [Vec3::zeros(); 4];
     let (moment, weight) = SCRATCH.with_borrow_mut(|Scratch { buffers, levels }| {
         let mut shared = Shared { budget: omit, buffers, levels, centre: (Vec3::zeros(), 0.0) };
-        one_way(a, in_b, penalty, &mut shared, &mut fa, &mut fb);
-        one_way(b, in_a, penalty, &mut shared, &mut fb, &mut fa);
+        frame.call(
+            #[inline(always)]
+            |f| one_way(f, a, in_b, penalty, &mut shared, &mut fa, &mut fb),
+        );
+        frame.call(
+            #[inline(always)]
+            |f| one_way(f, b, in_a, penalty, &mut shared, &mut fb, &mut fa),
+        );
         shared.centre
     });
     (TetTetContact { on_a: fa, on_b: fb, centre: (weight > 0.0).then(|| moment / weight) }, weight)

@@ -21,6 +21,13 @@
 //! (`femdem_material::tet_lanes`, `femdem_fracture`'s `lanes.rs`, on
 //! `femdem_core::lanes`), written to be packed: scalar `nalgebra` code
 //! compiled for x86-64-v3 ran no faster (`docs/performance.md`).
+//!
+//! The contact pair kernel is scalar too, but branchy and large, and gains
+//! from the wider unit's encodings themselves (three-operand forms, wider
+//! moves): it runs through [`Wide`], a `femdem_contact::Frame` that
+//! compiles each of the kernel's large functions for x86-64-v3 as a
+//! function of its own (inlined into one body per pass, it ran 1.33×
+//! slower: `docs/performance.md`).
 
 /// Which compilation of a pass runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,6 +72,47 @@ pub(crate) fn widest<P: Pass>(path: VectorPath, pass: P) -> P::Output {
     }
     let _ = path;
     pulp::Simd::vectorize(pulp::Scalar::new(), Op(pass))
+}
+
+/// The pair kernel's frame on x86-64-v3 (`femdem_contact::Frame`): each
+/// large function of the kernel compiled for AVX2 in a function of its
+/// own, entered through `pulp`'s `vectorize` on a token proved once (no
+/// feature detection per call).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Wide(#[cfg(target_arch = "x86_64")] pulp::x86::V3);
+
+impl Wide {
+    /// The frame for `path`, where it is [`VectorPath::Widest`] and the
+    /// processor has x86-64-v3; `None` where the baseline runs.
+    pub(crate) fn new(path: VectorPath) -> Option<Wide> {
+        #[cfg(target_arch = "x86_64")]
+        if path == VectorPath::Widest {
+            return pulp::x86::V3::try_new().map(Wide);
+        }
+        let _ = path;
+        None
+    }
+}
+
+/// `pulp`'s handle on a frame's work.
+struct FrameOp<W>(W, Wide);
+
+impl<R, W: FnOnce(Wide) -> R> pulp::WithSimd for FrameOp<W> {
+    type Output = R;
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> R {
+        (self.0)(self.1)
+    }
+}
+
+impl femdem_contact::Frame for Wide {
+    #[inline(always)]
+    fn call<R>(self, work: impl FnOnce(Self) -> R) -> R {
+        #[cfg(target_arch = "x86_64")]
+        return pulp::Simd::vectorize(self.0, FrameOp(work, self));
+        #[cfg(not(target_arch = "x86_64"))]
+        return pulp::Simd::vectorize(pulp::Scalar::new(), FrameOp(work, self));
+    }
 }
 
 /// The name of the unit [`widest`] uses on this processor (the run

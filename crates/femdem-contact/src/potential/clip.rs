@@ -6,6 +6,8 @@
 
 use femdem_core::Real;
 
+use crate::frame::Frame;
+
 /// A convex polygon in a face's coordinates `μ` of at most 16 vertices (a
 /// triangle clipped by the 4 planes of the other tet and then a sub-tet's 3
 /// has at most 10; room is left for the duplicates that Sutherland–Hodgman
@@ -26,8 +28,10 @@ impl Polygon {
     /// `f` of the barycentric coordinates is ≥ 0 (Sutherland–Hodgman); a new
     /// vertex on an edge `a b` is `a + (b − a) t`, `t = f_a / (f_a − f_b)`,
     /// in `μ` and in `λ` alike. `out` is a buffer reused from clip to clip
-    /// (its old vertices are overwritten, not cleared).
-    #[inline]
+    /// (its old vertices are overwritten, not cleared). Inlined into its
+    /// caller, in the caller's frame (`frame.rs`): a call of its own per
+    /// clip cost more than the wider unit gave.
+    #[inline(always)]
     pub(super) fn clip_into(&self, out: &mut Polygon, f: impl Fn(&[Real; 4]) -> Real) {
         out.n = 0;
         let n = self.n.min(self.mu.len());
@@ -91,6 +95,7 @@ impl Moments {
     pub(super) const ZERO: Moments = Moments { area: 0.0, mu: [0.0; 2], lam: [0.0; 4] };
 
     /// Adds a polygon's area and moments (a fan from its first vertex).
+    #[inline]
     pub(super) fn add(&mut self, poly: &Polygon) {
         let (m0, l0) = (poly.mu[0], poly.lam[0]);
         for k in 1..poly.n.saturating_sub(1) {
@@ -110,6 +115,7 @@ impl Moments {
 
     /// The region's area, its centroid's `μ` and `λ`; `None` where the
     /// area is not positive.
+    #[inline]
     pub(super) fn centroid(&self) -> Option<(Real, [Real; 2], [Real; 4])> {
         let a = self.area;
         (a > 0.0).then(|| (a, self.mu.map(|x| x / a), self.lam.map(|x| x / a)))
@@ -121,8 +127,27 @@ impl Moments {
 /// compared on all of `poly`: each challenger `c` splits the polygon into
 /// where `λ_c − λ_w ≥ 0` (the winner stays) and where `λ_w − λ_c ≥ 0` (`c`
 /// wins), a polygon wholly on one side passing on unsplit. `levels` are
-/// the split halves' buffers, one pair per challenger.
-pub(super) fn tournament(
+/// the split halves' buffers, one pair per challenger. Each round runs
+/// through `frame` (`frame.rs`).
+#[inline(always)]
+pub(super) fn tournament<F: Frame>(
+    frame: F,
+    poly: &Polygon,
+    winner: usize,
+    challengers: &[usize],
+    levels: &mut [[Polygon; 2]],
+    pieces: &mut [Moments; 4],
+) {
+    frame.call(
+        #[inline(always)]
+        |f| round(f, poly, winner, challengers, levels, pieces),
+    )
+}
+
+/// A round of the [`tournament`], in `frame`'s work.
+#[inline(always)]
+fn round<F: Frame>(
+    frame: F,
     poly: &Polygon,
     winner: usize,
     challengers: &[usize],
@@ -138,13 +163,13 @@ pub(super) fn tournament(
     };
     let vertices = &poly.lam[..poly.n.min(poly.lam.len())];
     if vertices.iter().all(|l| l[c] - l[winner] >= 0.0) {
-        return tournament(poly, winner, rest, deeper, pieces);
+        return tournament(frame, poly, winner, rest, deeper, pieces);
     }
     if vertices.iter().all(|l| l[winner] - l[c] >= 0.0) {
-        return tournament(poly, c, rest, deeper, pieces);
+        return tournament(frame, poly, c, rest, deeper, pieces);
     }
     poly.clip_into(stays, |l| l[c] - l[winner]);
     poly.clip_into(wins, |l| l[winner] - l[c]);
-    tournament(stays, winner, rest, deeper, pieces);
-    tournament(wins, c, rest, deeper, pieces);
+    tournament(frame, stays, winner, rest, deeper, pieces);
+    tournament(frame, wins, c, rest, deeper, pieces);
 }

@@ -228,6 +228,7 @@ pub(super) fn anchors(anchor: &[Vec3], nodes: &[[u32; 4]; 2]) -> [[Vec3; 4]; 2] 
 
 /// The deviation of positions `x` from anchors `at` (the module
 /// documentation), m.
+#[inline(always)]
 pub(super) fn deviation(x: &[[Vec3; 4]; 2], at: &[[Vec3; 4]; 2]) -> Real {
     let mut mean = Vec3::zeros();
     for s in 0..2 {

@@ -61,6 +61,7 @@
 //! coordinates (`pair::evaluate`), so it has the right moment and slows a
 //! spinning body.
 
+mod candidate;
 mod certify;
 mod cracks;
 mod debts;
@@ -84,12 +85,12 @@ use std::time::Instant;
 
 use crate::clock::{PassClock, lap};
 use crate::model::Model;
+use candidate::Candidates;
 use certify::{Certificates, Verdict};
-use debts::corrected;
 use detection::Update;
 pub use energy::ContactEnergy;
 pub(crate) use geometry::Geometry;
-use pair::{PairForce, PairInput, PairMap, PairSet, evaluate, spring_key};
+use pair::{PairForce, PairMap, PairSet, spring_key};
 pub(crate) use saved::SavedContact;
 use settings::FrictionTable;
 pub use settings::{Activation, ContactModel, ContactSettings, NEGLIGIBLE};
@@ -220,6 +221,9 @@ pub struct Contact {
     /// Scratch: each contactable tet's displacement from its anchors,
     /// summarised (`certify::Drift`), when certifying.
     drifts: Vec<certify::Drift>,
+    /// Which compilation of the pair kernel runs (the solver sets it with
+    /// its tet and joint passes'; the same bits on every path).
+    pub(crate) path: crate::VectorPath,
 }
 
 impl Contact {
@@ -287,6 +291,7 @@ impl Contact {
             was_in_contact: Vec::new(),
             spring_of: Vec::new(),
             drifts: Vec::new(),
+            path: crate::VectorPath::Widest,
         };
         // A pre-existing fracture face activates its vertices as a failed
         // joint does: its tets are those of the vertices the pair shares.
@@ -448,89 +453,44 @@ impl Contact {
             lap(&mut clock, &mut self.clock.geometry);
             asked
         });
-        let precomputed = precomputed.as_ref();
-        let sizes = &self.sizes;
-        let (friction, stick, ramp, started) = (&self.friction, &self.stick, &self.ramp, &self.started);
-        let (penalty, n_total) = (self.settings.penalty, Real::from(self.settings.ramp_steps));
-        let (negligible, activation, contact_model) =
-            (self.settings.negligible, self.settings.activation, self.settings.model);
-        let newly = self.newly.any().then_some(&self.newly);
-        let (anchor, drifts) = (&self.certificates.anchor, &self.drifts);
-        let (held, onsets, primed) = (&self.held, contact_model == ContactModel::Gradient, self.primed);
+        let inputs = Candidates {
+            model,
+            x,
+            v,
+            dt,
+            sizes: &self.sizes,
+            certifying,
+            anchor: &self.certificates.anchor,
+            drifts: &self.drifts,
+            newly: self.newly.any().then_some(&self.newly),
+            penalty: self.settings.penalty,
+            n_total: Real::from(self.settings.ramp_steps),
+            negligible: self.settings.negligible,
+            activation: self.settings.activation,
+            model_kind: self.settings.model,
+            friction: &self.friction,
+            stick: &self.stick,
+            ramp: &self.ramp,
+            started: &self.started,
+            precomputed: precomputed.as_ref(),
+            onsets: self.settings.model == ContactModel::Gradient,
+            held: &self.held,
+            primed: self.primed,
+        };
         // Last pass's forces freed in parallel (`collect_into_vec` would
         // drop them one by one).
         self.results.par_iter_mut().for_each(|r| r.0 = None);
-        self.candidates
+        let candidates = self
+            .candidates
             .par_iter()
             .enumerate()
             .zip(self.certificates.cached.par_iter())
             .zip(self.was_in_contact.par_iter())
             .zip(self.spring_of.par_iter())
-            .map(|((((k, &(a, b)), &radius), &clip_first), &spring)| {
-                let fresh = newly.is_some_and(|n| n.contains(a, b));
-                let mut verdict = Verdict::default();
-                // Within its certificate's radius: skipped (not a pair newly
-                // allowed, whose start is decided at this pass); surely so
-                // by the two tets' drifts, else by the deviation.
-                let certified = certifying && radius > 0.0 && !fresh;
-                if certified && drifts[a as usize].surely_within(&drifts[b as usize], radius) {
-                    verdict.skipped = true;
-                    return (None, verdict);
-                }
-                let (ta, tb) = (model.tets[a as usize], model.tets[b as usize]);
-                let nodes = [ta, tb];
-                let xs = [ta.map(|n| x[n as usize]), tb.map(|n| x[n as usize])];
-                let size = sizes[a as usize].min(sizes[b as usize]);
-                let at = || certify::anchors(anchor, &nodes);
-                let deviation = certified.then(|| certify::deviation(&xs, &at()));
-                if deviation.is_some_and(|d| d <= radius) {
-                    verdict.skipped = true;
-                    return (None, verdict);
-                }
-                let mut negligible_bound = None;
-                let force = evaluate(
-                    PairInput {
-                        tets: [a, b],
-                        x: xs,
-                        nodes,
-                        v,
-                        size,
-                        penalty,
-                        model: contact_model,
-                        negligible,
-                        clip_first,
-                        friction,
-                        regions: &model.tet_region,
-                        ramps: ramp,
-                        n_total,
-                        spring: stick.get(spring as usize).map_or_else(Vec3::zeros, |s| s.1),
-                        dt,
-                        fresh,
-                        couple: newly.is_some_and(|n| n.is_couple(a, b)),
-                        activation,
-                        started,
-                        geometry: precomputed.and_then(|p| p.get(k)),
-                    },
-                    &mut negligible_bound,
-                );
-                let force = if onsets { corrected(force, [a, b], held, &xs, &nodes, v, dt, primed) } else { force };
-                // An overlapping pair shown negligible: certified unless it
-                // is marked bounded for this epoch.
-                if certifying && negligible_bound.is_some_and(|b| b > 0.0) {
-                    verdict.bounded = true;
-                    if radius != certify::BOUNDED {
-                        // (Read here: most candidates never need it.)
-                        let volume = model.tet_ref[a as usize].volume.min(model.tet_ref[b as usize].volume);
-                        let at = at();
-                        // A lapsed pair's deviation is known already.
-                        let d = deviation.unwrap_or_else(|| certify::deviation(&xs, &at));
-                        verdict.update = Some(certify::certify(&at, d, volume, negligible));
-                    }
-                }
-                (force.map(Box::new), verdict)
-            })
-            .collect_into_vec(&mut self.results);
-        let orphans = if contact_model == ContactModel::Gradient { self.orphans(model, x, v, dt) } else { Vec::new() };
+            .map(|((((k, &pair), &radius), &clip_first), &spring)| (k, pair, radius, clip_first, spring));
+        inputs.evaluate_all(self.path, candidates, &mut self.results);
+        let orphans =
+            if self.settings.model == ContactModel::Gradient { self.orphans(model, x, v, dt) } else { Vec::new() };
         self.sum_into_nodes(model, &orphans, v, certifying);
         // Eq. 18: n_c counts the steps since the joint failed.
         let n_total = self.settings.ramp_steps;

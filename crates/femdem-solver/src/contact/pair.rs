@@ -1,7 +1,7 @@
 //! One candidate pair of the contact pass: the normal potential force
 //! (Eq. 17), the Eq. 18 ramp, and Coulomb friction at the contact centre.
 
-use femdem_contact::{Bounded, tet_tet_contact, tet_tet_contact_within, tet_tet_gradient};
+use femdem_contact::{Bounded, Frame, tet_tet_contact, tet_tet_contact_within_in, tet_tet_gradient};
 use femdem_core::{Mat3, Real, Vec3};
 
 use super::settings::{Activation, ContactModel, FrictionTable};
@@ -178,6 +178,7 @@ pub(crate) struct PairInput<'a> {
 }
 
 /// The barycentric coordinates of `q` in the tet `p` (`None` if flat).
+#[inline(always)]
 fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
     let m = Mat3::from_columns(&[p[1] - p[0], p[2] - p[0], p[3] - p[0]]).try_inverse()?;
     let l = m * (q - p[0]);
@@ -226,7 +227,15 @@ fn barycentric(p: &[Vec3; 4], q: &Vec3) -> Option<[Real; 4]> {
 /// A spinning body then feels the friction torque of its contact area, and
 /// a rotating fragment slips with the velocity of its contact, not of its
 /// centroid.
-pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>) -> Option<PairForce> {
+///
+/// Runs in `frame`'s work, the clipping and the bound through it
+/// (`femdem_contact::Frame`).
+#[inline(always)]
+pub(crate) fn evaluate<F: Frame>(
+    frame: F,
+    input: PairInput<'_>,
+    negligible_bound: &mut Option<Real>,
+) -> Option<PairForce> {
     let [a, b] = input.tets;
     let [pa, pb] = &input.x;
     if !boxes_overlap(pa, pb) {
@@ -252,7 +261,7 @@ pub(crate) fn evaluate(input: PairInput<'_>, negligible_bound: &mut Option<Real>
         // that (the bound is infinite, and the pair evaluated, where it
         // cannot bound), or the faces that carry less.
         let omit = input.negligible * input.size.powi(2);
-        match tet_tet_contact_within(pa, pb, input.penalty, omit, input.clip_first) {
+        match tet_tet_contact_within_in(frame, pa, pb, input.penalty, omit, input.clip_first) {
             Bounded::Negligible(bound) => {
                 *negligible_bound = Some(bound);
                 return None;

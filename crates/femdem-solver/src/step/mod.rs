@@ -404,8 +404,8 @@ impl Solver {
         Some(self.pipeline.times).filter(|t| t.steps > 0)
     }
 
-    /// Which compilation of the CPU's tet and joint passes the following
-    /// steps run ([`VectorPath::Widest`](crate::VectorPath::Widest) by
+    /// Which compilation of the CPU's tet and joint passes and of the
+    /// contact pair kernel the following steps run ([`VectorPath::Widest`](crate::VectorPath::Widest) by
     /// default). Both give the same results bit for bit; the choice exists
     /// to compare them (tests, `step_profile`).
     pub fn set_vector_path(&mut self, path: crate::VectorPath) {
@@ -465,6 +465,7 @@ impl Solver {
         // 3. Contact.
         if let Some(contact) = &mut self.evolving.contact {
             let before = contact.clock;
+            contact.path = self.pipeline.workspace.path;
             contact.pass(&self.scene.model, &self.evolving.state.x, &self.evolving.state.v, dt);
             times.add_pass(&before, &contact.clock);
         }

@@ -176,6 +176,7 @@ impl Solver {
             };
             let (x, v) = (&self.evolving.state.x, &self.evolving.state.v);
             let before = contact.clock;
+            contact.path = self.pipeline.workspace.path;
             contact.pass_with(&self.scene.model, x, v, dt, Some(&mut geometry));
             times.add_pass(&before, &contact.clock);
             clock = Instant::now();

@@ -8,16 +8,25 @@
 //!   `Contact::needs_detection`), and forces are summed in ascending pair
 //!   order; the buffered run must detect far less often;
 //! * in a 1-thread and a 2-thread rayon pool (the pairs are evaluated in
-//!   parallel and summed in a fixed order).
+//!   parallel and summed in a fixed order);
+//! * with the pair kernel compiled for the processor's widest vector unit
+//!   or as the baseline build compiled it (`femdem_solver::VectorPath`:
+//!   the same operations in the same order, no fused multiply-add). On a
+//!   processor without AVX2 both are the same code, and this shows only
+//!   that.
 
 use crate::common::{at_step, box_mesh, model, rock, stable};
 use femdem_core::Vec3;
 use femdem_material::Law;
-use femdem_solver::{ContactModel, ContactSettings, Loads, Solver, Want};
+use femdem_solver::{ContactModel, ContactSettings, Loads, Solver, VectorPath, Want, widest_name};
 
 const STEPS: usize = 1000;
 
 fn run(buffer: f64, force: ContactModel) -> Solver {
+    run_on(buffer, force, VectorPath::Widest)
+}
+
+fn run_on(buffer: f64, force: ContactModel, path: VectorPath) -> Solver {
     let mut mesh = box_mesh([0.0; 3], [0.02, 0.02, 0.02], 0.005, 0.1, false);
     let other = box_mesh([0.0202, 0.008, 0.0], [0.0402, 0.028, 0.02], 0.005, 0.1, false);
     mesh.append(&other);
@@ -25,6 +34,7 @@ fn run(buffer: f64, force: ContactModel) -> Solver {
     let dt = 0.2 * stable(&m, &Loads::default(), 300).critical;
     let mut s = at_step(m, Loads::default(), dt);
     s.enable_contact(ContactSettings { friction: 0.3, buffer, model: force, ..ContactSettings::new(26e9) }, &[]);
+    s.set_vector_path(path);
     // Head-on at 2 m/s each, with a shear of 1 m/s each along y.
     s.set_velocity(|x| if x.x < 0.0201 { Vec3::new(2.0, 1.0, 0.0) } else { Vec3::new(-2.0, -1.0, 0.0) });
     let mut in_contact = 0;
@@ -54,6 +64,8 @@ fn same_bits(model: ContactModel) {
     let every_step = pool(2).install(|| run(0.0, model));
     let buffered = pool(2).install(|| run(4e-4, model));
     let one_thread = pool(1).install(|| run(4e-4, model));
+    let baseline = pool(2).install(|| run_on(4e-4, model, VectorPath::Baseline));
+    eprintln!("widest vector unit here: {}", widest_name());
     let c = |s: &Solver| s.contact().unwrap().detections;
     let travel = every_step.dt() * STEPS as f64 * 5f64.sqrt();
     eprintln!(
@@ -67,6 +79,8 @@ fn same_bits(model: ContactModel) {
     assert_eq!(every_step.energies(), buffered.energies());
     assert_eq!(buffered.state(), one_thread.state());
     assert_eq!(buffered.energies(), one_thread.energies());
+    assert_eq!(buffered.state(), baseline.state(), "the widest and the baseline pair kernels differ");
+    assert_eq!(buffered.energies(), baseline.energies());
     assert!(c(&every_step) as usize >= STEPS - 1);
     assert!(c(&buffered) * 10 < c(&every_step), "the buffer must cut detections tenfold");
 }

@@ -28,6 +28,12 @@
 //!   configuration whose nodes are within a radius of a given one (after a
 //!   common translation), so that a pair shown negligible need not be
 //!   bounded again until its nodes have moved that far.
+//! - [`Frame`] (`frame.rs`): how the kernel calls its large functions (each
+//!   direction of the clip and of the bound, each round of the sub-tet
+//!   tournament), so that a caller can compile each for a wider vector unit
+//!   as a function of its own; [`Plain`] is the baseline, and every
+//!   function without a frame argument uses it. The same bits in every
+//!   frame.
 //! - [`separated_by_face_plane`] (`separation.rs`): a narrow-phase filter
 //!   for detection — a face plane of one tet keeps the other more than a
 //!   gap away, so the pair cannot touch before the next detection.

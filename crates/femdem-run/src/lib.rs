@@ -128,7 +128,8 @@ pub struct Summary {
     pub wall: f64,
     /// Tet-steps per second of this call's step loop (deformable tets).
     pub throughput: f64,
-    /// The vector unit the CPU's tet and joint passes were compiled for
+    /// The vector unit the CPU's tet and joint passes and contact pair
+    /// kernel were compiled for
     /// (`femdem_solver::widest_name`).
     pub vector_unit: &'static str,
     /// Joints failed.

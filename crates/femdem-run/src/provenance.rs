@@ -27,7 +27,8 @@ pub fn cpu() -> String {
 
 /// The vector instructions the build targets, fixed at compile time (all
 /// code but the dispatched passes uses these and nothing wider), and the
-/// unit the tet and joint passes run on, chosen at run time
+/// unit the tet and joint passes and the contact pair kernel run on,
+/// chosen at run time
 /// (`femdem_solver::widest_name`).
 pub fn simd() -> String {
     let mut on: Vec<&str> = Vec::new();
@@ -38,7 +39,10 @@ pub fn simd() -> String {
     }
     feature!("sse2", "sse4.1", "avx", "avx2", "fma", "avx512f", "neon");
     let build = if on.is_empty() { "none (scalar)".to_owned() } else { on.join(", ") };
-    format!("{build} (fixed at build); tet and joint passes on {} (chosen at run time)", femdem_solver::widest_name())
+    format!(
+        "{build} (fixed at build); tet, joint and contact pair passes on {} (chosen at run time)",
+        femdem_solver::widest_name()
+    )
 }
 
 /// The provenance lines, `key: value`, for a history header (each behind

@@ -222,7 +222,7 @@ pub struct Contact {
     /// summarised (`certify::Drift`), when certifying.
     drifts: Vec<certify::Drift>,
     /// Which compilation of the pair kernel runs (the solver sets it with
-    /// its tet and joint passes'; the same bits on every path).
+    /// its tet and joint passes' path; the same bits on every path).
     pub(crate) path: crate::VectorPath,
 }
 

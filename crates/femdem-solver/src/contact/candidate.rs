@@ -45,7 +45,6 @@ pub(super) struct Candidates<'a> {
     pub precomputed: Option<&'a Asked>,
     /// With [`ContactModel::Gradient`]: the energy-consistent kicks'
     /// state (`onset.rs`).
-    pub onsets: bool,
     pub held: &'a PairMap<onset::Held>,
     pub primed: bool,
 }
@@ -144,7 +143,7 @@ impl Candidates<'_> {
             },
             &mut negligible_bound,
         );
-        let force = if self.onsets {
+        let force = if self.model_kind == ContactModel::Gradient {
             corrected(force, [a, b], self.held, &xs, &nodes, self.v, self.dt, self.primed)
         } else {
             force

@@ -473,7 +473,6 @@ impl Contact {
             ramp: &self.ramp,
             started: &self.started,
             precomputed: precomputed.as_ref(),
-            onsets: self.settings.model == ContactModel::Gradient,
             held: &self.held,
             primed: self.primed,
         };

@@ -551,7 +551,7 @@ pub enum PartSpec {
         /// Target element size, m.
         element_size: f64,
     },
-    /// `kind = "msh"`: a Gmsh MSH 4.1 file, ASCII or binary.
+    /// `kind = "msh"`: a Gmsh MSH 4.1 or 2.2 file, ASCII or binary.
     Msh {
         /// Part name (default: the file stem).
         name: Option<String>,

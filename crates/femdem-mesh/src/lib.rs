@@ -2,7 +2,7 @@
 //!
 //! This crate owns the mesh of the reference paper (Guo, Xiang, Latham,
 //! Izzuddin, §2.1 and Fig. 2): 4-node tetrahedra, generators that need no
-//! external tool, Gmsh MSH 4.1 import and export, mesh checks and
+//! external tool, Gmsh MSH import (4.1 and 2.2) and export (4.1), mesh checks and
 //! statistics, and the insertion of 6-node cohesive joint elements on every
 //! interior face of a breakable region. Its main entry point for another
 //! solver is [`insert_joints`]: a jointed mesh from any tet mesh.
@@ -17,8 +17,8 @@
 //! - [`generate`]: the jittered Freudenthal box (`generate_box`), the
 //!   constrained-Delaunay extrusion of a 2D outline with fracture traces
 //!   (`generate_extrusion`), and rigid platens (`generate_platen`).
-//! - [`msh`]: Gmsh MSH 4.1 `read_msh` (ASCII and binary, either byte
-//!   order) and `write_msh` (ASCII).
+//! - [`msh`]: Gmsh MSH `read_msh` (4.1 and 2.0–2.2; ASCII and binary,
+//!   either byte order) and `write_msh` (4.1, ASCII).
 //! - [`check`](mod@check): what a mesh must satisfy to be simulated;
 //!   [`stats`](mod@stats) ([`MeshStats`]): counts, edge lengths, quality,
 //!   volumes per region.

@@ -1,4 +1,5 @@
-//! Gmsh MSH 4.1 import (ASCII and binary) and export (ASCII).
+//! Gmsh MSH import (4.1 and 2.0–2.2, ASCII and binary) and export (4.1,
+//! ASCII).
 //!
 //! [`read_msh`] turns a Gmsh mesh into a [`TetMesh`](crate::TetMesh):
 //!
@@ -35,16 +36,23 @@
 //! [`element_type_name`] does not know cannot be skipped (their node count
 //! is unknown) and are refused. Errors in a binary file name the byte
 //! offset and the section ([`MeshError::MshBinary`](crate::MeshError::MshBinary)).
-//! Versions other than 4.1 are refused with a message that names the Gmsh
-//! option to change (`Mesh.MshFileVersion = 4.1`). Partitioned meshes are
-//! not supported.
+//! MSH 2 (versions 2.0 to 2.2, Gmsh's legacy format, still written by
+//! many tools) is read too, ASCII and binary (`read/legacy.rs`): an
+//! element's first tag is its physical group, so each physical volume is a
+//! region and each physical surface a group as above, and a physical group
+//! that `$PhysicalNames` names is kept even when it holds no element. An
+//! element in several physical groups is written once per group in MSH 2:
+//! a triangle so is in each group; a tet written twice is refused (one
+//! region per tet). Other versions are refused with a message that names
+//! the Gmsh option to change (`Mesh.MshFileVersion = 4.1`). Partitioned
+//! MSH 4.1 meshes are not supported (MSH 2's partition tags are ignored).
 //!
 //! Reading is split by concept: `lex.rs` (the ASCII tokenizer: lines and
 //! fields), `binary.rs` (the binary tokenizer: raw `int`, `size_t` and
 //! `double` in the file's byte order), `source.rs` (the interface both give
 //! the section parsers), `read.rs` (`$MeshFormat`, then the section
-//! parsers, written once for both encodings) and `read/assemble.rs` (the
-//! mesh from what was read).
+//! parsers, written once for both encodings; those of MSH 2 in
+//! `read/legacy.rs`) and `read/assemble.rs` (the mesh from what was read).
 
 mod binary;
 mod lex;

@@ -1,4 +1,4 @@
-//! The MSH 4.1 reader, ASCII and binary.
+//! The MSH 4.1 and MSH 2 (2.0–2.2) reader, ASCII and binary.
 //!
 //! `$MeshFormat` says which: [`read_msh_report`] reads it as text, then
 //! hands the rest of the file to the section parsers below through a
@@ -6,12 +6,14 @@
 //! so a record with too few or too many fields is reported on its own line
 //! instead of shifting every later record), or [`Binary`], value by value
 //! in the file's byte order. Counts given by headers are checked against
-//! what follows, but never trusted for allocation.
+//! what follows, but never trusted for allocation. The sections MSH 2
+//! writes differently are in `read/legacy.rs`.
 
 use std::collections::hash_map::Entry;
 use std::collections::{BTreeSet, HashMap};
 
 mod assemble;
+mod legacy;
 
 use super::binary::{Binary, Endian};
 use super::lex::{Ascii, Fields, Lines};
@@ -26,12 +28,12 @@ const TET: u32 = 4;
 /// Name of the region that takes tets of volumes in no physical group.
 const UNNAMED: &str = "unnamed";
 
-/// Reads a Gmsh MSH 4.1 file, ASCII or binary (either byte order); see the
+/// Reads a Gmsh MSH 4.1 or 2 file, ASCII or binary (either byte order); see the
 /// [module docs](super) for what is kept. Use [`read_msh_report`] to also
 /// learn what was skipped.
 ///
 /// # Errors
-/// For any malformed input, a version other than 4.1, or a file with no
+/// For any malformed input, a version other than 4.1 and 2.0–2.2, or a file with no
 /// 4-node tets: [`MeshError::Msh`] with the 1-based line of the first
 /// problem in an ASCII file (and in the `$MeshFormat` line of any file);
 /// [`MeshError::MshBinary`] with its byte offset and section in a binary
@@ -47,17 +49,18 @@ pub fn read_msh(bytes: &[u8]) -> Result<TetMesh, MeshError> {
 /// As [`read_msh`].
 pub fn read_msh_report(bytes: &[u8]) -> Result<(TetMesh, MshReport), MeshError> {
     let mut lines = Lines::new(bytes);
-    match mesh_format(&mut lines)? {
-        None => Reader::new(Ascii::new(lines), bytes.len()).read(),
-        Some((endian, size_t)) => Reader::new(Binary::new(lines, endian, size_t), bytes.len()).read(),
+    let (legacy, binary) = mesh_format(&mut lines)?;
+    match binary {
+        None => Reader::new(Ascii::new(lines), bytes.len(), legacy).read(),
+        Some((endian, size_t)) => Reader::new(Binary::new(lines, endian, size_t), bytes.len(), legacy).read(),
     }
 }
 
 /// Reads the `$MeshFormat` header and its line `version file-type
 /// data-size`, and in a binary file the `int` 1 after it; stops before
-/// `$EndMeshFormat`. Returns the byte order and the size of a `size_t` of
-/// a binary file, `None` for an ASCII one.
-fn mesh_format(lines: &mut Lines<'_>) -> Result<Option<(Endian, usize)>, MeshError> {
+/// `$EndMeshFormat`. Returns whether the file is MSH 2, and the byte order
+/// and the size of a `size_t` of a binary file (`None` for an ASCII one).
+fn mesh_format(lines: &mut Lines<'_>) -> Result<(bool, Option<(Endian, usize)>), MeshError> {
     const S: &str = "MeshFormat";
     let header = loop {
         match lines.next_line("")? {
@@ -73,9 +76,10 @@ fn mesh_format(lines: &mut Lines<'_>) -> Result<Option<(Endian, usize)>, MeshErr
     }
     let mut f = lines.record(S, || "`version file-type data-size`".into())?;
     let version = f.token("version")?;
-    if version != "4.1" {
+    let legacy = matches!(version, "2" | "2.0" | "2.1" | "2.2");
+    if version != "4.1" && !legacy {
         return Err(f.err(format!(
-            "MSH version {version} is not supported: femdem reads MSH 4.1 \
+            "MSH version {version} is not supported: femdem reads MSH 4.1 and 2.2 \
              (in Gmsh, save with `Mesh.MshFileVersion = 4.1`)"
         )));
     }
@@ -86,7 +90,12 @@ fn mesh_format(lines: &mut Lines<'_>) -> Result<Option<(Endian, usize)>, MeshErr
     let data_size = f.count("data size")?;
     f.end("the data size")?;
     if file_type == 0 {
-        return Ok(None);
+        return Ok((legacy, None));
+    }
+    if legacy && data_size != 8 {
+        return Err(
+            f.err(format!("bad data size {data_size} for a binary MSH 2 file: expected 8 (the bytes of a `double`)"))
+        );
     }
     if data_size != 4 && data_size != 8 {
         return Err(f.err(format!(
@@ -108,7 +117,7 @@ fn mesh_format(lines: &mut Lines<'_>) -> Result<Option<(Endian, usize)>, MeshErr
             ),
         )
     })?;
-    Ok(Some((endian, data_size)))
+    Ok((legacy, Some((endian, data_size))))
 }
 
 /// At most 60 characters of `s`, escaped: a header in a message.
@@ -190,10 +199,12 @@ struct Reader<S> {
     triangles: Vec<RawTriangle>,
     /// Where the `$Elements` header is, once read.
     elements_at: Option<At>,
+    /// Whether the file is MSH 2 (`legacy.rs`).
+    legacy: bool,
 }
 
 impl<'a, S: Source<'a>> Reader<S> {
-    fn new(src: S, file_len: usize) -> Self {
+    fn new(src: S, file_len: usize, legacy: bool) -> Self {
         Reader {
             src,
             file_len,
@@ -208,6 +219,7 @@ impl<'a, S: Source<'a>> Reader<S> {
             tet_phys: Vec::new(),
             triangles: Vec::new(),
             elements_at: None,
+            legacy,
         }
     }
 
@@ -239,6 +251,11 @@ impl<'a, S: Source<'a>> Reader<S> {
             }
             match name {
                 "PhysicalNames" => self.physical_names()?,
+                "Entities" if self.legacy => {
+                    return Err(at.err(name, "an $Entities section in an MSH 2 file (it is MSH 4's)"));
+                }
+                "Nodes" if self.legacy => self.nodes_v2()?,
+                "Elements" if self.legacy => self.elements_v2()?,
                 "Entities" => {
                     if self.elements_at.is_some() {
                         return Err(at.err(name, "$Entities must come before $Elements"));
@@ -255,6 +272,9 @@ impl<'a, S: Source<'a>> Reader<S> {
         }
         if self.elements_at.is_none() {
             return Err(self.src.lines().err("", "file ends without an $Elements section"));
+        }
+        if self.legacy {
+            self.named_groups_v2();
         }
         self.assemble()
     }

@@ -6,3 +6,4 @@ mod joints;
 mod msh;
 mod msh_binary;
 mod msh_fuzz;
+mod msh_legacy;

@@ -1,4 +1,4 @@
-//! Gmsh MSH 4.1 import and export: round trips, a mesh written by Gmsh
+//! Gmsh MSH 4.1 import and export (MSH 2 import: `msh_legacy.rs`): round trips, a mesh written by Gmsh
 //! itself, and malformed files, each with the line its error must name.
 
 use std::collections::BTreeMap;
@@ -95,7 +95,7 @@ fn region_names(mesh: &TetMesh) -> Vec<&str> {
 }
 
 /// Asserts that `back` holds what MSH stores of `mesh`.
-fn assert_same_mesh(mesh: &TetMesh, back: &TetMesh) {
+pub(crate) fn assert_same_mesh(mesh: &TetMesh, back: &TetMesh) {
     assert_eq!(back.coords, mesh.coords);
     assert_eq!(back.tets, mesh.tets);
     assert_eq!(back.tet_region, mesh.tet_region);
@@ -124,7 +124,7 @@ fn total_volume(mesh: &TetMesh, region: Option<u16>) -> Real {
 
 /// Two unit cubes side by side, "left" and "right", with their outer end
 /// faces in groups "xmin" and "xmax".
-fn two_cubes() -> TetMesh {
+pub(crate) fn two_cubes() -> TetMesh {
     let mut mesh = kuhn_grid([2, 1, 1], 1.0, [0.0; 3], |_| [0.0; 3]);
     mesh.regions =
         vec![Region { name: "left".into(), breakable: true }, Region { name: "right".into(), breakable: true }];
@@ -198,7 +198,7 @@ fn extreme_coordinates_are_written_exactly() {
     assert_eq!(read_msh(text.as_bytes()).unwrap().coords, mesh.coords);
 }
 
-fn arb_mesh() -> impl Strategy<Value = TetMesh> {
+pub(crate) fn arb_mesh() -> impl Strategy<Value = TetMesh> {
     (
         prop::array::uniform3(1usize..=2),
         1e-3..10.0f64,
@@ -246,7 +246,7 @@ proptest! {
 /// Written by Gmsh 4.15.2 from `data/gmsh_two_volumes.geo` (see
 /// `data/regenerate.py`): a 10 mm cube ("matrix") with a cylindrical
 /// inclusion of radius 2.5 mm and height 6 mm ("inclusion").
-const GMSH_TWO_VOLUMES: &[u8] = include_bytes!("../data/gmsh_two_volumes.msh");
+pub(crate) const GMSH_TWO_VOLUMES: &[u8] = include_bytes!("../data/gmsh_two_volumes.msh");
 const CUBE: Real = 0.01;
 const RADIUS: Real = 0.0025;
 const HEIGHT: Real = 0.006;
@@ -529,11 +529,16 @@ fn bad_file_type_and_binary_data_size_name_the_format_line() {
 }
 
 #[test]
-fn version_2_2_is_refused_by_name() {
-    let (text, _) = small_with("4.1 0 8", Some("2.2 0 8"));
-    let (line, message) = msh_error(&text);
-    assert_eq!(line, 2);
-    assert!(message.contains("version 2.2") && message.contains("Mesh.MshFileVersion = 4.1"), "{message}");
+fn other_versions_are_refused_by_name() {
+    for version in ["3.0", "4.0", "4", "1.0", "2.3"] {
+        let (text, _) = small_with("4.1 0 8", Some(&format!("{version} 0 8")));
+        let (line, message) = msh_error(&text);
+        assert_eq!(line, 2);
+        assert!(
+            message.contains(&format!("version {version} ")) && message.contains("Mesh.MshFileVersion = 4.1"),
+            "{message}"
+        );
+    }
 }
 
 #[test]

@@ -1,4 +1,5 @@
-//! The [`Source`] of a binary MSH 4.1 file: the values of `$Entities`,
+//! The [`Source`] of a binary MSH file (4.1, and 2 through its `int` and
+//! `double` values only): the values of `$Entities`,
 //! `$Nodes` and `$Elements` as raw `int` (4 bytes), `size_t` (the header's
 //! data size: 4 or 8 bytes) and `double` (8 bytes), in the byte order the
 //! header's integer 1 shows.

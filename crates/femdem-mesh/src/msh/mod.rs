@@ -30,7 +30,8 @@
 //! Binary files (`Mesh.Binary = 1`) are read as Gmsh writes them: in the
 //! byte order of the machine that wrote them (the `int` 1 after the
 //! `$MeshFormat` line says which), `size_t` values of the header's data
-//! size (4 or 8 bytes); they give the same mesh as the ASCII file of the
+//! size (4 or 8 bytes; in MSH 2 the data size is a `double`'s, 8, and
+//! there are no `size_t` values); they give the same mesh as the ASCII file of the
 //! same mesh, save that the ASCII file rounds coordinates to the 16 digits
 //! Gmsh prints. In a binary file, elements of a type that
 //! [`element_type_name`] does not know cannot be skipped (their node count
@@ -40,10 +41,13 @@
 //! many tools) is read too, ASCII and binary (`read/legacy.rs`): an
 //! element's first tag is its physical group, so each physical volume is a
 //! region and each physical surface a group as above, and a physical group
-//! that `$PhysicalNames` names is kept even when it holds no element. An
+//! that `$PhysicalNames` names is kept even when it holds no element (MSH
+//! 2 has no entities to say more; MSH 2.0's names, which give no
+//! dimension, name groups of either kind but make none). An
 //! element in several physical groups is written once per group in MSH 2:
 //! a triangle so is in each group; a tet written twice is refused (one
-//! region per tet). Other versions are refused with a message that names
+//! region per tet), and so is a file whose named groups hold no element
+//! (`Mesh.SaveAll = 1`). Other versions are refused with a message that names
 //! the Gmsh option to change (`Mesh.MshFileVersion = 4.1`). Partitioned
 //! MSH 4.1 meshes are not supported (MSH 2's partition tags are ignored).
 //!

@@ -27,6 +27,9 @@ const TRIANGLE: u32 = 2;
 const TET: u32 = 4;
 /// Name of the region that takes tets of volumes in no physical group.
 const UNNAMED: &str = "unnamed";
+/// The dimension of a physical name of MSH 2.0, which gives none: the name
+/// of a physical group of any dimension with its tag.
+const ANY_DIMENSION: i32 = -1;
 
 /// Reads a Gmsh MSH 4.1 or 2 file, ASCII or binary (either byte order); see the
 /// [module docs](super) for what is kept. Use [`read_msh_report`] to also
@@ -251,8 +254,15 @@ impl<'a, S: Source<'a>> Reader<S> {
             }
             match name {
                 "PhysicalNames" => self.physical_names()?,
-                "Entities" if self.legacy => {
-                    return Err(at.err(name, "an $Entities section in an MSH 2 file (it is MSH 4's)"));
+                // Gmsh writes one into MSH 2 with `Mesh.SaveTopology = 1`:
+                // the elements' tags say all it would.
+                "Entities" if self.legacy => self.src.lines().skip_section(name, at)?,
+                "ParametricNodes" if self.legacy => {
+                    return Err(at.err(
+                        name,
+                        "$ParametricNodes is not read: save the mesh without parametric coordinates \
+                         (in Gmsh, `Mesh.SaveParametric = 0`)",
+                    ));
                 }
                 "Nodes" if self.legacy => self.nodes_v2()?,
                 "Elements" if self.legacy => self.elements_v2()?,
@@ -274,7 +284,7 @@ impl<'a, S: Source<'a>> Reader<S> {
             return Err(self.src.lines().err("", "file ends without an $Elements section"));
         }
         if self.legacy {
-            self.named_groups_v2();
+            self.named_groups_v2()?;
         }
         self.assemble()
     }
@@ -288,21 +298,26 @@ impl<'a, S: Source<'a>> Reader<S> {
         f.end("the number of physical names")?;
         for i in 0..n {
             let f = lines.record(S, || format!("physical name {} of {n}", i + 1))?;
-            // `dim tag "name"`; the name may hold any run of spaces.
+            // `dim tag "name"`; the name may hold any run of spaces. MSH
+            // 2.0 writes `tag "name"`, with no dimension.
             let raw = f.raw;
             let (head, quoted) = raw.split_at(raw.find('"').unwrap_or(raw.len()));
             let mut h = Fields { raw: head, it: head.split_ascii_whitespace(), at: f.at, section: S };
-            let dim = h.int("dimension")?;
-            let tag = h.int("physical tag")?;
+            let (dim, tag) = if self.legacy && head.split_ascii_whitespace().count() == 1 {
+                (ANY_DIMENSION, h.int("physical tag")?)
+            } else {
+                let dim = h.int("dimension")?;
+                if !(0..=3).contains(&dim) {
+                    return Err(h.err(format!("bad dimension {dim}: expected 0 to 3")));
+                }
+                (dim, h.int("physical tag")?)
+            };
             h.end("the physical tag")?;
             let quoted = quoted.trim_end();
             let name = quoted
                 .strip_prefix('"')
                 .and_then(|r| r.strip_suffix('"'))
                 .ok_or_else(|| h.err(format!("expected a quoted name, found `{quoted}`")))?;
-            if !(0..=3).contains(&dim) {
-                return Err(h.err(format!("bad dimension {dim}: expected 0 to 3")));
-            }
             self.names.insert((dim, tag), name.to_owned());
         }
         lines.end_of(S)

@@ -9,7 +9,10 @@
 //! [`Source::node_tag`] are `size_t` (of the header's data size),
 //! [`Source::int`] and [`Source::uint`] are `int`, [`Source::real`] is
 //! `double`. In an ASCII file they are whitespace-separated numbers, one
-//! record per line.
+//! record per line. The MSH 2 parsers (`read/legacy.rs`) read their
+//! binary values, all `int` and `double`, through [`Source::int`],
+//! [`Source::uint`] and [`Source::real`] only; their section counts are
+//! text lines in both encodings.
 
 use super::lex::Lines;
 use crate::MeshError;

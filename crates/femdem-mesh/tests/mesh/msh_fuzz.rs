@@ -282,12 +282,15 @@ proptest! {
         assert_line_in_file(&bytes, line)?;
     }
 
-    /// Bytes after a valid head reach the section parsers; the tail is
-    /// drawn from the characters an MSH file is made of, so that it often
-    /// forms headers and numbers.
+    /// Bytes after a valid head (MSH 4.1 or 2) reach the section parsers;
+    /// the tail is drawn from the characters an MSH file is made of, so
+    /// that it often forms headers and numbers.
     #[test]
-    fn arbitrary_sections_never_panic(tail in "(\\$(Nodes|Elements|Entities|PhysicalNames|End[A-Za-z]*)\n|[-0-9 .e\"\n]{1,12}){0,40}") {
-        let text = format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n{tail}");
+    fn arbitrary_sections_never_panic(
+        version in prop::sample::select(vec!["4.1", "2.2", "2.0"]),
+        tail in "(\\$(Nodes|Elements|Entities|PhysicalNames|End[A-Za-z]*)\n|[-0-9 .e\"\n]{1,12}){0,40}",
+    ) {
+        let text = format!("$MeshFormat\n{version} 0 8\n$EndMeshFormat\n{tail}");
         let line = read_and_use(text.as_bytes());
         assert_line_in_file(text.as_bytes(), line)?;
     }
@@ -335,18 +338,19 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 4096, ..ProptestConfig::default() })]
 
-    /// Arbitrary bytes after a valid binary head (either byte order, either
-    /// `size_t`) reach the binary section parsers.
+    /// Arbitrary bytes after a valid binary head (MSH 4.1 in either byte
+    /// order with either `size_t`, or MSH 2.2) reach the binary section
+    /// parsers.
     #[test]
     fn arbitrary_binary_sections_never_panic(
         big in any::<bool>(),
-        size_t in prop::sample::select(vec![4usize, 8]),
+        (version, size_t) in prop::sample::select(vec![("4.1", 4usize), ("4.1", 8), ("2.2", 8)]),
         section in prop::sample::select(vec!["$Entities", "$Nodes", "$Elements", "$Comments"]),
         data in prop::collection::vec(any::<u8>(), 0..400),
         close in any::<bool>(),
     ) {
         let one = if big { 1u32.to_be_bytes() } else { 1u32.to_le_bytes() };
-        let mut bytes = format!("$MeshFormat\n4.1 1 {size_t}\n").into_bytes();
+        let mut bytes = format!("$MeshFormat\n{version} 1 {size_t}\n").into_bytes();
         bytes.extend_from_slice(&one);
         bytes.extend_from_slice(format!("\n$EndMeshFormat\n{section}\n").as_bytes());
         bytes.extend_from_slice(&data);

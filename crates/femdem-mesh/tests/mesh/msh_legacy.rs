@@ -20,11 +20,15 @@ use proptest::prelude::*;
 
 use crate::msh::{GMSH_TWO_VOLUMES, arb_mesh, assert_same_mesh, two_cubes};
 
-/// How [`write_v2`] encodes the file.
+/// How [`write_v2`] encodes the file: ASCII, or binary in either byte
+/// order with consecutive elements of one type in one block, or as Gmsh
+/// writes them, each element in a block of its own (and with four tags:
+/// a partition count and id after the physical and elementary tags).
 #[derive(Clone, Copy, Debug)]
 enum Encoding {
     Ascii,
     Binary { big_endian: bool },
+    BinaryAsGmsh { big_endian: bool },
 }
 
 /// A node's number in the files written here: sparse and out of order.
@@ -43,17 +47,19 @@ fn group_tag(g: usize) -> i32 {
 /// One element record: `(type, tags, node numbers)`.
 type Element = (i32, Vec<i32>, Vec<i32>);
 
-/// The elements of `mesh`: its tets with their region's tag, then each
-/// boundary group's faces as triangles (in the tet's outward order) with
-/// the group's tag — a face in two groups twice. Elementary entities: 1
-/// for every tet, 2 for every triangle.
+/// The elements of `mesh`: a point and a line in no physical group (to be
+/// skipped), its tets with their region's tag, then each boundary group's
+/// faces as triangles (in the tet's outward order) with the group's tag —
+/// a face in two groups twice. Elementary entities: 1 for every tet, 2 for
+/// every triangle.
 fn elements(mesh: &TetMesh) -> Vec<Element> {
-    let mut out: Vec<Element> = mesh
-        .tets
-        .iter()
-        .zip(&mesh.tet_region)
-        .map(|(t, &r)| (4, vec![region_tag(r as usize), 1], t.iter().map(|&v| number(v as usize)).collect()))
-        .collect();
+    let mut out: Vec<Element> = vec![(15, vec![0, 3], vec![number(0)]), (1, vec![0, 4], vec![number(0), number(1)])];
+    out.extend(
+        mesh.tets
+            .iter()
+            .zip(&mesh.tet_region)
+            .map(|(t, &r)| (4, vec![region_tag(r as usize), 1], t.iter().map(|&v| number(v as usize)).collect())),
+    );
     for (g, group) in mesh.boundary.iter().enumerate() {
         for f in &group.faces {
             let nodes = f.nodes(&mesh.tets).iter().map(|&v| number(v as usize)).collect();
@@ -66,7 +72,8 @@ fn elements(mesh: &TetMesh) -> Vec<Element> {
 /// `mesh` as an MSH 2.2 file.
 fn write_v2(mesh: &TetMesh, encoding: Encoding) -> Vec<u8> {
     let binary = !matches!(encoding, Encoding::Ascii);
-    let big = matches!(encoding, Encoding::Binary { big_endian: true });
+    let big = matches!(encoding, Encoding::Binary { big_endian: true } | Encoding::BinaryAsGmsh { big_endian: true });
+    let as_gmsh = matches!(encoding, Encoding::BinaryAsGmsh { .. });
     let int = |out: &mut Vec<u8>, v: i32| out.extend(if big { v.to_be_bytes() } else { v.to_le_bytes() });
     let real = |out: &mut Vec<u8>, x: f64| out.extend(if big { x.to_be_bytes() } else { x.to_le_bytes() });
     let mut out = Vec::new();
@@ -95,14 +102,23 @@ fn write_v2(mesh: &TetMesh, encoding: Encoding) -> Vec<u8> {
     if binary {
         out.push(b'\n');
     }
-    let elements = elements(mesh);
+    let mut elements = elements(mesh);
+    if as_gmsh {
+        for (_, tags, _) in &mut elements {
+            tags.extend([1, 2]);
+        }
+    }
     out.extend(format!("$EndNodes\n$Elements\n{}\n", elements.len()).bytes());
     if binary {
         // Consecutive elements of one type and tag count in one block.
         let mut i = 0;
         while i < elements.len() {
             let (ty, tags, _) = &elements[i];
-            let n = elements[i..].iter().take_while(|e| e.0 == *ty && e.1.len() == tags.len()).count();
+            let n = if as_gmsh {
+                1
+            } else {
+                elements[i..].iter().take_while(|e| e.0 == *ty && e.1.len() == tags.len()).count()
+            };
             for v in [*ty, n as i32, tags.len() as i32] {
                 int(&mut out, v);
             }
@@ -123,8 +139,13 @@ fn write_v2(mesh: &TetMesh, encoding: Encoding) -> Vec<u8> {
     out
 }
 
-const ENCODINGS: [Encoding; 3] =
-    [Encoding::Ascii, Encoding::Binary { big_endian: false }, Encoding::Binary { big_endian: true }];
+const ENCODINGS: [Encoding; 5] = [
+    Encoding::Ascii,
+    Encoding::Binary { big_endian: false },
+    Encoding::Binary { big_endian: true },
+    Encoding::BinaryAsGmsh { big_endian: false },
+    Encoding::BinaryAsGmsh { big_endian: true },
+];
 
 fn read_back(mesh: &TetMesh, encoding: Encoding) -> TetMesh {
     let bytes = write_v2(mesh, encoding);
@@ -174,7 +195,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_meshes_read_back(mesh in arb_mesh(), pick in 0usize..3) {
+    fn random_meshes_read_back(mesh in arb_mesh(), pick in 0usize..5) {
         let back = read_back(&mesh, ENCODINGS[pick]);
         assert_same_mesh(&mesh, &back);
         check(&back).unwrap();
@@ -185,9 +206,10 @@ proptest! {
 
 /// Two tets (the second in negative orientation) in physical volume 7
 /// "rock" and in no physical volume, a triangle in physical surface 4
-/// (unnamed) and in none, a point, a line, three tags (a partition count)
-/// on one element, node numbers out of order with one unused, and an
-/// unknown section.
+/// (unnamed) and in none, a point, a line, four tags (a partition count
+/// and id) on one element, node numbers out of order with one unused, an
+/// unknown section and an `$Entities` section (Gmsh's
+/// `Mesh.SaveTopology = 1`).
 const SMALL: &str = "\
 $MeshFormat
 2.2 0 8
@@ -209,13 +231,17 @@ $NodeData
 1
 \"a view\"
 $EndNodeData
+$Entities
+0 0 0 1
+1 0 0 0 1 1 1 1 7 0
+$EndEntities
 $Elements
 6
 1 15 2 0 1 99
 2 1 2 0 1 10 20
 3 2 2 4 1 10 20 30
 4 2 2 0 1 20 30 40
-5 4 3 7 1 1 10 20 30 40
+5 4 4 7 1 1 2 10 20 30 40
 6 4 2 0 2 30 20 40 50
 $EndElements
 ";
@@ -243,8 +269,10 @@ fn small_file_reads_as_expected() {
     };
     assert_eq!(report, expected);
     check(&mesh).unwrap();
-    for version in ["2", "2.0", "2.1"] {
-        let text = SMALL.replace("2.2 0 8", &format!("{version} 0 8"));
+    assert_eq!(read_msh(SMALL.replace("2.2 0 8", "2.1 0 8").as_bytes()).unwrap(), mesh);
+    // MSH 2.0's physical names have no dimension.
+    for version in ["2", "2.0"] {
+        let text = SMALL.replace("2.2 0 8", &format!("{version} 0 8")).replace("3 7 \"rock\"", "7 \"rock\"");
         assert_eq!(read_msh(text.as_bytes()).unwrap(), mesh, "version {version}");
     }
 }
@@ -264,14 +292,49 @@ fn line_of(text: &str, line: &str) -> usize {
 }
 
 #[test]
-fn a_tet_in_two_physical_volumes_is_refused_with_both_lines() {
+fn a_tet_in_two_physical_volumes_is_refused_with_both_numbers() {
     let text = SMALL
         .replace("6\n1 15", "7\n1 15")
-        .replace("6 4 2 0 2 30 20 40 50\n", "6 4 2 0 2 30 20 40 50\n7 4 2 8 1 20 40 10 30\n");
+        .replace("6 4 2 0 2 30 20 40 50\n", "6 4 2 0 2 30 20 40 50\n17 4 2 8 1 20 40 10 30\n");
     let (line, message) = line_error(&text);
-    assert_eq!(line, line_of(&text, "7 4 2 8 1 20 40 10 30"));
-    let first = line_of(&text, "5 4 3 7 1 1 10 20 30 40");
-    assert!(message.contains(&format!("the tet on line {first}")) && message.contains("one region only"), "{message}");
+    assert_eq!(line, line_of(&text, "$Elements"));
+    assert!(message.contains("elements 5 and 17 are tets on the same four nodes"), "{message}");
+    assert!(message.contains("one region only"), "{message}");
+    // The same in binary.
+    let mut mesh = two_cubes();
+    mesh.tets.push(mesh.tets[3]);
+    mesh.tet_region.push(1 - mesh.tet_region[3]);
+    match read_msh(&write_v2(&mesh, Encoding::BinaryAsGmsh { big_endian: true })) {
+        Err(MeshError::MshBinary { section, message, .. }) => {
+            // Elements 1 and 2 are the point and the line.
+            assert_eq!(section, "Elements");
+            assert!(message.contains("elements 6 and 15 are tets on the same four nodes"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// `Mesh.SaveAll = 1`: every element with physical tag 0, the groups
+/// still named.
+#[test]
+fn a_file_saved_with_save_all_is_refused() {
+    let text = SMALL.replace("5 4 4 7 1 1 2 ", "5 4 4 0 1 1 2 ").replace("3 2 2 4 1 ", "3 2 2 0 1 ");
+    let (line, message) = line_error(&text);
+    assert_eq!(line, line_of(&text, "$Elements"));
+    assert!(message.contains("Mesh.SaveAll = 0") && message.contains("physical tag 0"), "{message}");
+    // With no physical names, the same elements are a mesh of one unnamed
+    // region, as an MSH 4.1 file without physical groups is.
+    let text = text.replace("$PhysicalNames\n1\n3 7 \"rock\"\n$EndPhysicalNames\n", "");
+    let mesh = read_msh(text.as_bytes()).unwrap();
+    assert_eq!((mesh.regions.len(), mesh.boundary.len()), (1, 0));
+}
+
+#[test]
+fn parametric_nodes_are_refused_by_name() {
+    let text = SMALL.replace("$Nodes\n", "$ParametricNodes\n0\n$EndParametricNodes\n$Nodes\n");
+    let (line, message) = line_error(&text);
+    assert_eq!(line, line_of(&text, "$ParametricNodes"));
+    assert!(message.contains("Mesh.SaveParametric = 0"), "{message}");
 }
 
 #[test]
@@ -282,8 +345,8 @@ fn bad_records_name_their_line() {
         ("20 1 0 0", "0 1 0 0", "numbers start at 1"),
         ("20 1 0 0", "10 1 0 0", "node number 10 appears twice (first on line 10)"),
         ("20 1 0 0", "20 1 nan 0", "bad y coordinate `nan`"),
-        ("5 4 3 7 1 1 10 20 30 40", "5 4 3 7 1 1 10 20 30 41", "node number 41 is not in $Nodes"),
-        ("5 4 3 7 1 1 10 20 30 40", "5 4 3 7 1 1 10 20 30", "missing node number"),
+        ("5 4 4 7 1 1 2 10 20 30 40", "5 4 4 7 1 1 2 10 20 30 41", "node number 41 is not in $Nodes"),
+        ("5 4 4 7 1 1 2 10 20 30 40", "5 4 4 7 1 1 2 10 20 30", "missing node number"),
         ("3 2 2 4 1 10 20 30", "3 2 2 -4 1 10 20 30", "bad physical tag -4"),
     ] {
         let text = SMALL.replacen(from, to, 1);
@@ -305,11 +368,7 @@ fn counts_that_disagree_with_the_records_are_refused() {
 }
 
 #[test]
-fn entities_and_binary_data_sizes_other_than_a_double_are_refused() {
-    let text = SMALL.replace("$Nodes\n", "$Entities\n0 0 0 0\n$EndEntities\n$Nodes\n");
-    let (line, message) = line_error(&text);
-    assert_eq!(line, line_of(&text, "$Entities"));
-    assert!(message.contains("$Entities section in an MSH 2 file"), "{message}");
+fn binary_data_sizes_other_than_a_double_are_refused() {
     let mut bytes = write_v2(&two_cubes(), Encoding::Binary { big_endian: false });
     bytes.splice(0..20, b"$MeshFormat\n2.2 1 4\n".iter().copied());
     match read_msh(&bytes) {
@@ -331,7 +390,8 @@ fn truncated_and_corrupt_binary_files_name_the_byte() {
     for cut in [nodes + 5, nodes + 40, elements_at + 3, elements_at + 20, bytes.len() - 30] {
         match read_msh(&bytes[..cut]) {
             Err(MeshError::MshBinary { offset, section, message }) => {
-                assert!(offset <= cut, "cut at {cut}: {offset}: {message}");
+                // At the value the cut falls in: at most 8 bytes before it.
+                assert!(offset <= cut && cut - offset < 8, "cut at {cut}: {offset}: {message}");
                 assert!(section == "Nodes" || section == "Elements", "{section}: {message}");
             }
             other => panic!("cut at {cut}: {other:?}"),

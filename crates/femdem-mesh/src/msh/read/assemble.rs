@@ -9,7 +9,7 @@ use femdem_core::tet::signed_volume;
 
 use super::super::report::MshReport;
 use super::super::source::{At, Source};
-use super::{Reader, UNNAMED};
+use super::{ANY_DIMENSION, Reader, UNNAMED};
 use crate::faces::{face_key, sorted_face_keys};
 use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
 
@@ -70,7 +70,7 @@ impl<'a, S: Source<'a>> Reader<S> {
             Ok(i)
         };
         for &p in &phys_volumes {
-            let name = self.names.get(&(3, p)).cloned().unwrap_or_else(|| format!("volume_{p}"));
+            let name = self.name(3, p).unwrap_or_else(|| format!("volume_{p}"));
             region_of.insert(Some(p), add_region(&mut mesh.regions, name)?);
         }
         if self.tet_phys.iter().any(Option::is_none) {
@@ -82,7 +82,7 @@ impl<'a, S: Source<'a>> Reader<S> {
         let phys_surfaces: BTreeSet<i32> = self.surfaces.values().flatten().copied().collect();
         let mut group_of: HashMap<i32, usize> = HashMap::new();
         for &p in &phys_surfaces {
-            let name = self.names.get(&(2, p)).cloned().unwrap_or_else(|| format!("surface_{p}"));
+            let name = self.name(2, p).unwrap_or_else(|| format!("surface_{p}"));
             let g = match mesh.boundary.iter().position(|g| g.name == name) {
                 Some(g) => g,
                 None => {
@@ -105,6 +105,12 @@ impl<'a, S: Source<'a>> Reader<S> {
             }
         }
         Ok((mesh, self.report))
+    }
+
+    /// The name of physical group `tag` of dimension `dim`, if
+    /// `$PhysicalNames` gives one (MSH 2.0's names have no dimension).
+    fn name(&self, dim: i32, tag: i32) -> Option<String> {
+        self.names.get(&(dim, tag)).or_else(|| self.names.get(&(ANY_DIMENSION, tag))).cloned()
     }
 
     /// Refuses two nodes that tets use at one point: they would split the

@@ -16,14 +16,21 @@
 //! An element in several physical groups is written once per group. For
 //! triangles that puts the face in each boundary group, as in 4.1; a tet
 //! can be in one region only, so a tet written twice (the same four nodes)
-//! is refused with both places, as 4.1 refuses a volume in two physical
-//! volumes.
+//! is refused with both element numbers, as 4.1 refuses a volume in two
+//! physical volumes.
+//!
+//! With `Mesh.SaveAll = 1` Gmsh writes every element with physical tag 0
+//! and still names the physical groups: read as it stands, such a file
+//! would put every tet in one unnamed region and every named group would
+//! be empty, so it is refused. The other sections Gmsh may add to MSH 2 are
+//! skipped (`$Entities`, which `Mesh.SaveTopology = 1` writes) or refused
+//! with what to change (`$ParametricNodes`).
 
 use std::collections::{BTreeSet, HashMap};
 
 use super::super::report::{element_type_name, element_type_nodes};
 use super::super::source::{At, Source};
-use super::{RawTriangle, Reader, TET, TRIANGLE, TagMap};
+use super::{ANY_DIMENSION, RawTriangle, Reader, TET, TRIANGLE, TagMap};
 use crate::MeshError;
 
 impl<'a, S: Source<'a>> Reader<S> {
@@ -88,10 +95,10 @@ impl<'a, S: Source<'a>> Reader<S> {
         if self.src.fields().is_some() {
             for i in 0..n {
                 self.src.record(S, || format!("element {} of {n}", i + 1))?;
-                self.number("element number")?;
+                let number = self.number("element number")?;
                 let ty = self.src.uint("element type")?;
                 let n_tags = self.src.count("number of tags")?;
-                self.element_v2(&tags, &mut seen, ty, n_tags)?;
+                self.element_v2(&tags, &mut seen, (number, ty), n_tags)?;
                 self.src.end("the node numbers")?;
             }
         } else {
@@ -112,12 +119,13 @@ impl<'a, S: Source<'a>> Reader<S> {
                 let n_tags = self.src.uint("number of tags")? as usize;
                 for _ in 0..follow {
                     self.src.record(S, || "an element".into())?;
-                    self.number("element number")?;
-                    self.element_v2(&tags, &mut seen, ty, n_tags)?;
+                    let number = self.number("element number")?;
+                    self.element_v2(&tags, &mut seen, (number, ty), n_tags)?;
                 }
                 done += follow;
             }
         }
+        self.refuse_repeated_tets(&seen.tet_numbers, header_at)?;
         // Each physical volume is its own "entity", as `assemble` reads them.
         let volumes = self.volumes.get_or_insert_with(HashMap::new);
         volumes.extend(seen.volumes.into_iter().map(|p| (p, vec![p])));
@@ -125,10 +133,56 @@ impl<'a, S: Source<'a>> Reader<S> {
         self.src.end_of(S)
     }
 
+    /// Refuses two tets of this `$Elements` (`numbers`: their element
+    /// numbers, in the order read) with the same four nodes (the module
+    /// documentation), naming both. A sort of the tets' node sets, not a
+    /// map: a few bytes a tet beside what is read anyway.
+    fn refuse_repeated_tets(&self, numbers: &[u64], at: At) -> Result<(), MeshError> {
+        let first = self.tets.len() - numbers.len();
+        let mut keys: Vec<([u32; 4], u32)> = (first..self.tets.len())
+            .map(|t| {
+                let mut k = self.tets[t];
+                k.sort_unstable();
+                (k, (t - first) as u32)
+            })
+            .collect();
+        keys.sort_unstable();
+        match keys.windows(2).find(|w| w[0].0 == w[1].0) {
+            None => Ok(()),
+            Some(w) => Err(at.err(
+                "Elements",
+                format!(
+                    "elements {} and {} are tets on the same four nodes: a tet can belong to one region only \
+                     (MSH 2 writes an element once for each physical group it is in: put each volume in one \
+                     physical volume)",
+                    numbers[w[0].1 as usize], numbers[w[1].1 as usize]
+                ),
+            )),
+        }
+    }
+
     /// Every physical volume and surface `$PhysicalNames` names is a
-    /// region or a boundary group, even one that holds no element (as an
-    /// MSH 4.1 file's physical groups of entities that hold none are).
-    pub(super) fn named_groups_v2(&mut self) {
+    /// region or a boundary group, even one that holds no element (MSH 2
+    /// has no entities to say more). A file whose named physical groups
+    /// hold no element at all, as `Mesh.SaveAll = 1` writes it, is refused
+    /// (the module documentation).
+    pub(super) fn named_groups_v2(&mut self) -> Result<(), MeshError> {
+        let named = |d: i32| self.names.keys().any(|&(dim, _)| dim == d);
+        let tets_grouped = self.tet_phys.iter().any(Option::is_some);
+        let triangles_grouped = !self.triangles.is_empty();
+        let ungrouped = self.report.ungrouped_triangles > 0;
+        if (named(3) && !tets_grouped)
+            || (named(2) && ungrouped && !triangles_grouped)
+            || (named(ANY_DIMENSION) && !tets_grouped && !triangles_grouped)
+        {
+            let at = self.elements_at.unwrap_or(At::Line(1));
+            return Err(at.err(
+                "Elements",
+                "$PhysicalNames names physical groups, but every element has physical tag 0: Gmsh writes MSH 2 \
+                 so with `Mesh.SaveAll = 1`, which would leave every tet in one unnamed region and every \
+                 named group empty; save with `Mesh.SaveAll = 0`, or as MSH 4.1 (`Mesh.MshFileVersion = 4.1`)",
+            ));
+        }
         let volumes = self.volumes.get_or_insert_with(HashMap::new);
         for &(dim, p) in self.names.keys() {
             match dim {
@@ -141,11 +195,18 @@ impl<'a, S: Source<'a>> Reader<S> {
                 _ => {}
             }
         }
+        Ok(())
     }
 
-    /// The rest of one element record after its type `ty` and number of
-    /// tags `n_tags`: the tags and the node numbers.
-    fn element_v2(&mut self, tags: &TagMap, seen: &mut Seen, ty: u32, n_tags: usize) -> Result<(), MeshError> {
+    /// The rest of one element record after its number and type and its
+    /// number of tags `n_tags`: the tags and the node numbers.
+    fn element_v2(
+        &mut self,
+        tags: &TagMap,
+        seen: &mut Seen,
+        (number, ty): (u64, u32),
+        n_tags: usize,
+    ) -> Result<(), MeshError> {
         let mut physical = 0;
         for k in 0..n_tags {
             let t = self.src.int("tag")?;
@@ -159,20 +220,7 @@ impl<'a, S: Source<'a>> Reader<S> {
         match ty {
             TET => {
                 let nodes = self.element_nodes::<4>(tags)?;
-                let mut key = nodes;
-                key.sort_unstable();
-                let at = self.src.at();
-                if let Some(first) = seen.tets.insert(key, at) {
-                    return Err(at.err(
-                        "Elements",
-                        format!(
-                            "this tet has the four nodes of the tet on {}: a tet can belong to one region only \
-                             (MSH 2 writes an element once for each physical group it is in: put each volume \
-                             in one physical volume)",
-                            first.describe()
-                        ),
-                    ));
-                }
+                seen.tet_numbers.push(number);
                 let phys = (physical > 0).then_some(physical);
                 if let Some(p) = phys {
                     seen.volumes.insert(p);
@@ -231,10 +279,10 @@ impl<'a, S: Source<'a>> Reader<S> {
     }
 }
 
-/// What `$Elements` of MSH 2 has read so far: each tet's sorted nodes and
-/// where it is, and the physical volumes that hold tets.
+/// What `$Elements` of MSH 2 has read so far: the tets' element numbers,
+/// and the physical volumes that hold tets.
 #[derive(Default)]
 struct Seen {
-    tets: HashMap<[u32; 4], At>,
+    tet_numbers: Vec<u64>,
     volumes: BTreeSet<i32>,
 }

@@ -128,8 +128,31 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                 let bytes = std::fs::read(&file).map_err(|e| {
                     case.error_at(span.clone(), format!("{key}.path: cannot read {}: {e}", file.display()))
                 })?;
-                let mut m = femdem_mesh::msh::read_msh(&bytes)
+                let (mut m, report) = femdem_mesh::msh::read_msh_report(&bytes)
                     .map_err(|e| case.error_at(span.clone(), format!("{key}.path: {}: {e}", file.display())))?;
+                // Volume elements other than linear tets would leave their
+                // part of the body out of the model, silently.
+                let volumes = report.skipped_volumes();
+                if !volumes.is_empty() {
+                    let what: Vec<String> = volumes
+                        .iter()
+                        .map(|(&ty, &n)| match femdem_mesh::msh::element_type_name(ty) {
+                            Some(name) => format!("{n} {name} (type {ty})"),
+                            None => format!("{n} element(s) of type {ty}, which femdem does not know"),
+                        })
+                        .collect();
+                    return Err(case.error_at(
+                        span.clone(),
+                        format!(
+                            "{key}.path: {} holds {} besides its 4-node tets: femdem's bodies are linear tets \
+                             only, and the part of the body meshed otherwise would be missing from the model; \
+                             mesh every volume with 4-node tets (in Gmsh, `Mesh.ElementOrder = 1` and no \
+                             recombination)",
+                            file.display(),
+                            what.join(", ")
+                        ),
+                    ));
+                }
                 for r in &mut m.regions {
                     r.breakable = region(&r.name)
                         .map_err(|_| {

@@ -66,5 +66,5 @@ mod source;
 mod write;
 
 pub use read::{read_msh, read_msh_report};
-pub use report::{MshReport, element_type_name};
+pub use report::{MshReport, element_type_dimension, element_type_name};
 pub use write::write_msh;

@@ -634,4 +634,16 @@ mod tests {
         assert_eq!(element_type_name(15), Some("point"));
         assert_eq!(element_type_name(99), None);
     }
+
+    /// Volume elements, and elements of unknown type, are what a mesh read
+    /// without them would miss; points, lines and faces are not.
+    #[test]
+    fn skipped_volumes_are_those_of_dimension_three_or_unknown() {
+        use std::collections::BTreeMap;
+        let report = MshReport {
+            skipped_elements: BTreeMap::from([(1, 2), (3, 5), (6, 3), (11, 1), (15, 1), (99, 4)]),
+            ..MshReport::default()
+        };
+        assert_eq!(report.skipped_volumes(), BTreeMap::from([(6, 3), (11, 1), (99, 4)]));
+    }
 }

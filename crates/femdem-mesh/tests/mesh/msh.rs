@@ -449,7 +449,7 @@ fn crlf_line_ends_are_accepted() {
 // -------------------------------------------------------- malformed files
 
 /// 1-based number of the first line of `text` equal to `line`.
-fn line_of(text: &str, line: &str) -> usize {
+pub(crate) fn line_of(text: &str, line: &str) -> usize {
     1 + text.lines().position(|l| l == line).unwrap_or_else(|| panic!("no line `{line}`"))
 }
 
@@ -462,7 +462,7 @@ fn small_with(from: &str, to: Option<&str>) -> (String, usize) {
 }
 
 /// The line and message of the error that reading `text` gives.
-fn msh_error(text: &str) -> (usize, String) {
+pub(crate) fn msh_error(text: &str) -> (usize, String) {
     match read_msh(text.as_bytes()) {
         Err(MeshError::Msh { line, message }) => (line, message),
         other => panic!("expected an MSH error, got {other:?}"),

@@ -18,7 +18,7 @@ use femdem_mesh::msh::{MshReport, read_msh, read_msh_report};
 use femdem_mesh::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
 use proptest::prelude::*;
 
-use crate::msh::{GMSH_TWO_VOLUMES, arb_mesh, assert_same_mesh, two_cubes};
+use crate::msh::{GMSH_TWO_VOLUMES, arb_mesh, assert_same_mesh, line_of, msh_error, two_cubes};
 
 /// How [`write_v2`] encodes the file: ASCII, or binary in either byte
 /// order with consecutive elements of one type in one block, or as Gmsh
@@ -279,24 +279,12 @@ fn small_file_reads_as_expected() {
 
 // -------------------------------------------------------- malformed files
 
-/// The line and message of the error that reading `text` gives.
-fn line_error(text: &str) -> (usize, String) {
-    match read_msh(text.as_bytes()) {
-        Err(MeshError::Msh { line, message }) => (line, message),
-        other => panic!("expected an MSH error, got {other:?}"),
-    }
-}
-
-fn line_of(text: &str, line: &str) -> usize {
-    1 + text.lines().position(|l| l == line).unwrap_or_else(|| panic!("no line `{line}`"))
-}
-
 #[test]
 fn a_tet_in_two_physical_volumes_is_refused_with_both_numbers() {
     let text = SMALL
         .replace("6\n1 15", "7\n1 15")
         .replace("6 4 2 0 2 30 20 40 50\n", "6 4 2 0 2 30 20 40 50\n17 4 2 8 1 20 40 10 30\n");
-    let (line, message) = line_error(&text);
+    let (line, message) = msh_error(&text);
     assert_eq!(line, line_of(&text, "$Elements"));
     assert!(message.contains("elements 5 and 17 are tets on the same four nodes"), "{message}");
     assert!(message.contains("one region only"), "{message}");
@@ -319,7 +307,7 @@ fn a_tet_in_two_physical_volumes_is_refused_with_both_numbers() {
 #[test]
 fn a_file_saved_with_save_all_is_refused() {
     let text = SMALL.replace("5 4 4 7 1 1 2 ", "5 4 4 0 1 1 2 ").replace("3 2 2 4 1 ", "3 2 2 0 1 ");
-    let (line, message) = line_error(&text);
+    let (line, message) = msh_error(&text);
     assert_eq!(line, line_of(&text, "$Elements"));
     assert!(message.contains("Mesh.SaveAll = 0") && message.contains("physical tag 0"), "{message}");
     // With no physical names, the same elements are a mesh of one unnamed
@@ -332,7 +320,7 @@ fn a_file_saved_with_save_all_is_refused() {
 #[test]
 fn parametric_nodes_are_refused_by_name() {
     let text = SMALL.replace("$Nodes\n", "$ParametricNodes\n0\n$EndParametricNodes\n$Nodes\n");
-    let (line, message) = line_error(&text);
+    let (line, message) = msh_error(&text);
     assert_eq!(line, line_of(&text, "$ParametricNodes"));
     assert!(message.contains("Mesh.SaveParametric = 0"), "{message}");
 }
@@ -350,7 +338,7 @@ fn bad_records_name_their_line() {
         ("3 2 2 4 1 10 20 30", "3 2 2 -4 1 10 20 30", "bad physical tag -4"),
     ] {
         let text = SMALL.replacen(from, to, 1);
-        let (line, message) = line_error(&text);
+        let (line, message) = msh_error(&text);
         assert_eq!(line, line_of(&text, to), "{to}: {message}");
         assert!(message.contains(expected), "{to}: {message}");
     }
@@ -358,11 +346,11 @@ fn bad_records_name_their_line() {
 
 #[test]
 fn counts_that_disagree_with_the_records_are_refused() {
-    let (line, message) = line_error(&SMALL.replace("$Nodes\n6\n", "$Nodes\n7\n"));
+    let (line, message) = msh_error(&SMALL.replace("$Nodes\n6\n", "$Nodes\n7\n"));
     assert_eq!(line, line_of(SMALL, "$EndNodes"));
     assert!(message.contains("$Nodes ends early"), "{message}");
     let text = SMALL.replace("$Nodes\n6\n", "$Nodes\n5\n");
-    let (line, message) = line_error(&text);
+    let (line, message) = msh_error(&text);
     assert_eq!(line, line_of(&text, "50 1 1 1"));
     assert!(message.contains("expected $EndNodes"), "{message}");
 }

@@ -284,7 +284,7 @@ impl<'a, S: Source<'a>> Reader<S> {
             return Err(self.src.lines().err("", "file ends without an $Elements section"));
         }
         if self.legacy {
-            self.named_groups_v2()?;
+            self.groups_v2()?;
         }
         self.assemble()
     }

@@ -26,7 +26,7 @@
 //! skipped (`$Entities`, which `Mesh.SaveTopology = 1` writes) or refused
 //! with what to change (`$ParametricNodes`).
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 
 use super::super::report::{element_type_name, element_type_nodes};
 use super::super::source::{At, Source};
@@ -91,14 +91,15 @@ impl<'a, S: Source<'a>> Reader<S> {
         let mut f = lines.record(S, || "the number of elements".into())?;
         let n = f.count("number of elements")?;
         f.end("the number of elements")?;
-        let mut seen = Seen::default();
+        // The tets' element numbers, for an error about two of them.
+        let mut numbers = Vec::new();
         if self.src.fields().is_some() {
             for i in 0..n {
                 self.src.record(S, || format!("element {} of {n}", i + 1))?;
                 let number = self.number("element number")?;
                 let ty = self.src.uint("element type")?;
                 let n_tags = self.src.count("number of tags")?;
-                self.element_v2(&tags, &mut seen, (number, ty), n_tags)?;
+                self.element_v2(&tags, &mut numbers, (number, ty), n_tags)?;
                 self.src.end("the node numbers")?;
             }
         } else {
@@ -120,15 +121,12 @@ impl<'a, S: Source<'a>> Reader<S> {
                 for _ in 0..follow {
                     self.src.record(S, || "an element".into())?;
                     let number = self.number("element number")?;
-                    self.element_v2(&tags, &mut seen, (number, ty), n_tags)?;
+                    self.element_v2(&tags, &mut numbers, (number, ty), n_tags)?;
                 }
                 done += follow;
             }
         }
-        self.refuse_repeated_tets(&seen.tet_numbers, header_at)?;
-        // Each physical volume is its own "entity", as `assemble` reads them.
-        let volumes = self.volumes.get_or_insert_with(HashMap::new);
-        volumes.extend(seen.volumes.into_iter().map(|p| (p, vec![p])));
+        self.refuse_repeated_tets(&numbers, header_at)?;
         self.tags = Some(tags);
         self.src.end_of(S)
     }
@@ -161,12 +159,13 @@ impl<'a, S: Source<'a>> Reader<S> {
         }
     }
 
-    /// Every physical volume and surface `$PhysicalNames` names is a
-    /// region or a boundary group, even one that holds no element (MSH 2
-    /// has no entities to say more). A file whose named physical groups
-    /// hold no element at all, as `Mesh.SaveAll = 1` writes it, is refused
-    /// (the module documentation).
-    pub(super) fn named_groups_v2(&mut self) -> Result<(), MeshError> {
+    /// The physical groups as `assemble` reads them, each its own
+    /// "entity": those of the tets and triangles read, and every physical
+    /// volume and surface `$PhysicalNames` names, even one that holds no
+    /// element (MSH 2 has no entities to say more). A file whose named
+    /// physical groups hold no element at all, as `Mesh.SaveAll = 1` writes
+    /// it, is refused (the module documentation).
+    pub(super) fn groups_v2(&mut self) -> Result<(), MeshError> {
         let named = |d: i32| self.names.keys().any(|&(dim, _)| dim == d);
         let tets_grouped = self.tet_phys.iter().any(Option::is_some);
         let triangles_grouped = !self.triangles.is_empty();
@@ -184,6 +183,12 @@ impl<'a, S: Source<'a>> Reader<S> {
             ));
         }
         let volumes = self.volumes.get_or_insert_with(HashMap::new);
+        for &p in self.tet_phys.iter().flatten() {
+            volumes.entry(p).or_insert_with(|| vec![p]);
+        }
+        for t in &self.triangles {
+            self.surfaces.entry(t.entity).or_insert_with(|| vec![t.entity]);
+        }
         for &(dim, p) in self.names.keys() {
             match dim {
                 3 => {
@@ -203,7 +208,7 @@ impl<'a, S: Source<'a>> Reader<S> {
     fn element_v2(
         &mut self,
         tags: &TagMap,
-        seen: &mut Seen,
+        tet_numbers: &mut Vec<u64>,
         (number, ty): (u64, u32),
         n_tags: usize,
     ) -> Result<(), MeshError> {
@@ -220,18 +225,13 @@ impl<'a, S: Source<'a>> Reader<S> {
         match ty {
             TET => {
                 let nodes = self.element_nodes::<4>(tags)?;
-                seen.tet_numbers.push(number);
-                let phys = (physical > 0).then_some(physical);
-                if let Some(p) = phys {
-                    seen.volumes.insert(p);
-                }
+                tet_numbers.push(number);
                 self.tets.push(nodes);
-                self.tet_phys.push(phys);
+                self.tet_phys.push((physical > 0).then_some(physical));
             }
             TRIANGLE => {
                 let nodes = self.element_nodes::<3>(tags)?;
                 if physical > 0 {
-                    self.surfaces.insert(physical, vec![physical]);
                     self.triangles.push(RawTriangle { nodes, entity: physical, at: self.src.at() });
                 } else {
                     self.report.ungrouped_triangles += 1;
@@ -277,12 +277,4 @@ impl<'a, S: Source<'a>> Reader<S> {
             .filter(|&v| v > 0)
             .ok_or_else(|| self.src.err(format!("bad {name} {v}: numbers start at 1")))
     }
-}
-
-/// What `$Elements` of MSH 2 has read so far: the tets' element numbers,
-/// and the physical volumes that hold tets.
-#[derive(Default)]
-struct Seen {
-    tet_numbers: Vec<u64>,
-    volumes: BTreeSet<i32>,
 }

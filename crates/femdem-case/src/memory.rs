@@ -290,10 +290,13 @@ pub fn refusal(path: &Path, estimate: &Estimate, available: Available, command: 
 /// refuses a case (with its `--set` arguments `sets`) whose estimate
 /// exceeds the available memory (`memory_available` bytes if given, for
 /// tests; else `MemAvailable`), unless `force`. A case that does not load or cannot be sized is left to the
-/// run, which reports why.
+/// run, which reports why. Sets the run's thread count (`threads`, the
+/// command line's `--threads`, else the case's) before it reads an MSH
+/// part ([`crate::prepare::set_threads`]).
 pub fn refuse_if_too_big(
     path: &Path,
     sets: &[String],
+    threads: Option<usize>,
     force: bool,
     memory_available: Option<f64>,
     command: &str,
@@ -309,6 +312,10 @@ pub fn refuse_if_too_big(
     let (Ok(loaded), Some(available)) = (crate::load(path, sets), Available::of(memory_available)) else {
         return Ok(());
     };
+    // Reading an MSH part below uses rayon's pool, which its first use
+    // builds for good: set the run's thread count first. A bad count is
+    // left to `prepare`, which refuses it.
+    let _ = crate::prepare::set_threads(&loaded, threads);
     if let Some(message) = estimate(&loaded).and_then(|e| refusal(path, &e, available, command)) {
         bail!(message);
     }

@@ -116,13 +116,18 @@ pub struct Runnable {
     pub device: Device,
 }
 
-/// Loads the case with the command line's `--set` arguments `sets`
-/// applied, builds the mesh and joints, and, if the case has a `[solver]`,
-/// the model, the loads and the time step. `threads` (the command line's
-/// `--threads`) overrides `[solver] threads`; either is set before any
-/// parallel work, meshing included.
-pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) -> Result<Prepared> {
-    let loaded = crate::load(path, sets)?;
+/// Sets the global thread pool to `threads` (the command line's
+/// `--threads`), else to the case's `[solver] threads`; neither: rayon's
+/// default (one per core). Must run before any parallel work of the
+/// process, reading a mesh included: rayon's pool is built once, by its
+/// first use, and a later request is refused (`prepare` calls it first;
+/// so does the CLI's memory check, which reads MSH files before
+/// `prepare`).
+///
+/// # Errors
+/// A count of 0 or above [`MAX_THREADS`], located in the case file when it
+/// comes from there.
+pub fn set_threads(loaded: &LoadedCase, threads: Option<usize>) -> Result<()> {
     let from_case = loaded.case.solver.as_ref().and_then(|s| s.get_ref().threads.map(|n| (n, s.span())));
     match (threads, from_case) {
         (Some(0), _) => bail!("--threads must be ≥ 1"),
@@ -132,11 +137,23 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             bail!(loaded.error_at(span, format!("solver: threads = {n} is more than the {MAX_THREADS} femdem allows")))
         }
         (Some(n), _) | (None, Some((n, _))) => {
-            // Refused only if a pool already exists (tests calling `run` twice in one process).
+            // Refused only if a pool already exists: set by an earlier call
+            // (the memory check, or tests calling `run` twice in one process).
             let _ = rayon::ThreadPoolBuilder::new().num_threads(n).build_global();
         }
         (None, None) => {}
     }
+    Ok(())
+}
+
+/// Loads the case with the command line's `--set` arguments `sets`
+/// applied, builds the mesh and joints, and, if the case has a `[solver]`,
+/// the model, the loads and the time step. `threads` (the command line's
+/// `--threads`) overrides `[solver] threads`; either is set before any
+/// parallel work, meshing included.
+pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) -> Result<Prepared> {
+    let loaded = crate::load(path, sets)?;
+    set_threads(&loaded, threads)?;
     let (mesh, zone, jointed) = jointed(&loaded)?;
     let Some(spec) = &loaded.case.solver else {
         return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None, warnings: Vec::new() });

@@ -126,7 +126,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads, set, force, memory_available } => {
-            femdem_case::memory::refuse_if_too_big(&case, &set, force, memory_available, "check")
+            femdem_case::memory::refuse_if_too_big(&case, &set, threads, force, memory_available, "check")
                 .and_then(|()| commands::check::run(&case, json, threads, &set))
         }
         Command::Run {
@@ -142,19 +142,21 @@ fn main() -> ExitCode {
             memory_available,
             device,
             overwrite,
-        } => femdem_case::memory::refuse_if_too_big(&case, &set, force, memory_available, "run").and_then(|()| {
-            let options = femdem_run::RunOptions {
-                out,
-                threads,
-                set,
-                resume,
-                stop_after_steps,
-                pause_checkpoint,
-                device,
-                overwrite,
-            };
-            commands::run::run(&case, options, progress_interval)
-        }),
+        } => femdem_case::memory::refuse_if_too_big(&case, &set, threads, force, memory_available, "run").and_then(
+            |()| {
+                let options = femdem_run::RunOptions {
+                    out,
+                    threads,
+                    set,
+                    resume,
+                    stop_after_steps,
+                    pause_checkpoint,
+                    device,
+                    overwrite,
+                };
+                commands::run::run(&case, options, progress_interval)
+            },
+        ),
         Command::Plot { results, x, y, out } => {
             commands::plot::run(&results, commands::plot::PlotOptions { x, y, out })
         }

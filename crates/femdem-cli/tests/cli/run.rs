@@ -494,3 +494,63 @@ fn the_gradient_contact_model_runs_a_case() {
     // the key did choose another force.
     assert!(a.abs() > 0.0 && a != b && ((b - a) / a).abs() < 0.01, "{a} vs {b}");
 }
+
+/// Regression (found probing bad inputs): for a case with an MSH part,
+/// `--threads` and `[solver] threads` were ignored unless `--force` was
+/// given, because the memory check read the MSH file first and so built
+/// rayon's pool with one thread per core. The history's header names the
+/// pool the run used.
+#[test]
+fn the_thread_count_holds_for_a_case_with_an_msh_part() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("msh-threads");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mesh = root().join("crates/femdem-mesh/tests/data/gmsh_two_volumes.msh");
+    let case = |threads: &str| {
+        format!(
+            r#"version = 1
+[[mesh.regions]]
+name = "matrix"
+breakable = true
+[[mesh.regions]]
+name = "inclusion"
+breakable = false
+[[mesh.parts]]
+kind = "msh"
+path = "{}"
+[[materials]]
+region = "matrix"
+density = 2700.0
+young = 30.0e9
+poisson = 0.25
+tensile_strength = 5.0e6
+cohesion = 12.0e6
+friction_angle = 30.0
+fracture_energy = 60.0
+[[materials]]
+region = "inclusion"
+density = 2700.0
+young = 60.0e9
+poisson = 0.25
+[solver]
+end_time = 1.0e-7
+{threads}
+"#,
+            mesh.display()
+        )
+    };
+    let header = |name: &str, text: String, extra: &[&str]| {
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        let out = dir.join(name);
+        let mut args = vec!["run", file.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let o = femdem(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(out.join("history.csv")).unwrap()
+    };
+    let from_flag = header("flag", case(""), &["--threads", "1"]);
+    assert!(from_flag.contains("\n# threads: 1\n"), "{from_flag}");
+    let from_case = header("case", case("threads = 1"), &[]);
+    assert!(from_case.contains("\n# threads: 1\n"), "{from_case}");
+}

@@ -172,6 +172,9 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                 (name.clone().unwrap_or(stem), m)
             }
         };
+        let msh = matches!(part.get_ref(), PartSpec::Msh { .. });
+        femdem_mesh::check::check(&body)
+            .map_err(|e| case.error_at(span.clone(), format!("{key}: {}", located(&e, &body, msh))))?;
         if names.contains(&name) {
             return Err(
                 case.error_at(span, format!("{key}: part name `{name}` is used twice; set `name` to tell them apart"))
@@ -191,6 +194,22 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
         message: format!("mesh check failed: {e}"),
     })?;
     Ok(mesh)
+}
+
+/// `e`, a check of one part's mesh `body`, with where its tets are: their
+/// centroids (in m), and for an MSH part (`msh`) how they are counted.
+fn located(e: &femdem_mesh::MeshError, body: &TetMesh, msh: bool) -> String {
+    use femdem_mesh::MeshError::{BadTet, TangledFace};
+    let at = |t: usize| {
+        let c = body.tet_points(t).iter().fold([0.0; 3], |s, p| [s[0] + p[0], s[1] + p[1], s[2] + p[2]]);
+        format!("tet {t} has its centroid at ({:e}, {:e}, {:e}) m", c[0] / 4.0, c[1] / 4.0, c[2] / 4.0)
+    };
+    let counted = if msh { "; the part's tets counted from 0 in the order the file lists them" } else { "" };
+    match *e {
+        BadTet { tet, .. } => format!("{e} ({}{counted})", at(tet)),
+        TangledFace { a, b, .. } => format!("{e} ({}, {}{counted})", at(a), at(b)),
+        _ => e.to_string(),
+    }
 }
 
 /// Reads and parses the trace file `file` (relative to the case) of part

@@ -11,8 +11,9 @@ pub const DEGENERATE_VOLUME_RATIO: f64 = 1e-9;
 
 /// Checks that the mesh can be simulated: array lengths agree, node and
 /// region ids are in range, every tet has positive, non-degenerate volume,
-/// every node is used by some tet, and no face is shared by more than two
-/// tets. Returns the first problem found (lowest tet index first).
+/// every node is used by some tet, no face is shared by more than two
+/// tets, and the two tets that share a face lie on its two sides. Returns
+/// the first problem found (lowest tet index first, for each kind).
 ///
 /// # Errors
 /// The [`MeshError`] that describes the first problem.
@@ -58,7 +59,31 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
         let first = used.iter().position(|&u| !u).unwrap_or(0) as u32;
         return Err(MeshError::UnreferencedNodes { count: unused, first });
     }
-    face_adjacency(mesh).map(|_| ())
+    let adjacency = face_adjacency(mesh)?;
+    match adjacency.interior.par_iter().find_first(|(a, b)| !opposite(a.nodes(&mesh.tets), b.nodes(&mesh.tets))) {
+        Some((a, b)) => {
+            let mut nodes = a.nodes(&mesh.tets);
+            nodes.sort_unstable();
+            Err(MeshError::TangledFace { a: a.tet as usize, b: b.tet as usize, nodes })
+        }
+        None => Ok(()),
+    }
+}
+
+/// Whether two positive tets that share a face lie on its two sides: each
+/// lists the face counter-clockwise seen from outside itself
+/// ([`femdem_core::tet::FACES`]), so the two lists run in opposite cyclic
+/// orders exactly when the tets are on opposite sides. Combinatorial: no
+/// rounding, however flat the tets.
+fn opposite(a: [u32; 3], b: [u32; 3]) -> bool {
+    // Rotate each list to start at its smallest node; the orders are then
+    // opposite when the other two nodes come in swapped order.
+    let start = |f: [u32; 3]| {
+        let i = (0..3).min_by_key(|&i| f[i]).unwrap_or(0);
+        [f[i], f[(i + 1) % 3], f[(i + 2) % 3]]
+    };
+    let (a, b) = (start(a), start(b));
+    a[0] == b[0] && a[1] == b[2] && a[2] == b[1]
 }
 
 #[cfg(test)]
@@ -89,6 +114,29 @@ mod tests {
     #[test]
     fn flat_tet_is_degenerate() {
         assert!(matches!(check(&one_tet([0.3, 0.3, 0.0])), Err(MeshError::BadTet { kind: "degenerate", .. })));
+    }
+
+    /// Two positive tets on opposite sides of face 1–2–3 pass; moving the
+    /// second one's apex through that face puts both on one side. Its node
+    /// order made positive again (as a reader reorients a tet), it is no
+    /// longer inverted, but the pair overlaps: refused as tangled.
+    #[test]
+    fn tets_on_one_side_of_their_face_are_tangled() {
+        let mut m = one_tet([0., 0., 1.]);
+        m.coords.push([1., 1., 1.]);
+        m.tets.push([1, 2, 3, 4]);
+        m.tet_region.push(0);
+        assert_eq!(check(&m), Ok(()));
+        m.coords[4] = [0.1, 0.1, 0.1];
+        assert!(matches!(check(&m), Err(MeshError::BadTet { tet: 1, kind: "inverted", .. })));
+        m.tets[1] = [1, 3, 2, 4];
+        assert_eq!(check(&m), Err(MeshError::TangledFace { a: 0, b: 1, nodes: [1, 2, 3] }));
+        // The same tet written twice: its four faces each shared by two
+        // tets on one side.
+        let mut twice = one_tet([0., 0., 1.]);
+        twice.tets.push([1, 2, 0, 3]);
+        twice.tet_region.push(0);
+        assert!(matches!(check(&twice), Err(MeshError::TangledFace { a: 0, b: 1, .. })));
     }
 
     #[test]

@@ -73,6 +73,22 @@ pub enum MeshError {
         /// How many tets share it.
         count: usize,
     },
+    /// Two tets on the same side of the face they share: the mesh is
+    /// tangled (an element inverted by a misplaced node, or two elements
+    /// overlapping), which orientation alone does not show once each tet's
+    /// node order is made positive.
+    #[error(
+        "tets {a} and {b} lie on the same side of the face they share (nodes {nodes:?}): the mesh is tangled \
+         (a node moved through a face, or elements overlapping)"
+    )]
+    TangledFace {
+        /// The lower tet index.
+        a: usize,
+        /// The other tet.
+        b: usize,
+        /// The face's node ids, sorted.
+        nodes: [u32; 3],
+    },
     /// A pre-existing fracture face that cannot be honoured.
     #[error("fracture face of tet {tet} (local face {local}) {reason}")]
     BadFractureFace {

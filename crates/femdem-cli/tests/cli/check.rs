@@ -208,6 +208,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("undeclared_physical_volume.toml", ":7:1:", "physical volume `inclusion`"),
         // (An MSH 2 file.)
         ("hybrid_mesh.toml", ":7:1:", "hybrid.msh holds 1 6-node prism (type 6) besides its 4-node tets"),
+        ("tangled_mesh.toml", ":7:1:", "mesh.parts[0]: tets 0 and 9 lie on the same side of the face they share"),
         ("contact_pair_unknown_region.toml", ":24:1:", "contact.pairs[0]: `steel` is not a region"),
         (
             "contact_unknown_activation.toml",

@@ -8,6 +8,22 @@ use toml::Spanned;
 /// The case format version this build reads.
 pub const CASE_VERSION: u32 = 1;
 
+/// A fixed-length array read exactly: `toml` fills `[T; N]` from the first
+/// `N` entries of a longer array and drops the rest without a word (found
+/// probing bad inputs: `gravity = [0, 0, -9.81, 1]` was read as
+/// `[0, 0, -9.81]`), so every such key of a plain table reads a list and
+/// refuses any other length. (Keys of the tables tagged by `kind` are
+/// checked by serde itself.)
+fn exact<'de, D, T, const N: usize>(d: D) -> Result<[T; N], D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    let v = Vec::<T>::deserialize(d)?;
+    let n = v.len();
+    v.try_into().map_err(|_| serde::de::Error::invalid_length(n, &format!("an array of {N}").as_str()))
+}
+
 /// A whole case file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -152,6 +168,7 @@ fn ten() -> u32 {
 pub struct FrictionPairSpec {
     /// The two regions (the same name twice for contacts within a region,
     /// e.g. crack faces).
+    #[serde(deserialize_with = "exact")]
     pub regions: [String; 2],
     /// Coulomb friction coefficient μ.
     pub friction: f64,
@@ -198,8 +215,10 @@ pub struct NodeSpec {
 #[serde(deny_unknown_fields)]
 pub struct BoxSpec {
     /// Lower corner.
+    #[serde(deserialize_with = "exact")]
     pub min: [f64; 3],
     /// Upper corner.
+    #[serde(deserialize_with = "exact")]
     pub max: [f64; 3],
 }
 
@@ -211,6 +230,7 @@ pub struct PlatenDrive {
     /// The rigid region (declared unbreakable, with no material).
     pub region: String,
     /// Velocity, m/s.
+    #[serde(deserialize_with = "exact")]
     pub velocity: [f64; 3],
     /// Linear rise time of the velocity, s (default 0).
     #[serde(default)]
@@ -305,6 +325,7 @@ pub struct SolverSpec {
     pub mass_scaling: f64,
     /// Body acceleration, m/s² (default none).
     #[serde(default)]
+    #[serde(deserialize_with = "exact")]
     pub gravity: [f64; 3],
     /// Worker threads (default: all cores). Results do not depend on it.
     pub threads: Option<usize>,
@@ -385,6 +406,7 @@ pub struct ProbeSpec {
     /// The column prefix: letters, digits, `_`, `-` and `.`.
     pub name: String,
     /// The point in the reference (unloaded) configuration, m.
+    #[serde(deserialize_with = "exact")]
     pub at: [f64; 3],
 }
 
@@ -414,6 +436,7 @@ pub struct LoadStrainSpec {
     /// Loading axis, from the lower platen to the upper one (default
     /// `[0, 1, 0]`; normalised).
     #[serde(default = "y_axis")]
+    #[serde(deserialize_with = "exact")]
     pub axis: [f64; 3],
     /// Ends the run once a joint has failed and the load has fallen below
     /// this fraction of its largest value so far (post-peak), in (0, 1);
@@ -471,6 +494,7 @@ pub enum ZoneSpec {
 #[serde(deny_unknown_fields)]
 pub struct SphereSpec {
     /// Centre.
+    #[serde(deserialize_with = "exact")]
     pub center: [f64; 3],
     /// Radius, > 0.
     pub radius: f64,
@@ -483,8 +507,10 @@ pub struct SphereSpec {
 #[serde(deny_unknown_fields)]
 pub struct CylinderSpec {
     /// Centre of one end.
+    #[serde(deserialize_with = "exact")]
     pub from: [f64; 3],
     /// Centre of the other end (not `from`).
+    #[serde(deserialize_with = "exact")]
     pub to: [f64; 3],
     /// Radius, > 0.
     pub radius: f64,

@@ -206,6 +206,14 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     if !dt.is_finite() {
         bail!(at("no deformable free node: nothing to integrate".into()));
     }
+    if s.end_time < dt {
+        // One step would run to dt, past end_time, with no row after t = 0.
+        bail!(at(format!(
+            "end_time {:e} s is shorter than one time step ({dt:.4e} s): the run would take one step, past \
+             end_time; set end_time to at least one step (both are in seconds)",
+            s.end_time
+        )));
+    }
     let params = StepParams::new(dt).map_err(|e| at(e.to_string()))?;
     let mut solver = Solver::new(model, loads, params).map_err(|e| at(e.to_string()))?;
     if let Some(settings) = contact {

@@ -481,6 +481,15 @@ pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSe
         if !(pair.friction.is_finite() && pair.friction >= 0.0) {
             return Err(at(format!("friction must be ≥ 0, got {}", pair.friction)));
         }
+        // The same pair twice (in either order) would leave which μ holds
+        // to the solver's lookup order.
+        let same = |q: &[u16; 2]| *q == ids || *q == [ids[1], ids[0]];
+        if let Some(j) = settings.pair_friction.iter().position(|(q, _)| same(q)) {
+            return Err(at(format!(
+                "the regions `{}` and `{}` already have a friction, in contact.pairs[{j}]; give each pair once",
+                pair.regions[0], pair.regions[1]
+            )));
+        }
         settings.pair_friction.push((ids, pair.friction));
     }
     Ok(Some(settings))

@@ -7,7 +7,9 @@
 //! * Weibull with modulus `m`: scale `1 / Γ(1 + 1/m)`, so the mean is 1 and
 //!   the coefficient of variation `√(Γ(1+2/m)/Γ(1+1/m)² − 1)`;
 //! * normal with mean 1 and standard deviation `cov`, redrawn below 0.01
-//!   (truncation: keep `cov ≤ 0.3` for the mean to stay 1 to 1e-3).
+//!   (truncation: keep `cov ≤ 0.3` for the mean to stay 1 to 1e-3; a `cov`
+//!   whose truncated mean, [`truncated_normal_mean`], exceeds 1.01 is
+//!   refused: above 0.41686).
 //!
 //! Draws come from a ChaCha8 stream seeded by the user's seed, so the same
 //! seed gives the same strengths on any machine and thread count.
@@ -66,15 +68,35 @@ impl Distribution {
 
 /// A distribution parameter out of range.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{parameter} must be {rule}, got {value}")]
+#[error("{parameter} = {value}: {rule}")]
 pub struct DistributionError {
     /// The parameter, as a case file names it (`modulus`, `cov`).
     pub parameter: &'static str,
     /// The value given.
     pub value: Real,
-    /// The range it must lie in.
-    pub rule: &'static str,
+    /// What is wrong with it.
+    pub rule: String,
 }
+
+/// The mean of the normal factors as drawn: a normal of mean 1 and
+/// standard deviation `cov` truncated below at [`NORMAL_FLOOR`] (draws
+/// below are redrawn), `1 + cov φ(α) / (1 − Φ(α))`, `α = (floor − 1) / cov`.
+pub fn truncated_normal_mean(cov: Real) -> Real {
+    if cov == 0.0 {
+        return 1.0;
+    }
+    let alpha = (NORMAL_FLOOR - 1.0) / cov;
+    let pdf = (-0.5 * alpha * alpha).exp() / (2.0 * std::f64::consts::PI).sqrt();
+    let above = 0.5 * libm::erfc(alpha / std::f64::consts::SQRT_2);
+    1.0 + cov * pdf / above
+}
+
+/// Normal factors below this are redrawn (a strength must stay positive).
+pub const NORMAL_FLOOR: Real = 0.01;
+
+/// How far the truncation may move the normal factors' mean from 1 before
+/// `cov` is refused: 1%.
+pub const NORMAL_MEAN_SHIFT: Real = 0.01;
 
 /// `n` strength factors of mean 1 drawn from `dist` with `seed`.
 ///
@@ -84,25 +106,51 @@ pub fn strength_factors(n: usize, dist: Distribution, seed: u64) -> Result<Vec<R
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     match dist {
         Distribution::Weibull { modulus } => {
-            let bad = DistributionError { parameter: "modulus", value: modulus, rule: "finite and > 0" };
+            let bad = |rule: String| DistributionError { parameter: "modulus", value: modulus, rule };
             if !(modulus.is_finite() && modulus > 0.0) {
-                return Err(bad);
+                return Err(bad("must be finite and > 0".into()));
             }
-            let scale = 1.0 / libm::tgamma(1.0 + 1.0 / modulus);
-            let w = Weibull::new(scale, modulus).map_err(|_| bad)?;
-            Ok((0..n).map(|_| w.sample(&mut rng)).collect())
+            // The mean 1 needs Γ(1 + 1/m), the spread Γ(1 + 2/m): both
+            // overflow f64 for m below about 0.0117.
+            let (g1, g2) = (libm::tgamma(1.0 + 1.0 / modulus), libm::tgamma(1.0 + 2.0 / modulus));
+            if !(g1.is_finite() && g2.is_finite()) {
+                return Err(bad(format!(
+                    "Γ(1 + 2/m) = {g2:e} overflows: a distribution this wide cannot be drawn with mean 1 in f64 \
+                     (rocks and concretes: m of about 3 to 20)"
+                )));
+            }
+            let w = Weibull::new(1.0 / g1, modulus).map_err(|e| bad(e.to_string()))?;
+            let factors: Vec<Real> = (0..n).map(|_| w.sample(&mut rng)).collect();
+            // Beyond f64's normal range a strength is no longer one the
+            // joint law can divide by.
+            match factors.iter().find(|f| !(f.is_finite() && **f >= Real::MIN_POSITIVE)) {
+                Some(f) => Err(bad(format!(
+                    "a strength factor drawn is {f:e}, outside the range of f64: a distribution this wide \
+                     gives strengths that cannot be computed with (rocks and concretes: m of about 3 to 20)"
+                ))),
+                None => Ok(factors),
+            }
         }
         Distribution::Normal { cov } => {
-            let bad = DistributionError { parameter: "cov", value: cov, rule: "finite and ≥ 0" };
+            let bad = |rule: String| DistributionError { parameter: "cov", value: cov, rule };
             if !(cov.is_finite() && cov >= 0.0) {
-                return Err(bad);
+                return Err(bad("must be finite and ≥ 0".into()));
             }
-            let d = Normal::new(1.0, cov).map_err(|_| bad)?;
+            let mean = truncated_normal_mean(cov);
+            if mean - 1.0 > NORMAL_MEAN_SHIFT {
+                return Err(bad(format!(
+                    "draws below {NORMAL_FLOOR} are redrawn (a strength stays positive), which makes the factors' \
+                     mean {mean:.4}, not 1: the mean strengths would be {:.1}% above the case's; keep cov ≤ 0.41, \
+                     or use a Weibull distribution",
+                    100.0 * (mean - 1.0)
+                )));
+            }
+            let d = Normal::new(1.0, cov).map_err(|e| bad(e.to_string()))?;
             Ok((0..n)
                 .map(|_| {
                     loop {
                         let v: Real = d.sample(&mut rng);
-                        if v > 0.01 {
+                        if v > NORMAL_FLOOR {
                             break v;
                         }
                     }
@@ -222,5 +270,49 @@ mod tests {
     fn bad_parameters_are_refused() {
         assert!(strength_factors(1, Distribution::Weibull { modulus: 0.0 }, 0).is_err());
         assert!(strength_factors(1, Distribution::Normal { cov: -1.0 }, 0).is_err());
+    }
+
+    /// Regression (found probing bad inputs): a modulus of 0.006–0.015 was
+    /// accepted and its factors were 0 or NaN (Γ(1 + 1/m) overflows), and
+    /// the run stopped at its first step with a NaN energy. Refused now,
+    /// saying why; the range of rocks draws as before.
+    #[test]
+    fn a_weibull_too_wide_for_f64_is_refused() {
+        for m in [0.001, 0.006, 0.0116] {
+            let e = strength_factors(10, Distribution::Weibull { modulus: m }, 0).err().expect("refused");
+            assert!(e.to_string().contains("overflows"), "{e}");
+        }
+        // Γ finite, but factors below f64's normal range: at m = 0.012 a
+        // factor is below 2.2e-308 when its exponential draw is below
+        // about 0.006, which 10⁴ draws all but surely hold.
+        let e = strength_factors(10_000, Distribution::Weibull { modulus: 0.012 }, 0).err().expect("refused");
+        assert!(e.to_string().contains("outside the range of f64"), "{e}");
+        assert!(strength_factors(10_000, Distribution::Weibull { modulus: 1.0 }, 0).is_ok());
+    }
+
+    /// The truncated normal's mean against a numerical integral of the
+    /// redrawn density (midpoint rule, 2·10⁵ cells over [0.01, 1 + 12 cov]:
+    /// error ≪ 10⁻⁶); a `cov` whose mean moves by more than 1% is refused
+    /// (found probing: `cov = 5` drew factors of mean 4.4).
+    #[test]
+    fn the_normal_truncation_shift_is_computed_and_bounded() {
+        for cov in [0.1, 0.3, 0.4169, 1.0, 5.0] {
+            let (a, b, n) = (NORMAL_FLOOR, 1.0 + 12.0 * cov, 200_000);
+            let dx = (b - a) / n as Real;
+            let (mut mass, mut moment) = (0.0, 0.0);
+            for i in 0..n {
+                let x = a + (i as Real + 0.5) * dx;
+                let p = (-0.5 * ((x - 1.0) / cov).powi(2)).exp();
+                mass += p;
+                moment += p * x;
+            }
+            let mean = truncated_normal_mean(cov);
+            assert!((mean - moment / mass).abs() < 1e-6, "cov {cov}: {mean} vs {}", moment / mass);
+        }
+        assert!(strength_factors(10, Distribution::Normal { cov: 0.4168 }, 0).is_ok());
+        let e = strength_factors(10, Distribution::Normal { cov: 0.417 }, 0).err().expect("refused");
+        assert!(e.to_string().contains("not 1"), "{e}");
+        let e = strength_factors(10, Distribution::Normal { cov: 5.0 }, 0).err().expect("refused");
+        assert!(e.to_string().contains("4.3813"), "{e}");
     }
 }

@@ -32,6 +32,9 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
             mesh.regions.len()
         )));
     }
+    if mesh.tets.is_empty() {
+        return Err(MeshError::Inconsistent("the mesh has no tets: it meshes no volume".into()));
+    }
     let n = mesh.coords.len();
     for (t, tet) in mesh.tets.iter().enumerate() {
         if let Some(&node) = tet.iter().find(|&&v| v as usize >= n) {

@@ -46,7 +46,8 @@ pub struct BoundaryGroup {
 /// A tetrahedral mesh in structure-of-arrays form. Units: metres.
 ///
 /// Invariants checked by [`crate::check::check`]: every tet has positive
-/// volume, every node is used, and no face is shared by more than two tets.
+/// volume, every node is used, no face is shared by more than two tets, and
+/// the two tets that share a face lie on its two sides (no tangle).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TetMesh {
     /// Node coordinates.

@@ -211,6 +211,12 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("tangled_mesh.toml", ":7:1:", "mesh.parts[0]: tets 0 and 9 lie on the same side of the face they share"),
         ("contact_pair_unknown_region.toml", ":24:1:", "contact.pairs[0]: `steel` is not a region"),
         (
+            "contact_pair_twice.toml",
+            ":28:1:",
+            "contact.pairs[1]: the regions `rock` and `rock` already have a friction, in contact.pairs[0]",
+        ),
+        ("contact_pair_three_regions.toml", ":25:11:", "invalid length 3, expected an array of 2"),
+        (
             "contact_unknown_activation.toml",
             ":20:1:",
             "contact.activation `gradual` is not `couple`, `offset`, `paper`, `ramp` or `settle`",

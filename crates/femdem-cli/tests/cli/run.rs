@@ -310,6 +310,8 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("energy_tolerance_above_one", ":64:", "solver: `energy_tolerance` must lie in [0, 1]"),
         ("negative_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got -0.002 s"),
         ("infinite_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got inf s"),
+        ("gravity_four_components", ":67:11:", "invalid length 4, expected an array of 3"),
+        ("end_time_below_step", ":64:", "solver: end_time 1e-8 s is shorter than one time step"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

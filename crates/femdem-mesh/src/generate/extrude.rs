@@ -226,6 +226,9 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
 pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
     let h = positive("element_size", spec.element_size)?;
     let thickness = positive("thickness", spec.thickness)?;
+    if !spec.z0.is_finite() {
+        return Err(MeshError::InvalidParameter { name: "z0", reason: format!("must be finite, got {}", spec.z0) });
+    }
     let layers = match spec.layers {
         Some(0) => {
             return Err(MeshError::InvalidParameter { name: "layers", reason: "must be at least 1".into() });
@@ -248,6 +251,12 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
                 .abs()
         }
     };
+    if !(area > 0.0) {
+        return Err(MeshError::InvalidParameter {
+            name: "outline",
+            reason: format!("encloses no area ({area:e} m²): its vertices lie on one line"),
+        });
+    }
     let estimate = area / (3f64.sqrt() / 4.0 * h * h) * layers as f64 * 3.0;
     if estimate > MAX_CELLS {
         return Err(MeshError::InvalidParameter {

@@ -293,3 +293,41 @@ fn a_box_huge_on_two_axes_is_refused_not_wrapped() {
         other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
     }
 }
+
+/// Regressions (found probing bad inputs): `z0 = NaN` meshed, and `femdem
+/// check` printed a volume of NaN m³ (the run then stopped at "tet 0 has
+/// non-positive volume"); a polygon whose vertices lie on one line meshed
+/// no tets and `femdem check` passed it. Both are refused by name.
+#[test]
+fn a_non_finite_z0_and_a_flat_outline_are_refused() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]),
+        traces: vec![],
+        z0: 0.0,
+        thickness: 0.2,
+        element_size: 0.25,
+        layers: None,
+        region: region(),
+    };
+    assert!(generate_extrusion(&spec).is_ok());
+    for z0 in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        match generate_extrusion(&ExtrusionSpec { z0, ..spec.clone() }) {
+            Err(femdem_mesh::MeshError::InvalidParameter { name: "z0", reason }) => {
+                assert!(reason.contains("must be finite"), "{reason}");
+            }
+            other => panic!("z0 = {z0}: expected a refusal, got {:?}", other.map(|m| m.tets.len())),
+        }
+    }
+    let flat = ExtrusionSpec { outline: Outline::Polygon(vec![[0.0, 0.0], [0.5, 0.0], [1.0, 0.0]]), ..spec };
+    match generate_extrusion(&flat) {
+        Err(femdem_mesh::MeshError::InvalidParameter { name: "outline", reason }) => {
+            assert!(reason.contains("encloses no area"), "{reason}");
+        }
+        other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
+    }
+    // And a mesh of no tets fails the check, whatever made it.
+    let empty = femdem_mesh::TetMesh { regions: vec![region()], ..Default::default() };
+    assert!(
+        matches!(femdem_mesh::check::check(&empty), Err(femdem_mesh::MeshError::Inconsistent(m)) if m.contains("no tets"))
+    );
+}

@@ -176,6 +176,9 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             jointed.initial_contacts.len()
         )));
     }
+    if !(s.mass_scaling.is_finite() && s.mass_scaling >= 1.0) {
+        bail!(at(format!("mass_scaling must be finite and ≥ 1, got {}", s.mass_scaling)));
+    }
     let mut warnings = Vec::new();
     let model = crate::setup::model(&loaded, &jointed, s.mass_scaling, &mut warnings)?;
     let mut loads = crate::setup::loads(&loaded, &jointed, s.gravity)?;
@@ -203,8 +206,18 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         Some(dt) => dt,
         None => s.safety * stable.critical,
     };
-    if !dt.is_finite() {
+    if !(0..model.num_nodes()).any(|i| !held[i] && model.mass[i] > 0.0) {
         bail!(at("no deformable free node: nothing to integrate".into()));
+    }
+    if !(dt.is_finite() && dt > 0.0) {
+        // The estimate itself overflowed or underflowed: material values
+        // far outside any solid's (a unit slip, e.g. MPa given as Pa×10⁶
+        // twice, or g/cm³ as kg/m³).
+        bail!(at(format!(
+            "the stable time step could not be estimated (got {:e} s): check the materials' young (Pa) and \
+             density (kg/m³), whose wave speeds set it",
+            stable.critical
+        )));
     }
     if s.end_time < dt {
         // One step would run to dt, past end_time, with no row after t = 0.

@@ -154,13 +154,14 @@ pub fn behaviours(
     out.into_iter()
         .enumerate()
         .map(|(r, b)| {
-            b.ok_or_else(|| CaseError {
-                path: case.path.clone(),
-                at: None,
-                message: format!(
-                    "region `{}` has no [[materials]] entry and is not a [[platens]] region",
-                    m.regions[r].name
-                ),
+            b.ok_or_else(|| {
+                let name = &m.regions[r].name;
+                let message = format!("region `{name}` has no [[materials]] entry and is not a [[platens]] region");
+                // At the region's declaration where the case has one.
+                match case.case.mesh.regions.iter().position(|q| q.get_ref().name == *name) {
+                    Some(i) => case.error_at(case.case.mesh.regions[i].span(), format!("mesh.regions[{i}]: {message}")),
+                    None => CaseError { path: case.path.clone(), at: None, message },
+                }
             })
         })
         .collect()

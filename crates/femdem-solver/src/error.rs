@@ -48,12 +48,20 @@ pub enum SolverError {
     #[error("heterogeneity: {0}")]
     Heterogeneity(#[from] femdem_fracture::heterogeneity::DistributionError),
     /// A velocity component claimed by two constraints.
-    #[error("node {node} component {component} is prescribed twice ({by})")]
+    #[error(
+        "node {node} (at ({:e}, {:e}, {:e}) m) has its {component} velocity prescribed twice: by {first} and by {by}; \
+         a component can have one constraint only (narrow one of their node selections)",
+        at[0], at[1], at[2]
+    )]
     PrescribedTwice {
         /// The node.
         node: u32,
+        /// Its reference position, m.
+        at: [f64; 3],
         /// `x`, `y` or `z`.
         component: &'static str,
+        /// The constraint that claimed it first.
+        first: String,
         /// The second constraint.
         by: String,
     },

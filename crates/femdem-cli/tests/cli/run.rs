@@ -312,6 +312,10 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("infinite_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got inf s"),
         ("gravity_four_components", ":67:11:", "invalid length 4, expected an array of 3"),
         ("end_time_below_step", ":64:", "solver: end_time 1e-8 s is shorter than one time step"),
+        ("prescribed_twice", ":36:", "z velocity prescribed twice: by a fixed constraint and by drive `push`"),
+        ("mass_scaling_below_one", ":64:", "solver: mass_scaling must be finite and ≥ 1, got 0.5"),
+        ("absurd_density", ":64:", "solver: the stable time step could not be estimated"),
+        ("region_without_material", ":15:", "mesh.regions[1]: region `spare` has no [[materials]] entry"),
     ];
     for (name, line, message) in cases {
         let file = format!("crates/femdem-cli/tests/cases/bad/{name}.toml");

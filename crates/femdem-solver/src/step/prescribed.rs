@@ -31,11 +31,22 @@ pub(crate) type Prescribed = Vec<[Claim; 3]>;
 pub(crate) fn prescribed(model: &Model, loads: &Loads) -> Result<Prescribed, SolverError> {
     let n = model.num_nodes();
     let mut table = vec![[Claim::Free; 3]; n];
+    let name = |tag: Claim| match tag {
+        Claim::Drive(d) => format!("drive `{}`", loads.drives[d as usize].name),
+        _ => "a fixed constraint".to_string(),
+    };
     let mut claim = |node: u32, c: usize, tag: Claim, by: &dyn Fn() -> String| -> Result<(), SolverError> {
         let slot =
             table.get_mut(node as usize).ok_or_else(|| SolverError::NodeOutOfRange { node, nodes: n, by: by() })?;
         if slot[c] != Claim::Free && slot[c] != tag {
-            return Err(SolverError::PrescribedTwice { node, component: ["x", "y", "z"][c], by: by() });
+            let p = model.x0[node as usize];
+            return Err(SolverError::PrescribedTwice {
+                node,
+                at: [p[0], p[1], p[2]],
+                component: ["x", "y", "z"][c],
+                first: name(slot[c]),
+                by: by(),
+            });
         }
         slot[c] = tag;
         Ok(())

@@ -280,6 +280,16 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                 let c = c.as_deref().unwrap_or("xyz");
                 let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
                 finite("velocity", velocity, "m/s").map_err(at)?;
+                // A value in a component the drive leaves free would be
+                // ignored without a word.
+                if let Some(k) = (0..3).find(|&k| !components[k] && velocity[k] != 0.0) {
+                    let axis = ["x", "y", "z"][k];
+                    return Err(at(format!(
+                        "`velocity` has {axis} = {} m/s, but `components = \"{c}\"` leaves {axis} free, so that \
+                         value would be ignored; set it to 0, or add {axis} to `components`",
+                        velocity[k]
+                    )));
+                }
                 loads.drives.push(VelocityDrive {
                     name: name.clone().unwrap_or_else(|| format!("velocity{i}")),
                     nodes,

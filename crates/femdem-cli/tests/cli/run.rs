@@ -314,6 +314,7 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("end_time_below_step", ":64:", "solver: end_time 1e-8 s is shorter than one time step"),
         ("prescribed_twice", ":36:", "z velocity prescribed twice: by a fixed constraint and by drive `push`"),
         ("mass_scaling_below_one", ":64:", "solver: mass_scaling must be finite and ≥ 1, got 0.5"),
+        ("velocity_in_a_free_component", ":55:", "`velocity` has x = 0.5 m/s, but `components = \"z\"` leaves x free"),
         ("absurd_density", ":64:", "solver: the stable time step could not be estimated"),
         ("region_without_material", ":15:", "mesh.regions[1]: region `spare` has no [[materials]] entry"),
     ];

@@ -311,7 +311,6 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("negative_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got -0.002 s"),
         ("infinite_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got inf s"),
         ("gravity_four_components", ":67:11:", "invalid length 4, expected an array of 3"),
-        ("end_time_below_step", ":64:", "solver: end_time 1e-8 s is shorter than one time step"),
         ("prescribed_twice", ":36:", "z velocity prescribed twice: by a fixed constraint and by drive `push`"),
         ("mass_scaling_below_one", ":64:", "solver: mass_scaling must be finite and ≥ 1, got 0.5"),
         ("velocity_in_a_free_component", ":55:", "`velocity` has x = 0.5 m/s, but `components = \"z\"` leaves x free"),
@@ -560,4 +559,25 @@ end_time = 1.0e-7
     assert!(from_flag.contains("\n# threads: 1\n"), "{from_flag}");
     let from_case = header("case", case("threads = 1"), &[]);
     assert!(from_case.contains("\n# threads: 1\n"), "{from_case}");
+}
+
+/// Found probing bad inputs: an `end_time` shorter than one time step gave
+/// a run that recorded nothing but t = 0, without a word. A run takes
+/// `ceil(end_time / dt)` steps and records the state `t_n` of each, the
+/// last one before `end_time`, so it still runs (a one-step run is a
+/// legitimate probe), but now says so.
+#[test]
+fn an_end_time_below_one_step_is_run_with_a_warning() {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("end-time-below-step");
+    let _ = std::fs::remove_dir_all(&out);
+    let case = "crates/femdem-cli/tests/cases/end_time_below_step.toml";
+    let o = femdem(&["run", case, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8(o.stderr).unwrap();
+    let line = err.lines().find(|l| l.contains("warning:") && l.contains("shorter than one time step")).expect(&err);
+    assert!(line.contains("end_time_below_step.toml:64:1: solver: end_time 1e-8 s"), "{line}");
+    assert!(line.contains("records only the state at t = 0"), "{line}");
+    let history = history(&out);
+    assert_eq!(history.rows.len(), 1, "the row of t = 0 only");
+    assert_eq!(history.rows[0][col(&history, "time")], 0.0);
 }

@@ -272,6 +272,15 @@ mod tests {
         assert!(strength_factors(1, Distribution::Normal { cov: -1.0 }, 0).is_err());
     }
 
+    /// The error of a refused draw (on acceptance, the count only: the
+    /// factors would flood the output).
+    fn refusal(r: Result<Vec<Real>, DistributionError>) -> DistributionError {
+        match r {
+            Err(e) => e,
+            Ok(v) => panic!("accepted: {} factors drawn", v.len()),
+        }
+    }
+
     /// Regression (found probing bad inputs): a modulus of 0.006–0.015 was
     /// accepted and its factors were 0 or NaN (Γ(1 + 1/m) overflows), and
     /// the run stopped at its first step with a NaN energy. Refused now,
@@ -279,13 +288,13 @@ mod tests {
     #[test]
     fn a_weibull_too_wide_for_f64_is_refused() {
         for m in [0.001, 0.006, 0.0116] {
-            let e = strength_factors(10, Distribution::Weibull { modulus: m }, 0).err().expect("refused");
+            let e = refusal(strength_factors(10, Distribution::Weibull { modulus: m }, 0));
             assert!(e.to_string().contains("overflows"), "{e}");
         }
         // Γ finite, but factors below f64's normal range: at m = 0.012 a
         // factor is below 2.2e-308 when its exponential draw is below
         // about 0.006, which 10⁴ draws all but surely hold.
-        let e = strength_factors(10_000, Distribution::Weibull { modulus: 0.012 }, 0).err().expect("refused");
+        let e = refusal(strength_factors(10_000, Distribution::Weibull { modulus: 0.012 }, 0));
         assert!(e.to_string().contains("outside the range of f64"), "{e}");
         assert!(strength_factors(10_000, Distribution::Weibull { modulus: 1.0 }, 0).is_ok());
     }
@@ -310,9 +319,9 @@ mod tests {
             assert!((mean - moment / mass).abs() < 1e-6, "cov {cov}: {mean} vs {}", moment / mass);
         }
         assert!(strength_factors(10, Distribution::Normal { cov: 0.4168 }, 0).is_ok());
-        let e = strength_factors(10, Distribution::Normal { cov: 0.417 }, 0).err().expect("refused");
+        let e = refusal(strength_factors(10, Distribution::Normal { cov: 0.417 }, 0));
         assert!(e.to_string().contains("not 1"), "{e}");
-        let e = strength_factors(10, Distribution::Normal { cov: 5.0 }, 0).err().expect("refused");
+        let e = refusal(strength_factors(10, Distribution::Normal { cov: 5.0 }, 0));
         assert!(e.to_string().contains("4.3813"), "{e}");
     }
 }

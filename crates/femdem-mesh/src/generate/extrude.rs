@@ -251,7 +251,7 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
                 .abs()
         }
     };
-    if !(area > 0.0) {
+    if area.is_nan() || area <= 0.0 {
         return Err(MeshError::InvalidParameter {
             name: "outline",
             reason: format!("encloses no area ({area:e} m²): its vertices lie on one line"),

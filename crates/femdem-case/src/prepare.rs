@@ -5,6 +5,7 @@ use femdem_mesh::{JointedMesh, TetMesh};
 use femdem_solver::{Solver, SolverError, StableStep, StepParams, contact_omega, held_nodes, stable_time_step};
 
 use crate::LoadedCase;
+use crate::format::LoadSpec;
 
 /// The most steps a run may take (1e9 steps of even a 1000-tet model is
 /// days of computing: more is a unit mistake, not a plan).
@@ -245,6 +246,21 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             ))
             .to_string(),
         );
+    }
+    // A constraint that starts at or after the run's end never acts.
+    for (i, l) in loaded.case.loads.iter().enumerate() {
+        let (LoadSpec::Fixed { start_time: Some(t), .. } | LoadSpec::Velocity { start_time: Some(t), .. }) =
+            l.get_ref()
+        else {
+            continue;
+        };
+        if *t >= s.end_time {
+            let message = format!(
+                "loads[{i}]: `start_time` {t:e} s is not before `end_time` {:e} s: this constraint never acts",
+                s.end_time
+            );
+            warnings.push(loaded.error_at(l.span(), message).to_string());
+        }
     }
     let end_time = s.end_time;
     let check_interval = s.check_interval;

@@ -9,15 +9,15 @@ use crate::{MeshError, TetMesh, face_adjacency};
 /// degenerate (a regular tet has `V = ℓ³ / (6√2) ≈ 0.118 ℓ³`).
 pub const DEGENERATE_VOLUME_RATIO: f64 = 1e-9;
 
-/// Checks that the mesh can be simulated: array lengths agree, node and
-/// region ids are in range, every tet has positive, non-degenerate volume,
-/// every node is used by some tet, no face is shared by more than two
-/// tets, and the two tets that share a face lie on its two sides. Returns
-/// the first problem found (lowest tet index first, for each kind).
+/// The bookkeeping part of [`check`], without geometry: array lengths
+/// agree, region ids and node ids are in range, and there is a tet. Enough
+/// for a mesh assembled from parts that [`check`] has passed one by one
+/// (appending renumbers nodes and regions but changes no tet's shape or
+/// neighbours).
 ///
 /// # Errors
 /// The [`MeshError`] that describes the first problem.
-pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
+pub fn consistent(mesh: &TetMesh) -> Result<(), MeshError> {
     if mesh.tet_region.len() != mesh.tets.len() {
         return Err(MeshError::Inconsistent(format!(
             "{} tets but {} region ids",
@@ -41,6 +41,20 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
             return Err(MeshError::NodeOutOfRange { tet: t, node, num_nodes: n });
         }
     }
+    Ok(())
+}
+
+/// Checks that the mesh can be simulated: array lengths agree, node and
+/// region ids are in range, every tet has positive, non-degenerate volume,
+/// every node is used by some tet, no face is shared by more than two
+/// tets, and the two tets that share a face lie on its two sides. Returns
+/// the first problem found (lowest tet index first, for each kind).
+///
+/// # Errors
+/// The [`MeshError`] that describes the first problem.
+pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
+    consistent(mesh)?;
+    let n = mesh.coords.len();
     let bad = mesh.tets.par_iter().enumerate().find_first(|(t, _)| {
         let p = mesh.tet_points(*t);
         let lmax = edge_lengths(&p).into_iter().fold(0.0, f64::max);

@@ -1,0 +1,215 @@
+//! `[[platens]]` as velocity drives and `[[loads]]` (fixed, velocity,
+//! pressure, traction), with their node selectors and time windows.
+
+use femdem_core::Vec3;
+use femdem_mesh::JointedMesh;
+use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
+use femdem_solver::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
+
+use crate::format::{LoadSpec, NodeSpec};
+use crate::{CaseError, LoadedCase};
+
+/// The node selection of a case's node selector. An empty selector (no
+/// `group`, `region` or `box`) would select every node of the mesh: it is
+/// refused by the callers (see [`selector`]).
+fn selection(spec: &NodeSpec) -> NodeSelection {
+    NodeSelection {
+        group: spec.group.clone(),
+        region: spec.region.clone(),
+        within: spec.within.map(|b| (b.min, b.max)),
+    }
+}
+
+/// [`selection`], refusing a selector with no criterion under `key`.
+fn selector(spec: &NodeSpec, key: &str) -> Result<NodeSelection, String> {
+    if spec.group.is_none() && spec.region.is_none() && spec.within.is_none() {
+        return Err(format!(
+            "`{key}` has no `group`, `region` or `box`: it would select every node of the mesh; name what it selects"
+        ));
+    }
+    Ok(selection(spec))
+}
+
+fn components(s: &str) -> Option<[bool; 3]> {
+    let mut c = [false; 3];
+    for ch in s.chars() {
+        match ch {
+            'x' => c[0] = true,
+            'y' => c[1] = true,
+            'z' => c[2] = true,
+            _ => return None,
+        }
+    }
+    c.iter().any(|&b| b).then_some(c)
+}
+
+fn unknown(u: UnknownName) -> String {
+    format!("no {} `{}` in the mesh (have: {})", u.kind, u.name, u.available.join(", "))
+}
+
+/// Builds the loads of the case: platens as velocity drives of their
+/// region's nodes plus the specimen nodes they drive, then `[[loads]]`.
+///
+/// # Errors
+/// A located [`CaseError`] for unknown groups or regions, empty node sets
+/// and bad component strings.
+pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result<Loads, CaseError> {
+    let mut loads = Loads { gravity: Vec3::from(gravity), ..Default::default() };
+    if !gravity.iter().all(|g| g.is_finite()) {
+        let at = case.case.solver.as_ref().map(|s| s.span());
+        let message = format!("solver: gravity must be finite, got {gravity:?} m/s²");
+        return Err(match at {
+            Some(span) => case.error_at(span, message),
+            None => CaseError { path: case.path.clone(), at: None, message },
+        });
+    }
+    for (i, p) in case.case.platens.iter().enumerate() {
+        let s = p.get_ref();
+        let at = |msg: String| case.error_at(p.span(), format!("platens[{i}]: {msg}"));
+        let mut nodes = select_nodes(mesh, &NodeSelection { region: Some(s.region.clone()), ..Default::default() })
+            .map_err(|u| at(unknown(u)))?;
+        if let Some(d) = &s.drives {
+            let driven = select_nodes(mesh, &selector(d, "drives").map_err(at)?).map_err(|u| at(unknown(u)))?;
+            if driven.is_empty() {
+                return Err(at("`drives` selects no node".into()));
+            }
+            nodes.extend(driven);
+            nodes.sort_unstable();
+            nodes.dedup();
+        }
+        finite("velocity", &s.velocity, "m/s").map_err(at)?;
+        loads.drives.push(VelocityDrive {
+            name: s.region.clone(),
+            nodes,
+            velocity: Vec3::from(s.velocity),
+            components: [true; 3],
+            ramp: ramp(s.ramp_time, None).map_err(at)?,
+            start_time: None,
+        });
+    }
+    for (i, l) in case.case.loads.iter().enumerate() {
+        let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
+        match l.get_ref() {
+            LoadSpec::Fixed { name, nodes, components: c, start_time } => {
+                let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
+                if nodes.is_empty() {
+                    return Err(at("`nodes` selects no node".into()));
+                }
+                let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                let start_time = start(*start_time).map_err(at)?;
+                match (name, start_time) {
+                    (None, None) => loads.fixed.push(Fixed { nodes, components }),
+                    // A named support records its reaction, and one that
+                    // starts later switches on: a drive holding the
+                    // components at zero velocity moves its nodes as the
+                    // constraint does (v = 0 on them; no work done once held,
+                    // the work of stopping them in the step it starts).
+                    _ => loads.drives.push(VelocityDrive {
+                        name: name.clone().unwrap_or_else(|| format!("fixed{i}")),
+                        nodes,
+                        velocity: Vec3::zeros(),
+                        components,
+                        ramp: Ramp { ramp_time: 0.0, stop_time: None },
+                        start_time,
+                    }),
+                }
+            }
+            LoadSpec::Velocity { name, nodes, velocity, components: c, ramp_time, stop_time, start_time } => {
+                let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
+                if nodes.is_empty() {
+                    return Err(at("`nodes` selects no node".into()));
+                }
+                let c = c.as_deref().unwrap_or("xyz");
+                let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
+                finite("velocity", velocity, "m/s").map_err(at)?;
+                // A value in a component the drive leaves free would be
+                // ignored without a word.
+                if let Some(k) = (0..3).find(|&k| !components[k] && velocity[k] != 0.0) {
+                    let axis = ["x", "y", "z"][k];
+                    return Err(at(format!(
+                        "`velocity` has {axis} = {} m/s, but `components = \"{c}\"` leaves {axis} free, so that \
+                         value would be ignored; set it to 0, or add {axis} to `components`",
+                        velocity[k]
+                    )));
+                }
+                loads.drives.push(VelocityDrive {
+                    name: name.clone().unwrap_or_else(|| format!("velocity{i}")),
+                    nodes,
+                    velocity: Vec3::from(*velocity),
+                    components,
+                    ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
+                    start_time: start(*start_time).map_err(at)?,
+                });
+            }
+            LoadSpec::Pressure { group, pressure, ramp_time, stop_time } => {
+                let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                finite("pressure", &[*pressure], "Pa").map_err(at)?;
+                loads.surfaces.push(SurfaceLoad {
+                    name: group.clone(),
+                    faces,
+                    kind: SurfaceKind::Pressure(*pressure),
+                    ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
+                });
+            }
+            LoadSpec::Traction { group, traction, ramp_time, stop_time } => {
+                let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                finite("traction", traction, "Pa").map_err(at)?;
+                loads.surfaces.push(SurfaceLoad {
+                    name: group.clone(),
+                    faces,
+                    kind: SurfaceKind::Traction(Vec3::from(*traction)),
+                    ramp: ramp(*ramp_time, *stop_time).map_err(at)?,
+                });
+            }
+        }
+        // Each drive and surface load names columns of the history.
+        let names = loads.drives.iter().map(|d| &d.name).chain(loads.surfaces.iter().map(|s| &s.name));
+        let mut seen = std::collections::HashSet::new();
+        if let Some(dup) = names.into_iter().find(|n| !seen.insert(n.as_str())) {
+            return Err(at(format!(
+                "a load or platen named `{dup}` already exists (names label the history's columns; give `name` a new value)"
+            )));
+        }
+        // `<name>_work` of a load named `external` would repeat the energy
+        // column `external_work`.
+        if seen.contains("external") {
+            return Err(at(
+                "a load or platen named `external`: its `external_work` column would repeat the external work's \
+                 (names label the history's columns; give `name` another value)"
+                    .to_string(),
+            ));
+        }
+    }
+    Ok(loads)
+}
+
+/// Checks that every component of `key` is finite.
+fn finite(key: &str, values: &[f64], unit: &str) -> Result<(), String> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(format!("`{key}` must be finite, got {values:?} {unit}"))
+    }
+}
+
+/// A load's ramp, checked: `ramp_time` finite and ≥ 0 s, `stop_time` finite
+/// and > 0 s.
+fn ramp(ramp_time: f64, stop_time: Option<f64>) -> Result<Ramp, String> {
+    if !(ramp_time.is_finite() && ramp_time >= 0.0) {
+        return Err(format!("`ramp_time` must be finite and ≥ 0 s, got {ramp_time} s"));
+    }
+    if let Some(t) = stop_time {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(format!("`stop_time` must be finite and > 0 s, got {t} s"));
+        }
+    }
+    Ok(Ramp { ramp_time, stop_time })
+}
+
+/// A constraint's `start_time`, checked: finite and ≥ 0 s.
+fn start(start_time: Option<f64>) -> Result<Option<f64>, String> {
+    match start_time {
+        Some(t) if !(t.is_finite() && t >= 0.0) => Err(format!("`start_time` must be finite and ≥ 0 s, got {t} s")),
+        t => Ok(t),
+    }
+}

@@ -1,0 +1,14 @@
+//! Turning a case's material, platen, load, contact and output sections
+//! into a solver model, its loads and the run's settings.
+
+mod contact;
+mod loads;
+mod materials;
+mod output;
+
+pub use contact::{ContactCheck, activation_name, contact, contact_check};
+pub use loads::loads;
+pub use materials::{DEFAULT_PENALTY_FACTOR, behaviours, model};
+pub use output::{
+    CHECKPOINT_WALL_DEFAULT, CheckpointSettings, FIELDS, LoadStrain, OutputSettings, compression, load_strain, output,
+};

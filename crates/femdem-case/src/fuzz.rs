@@ -217,6 +217,9 @@ fn message_of(error: &str, path: &str, set: &str) -> String {
     let rest = error.strip_prefix(path).unwrap_or(error);
     let rest = rest.trim_start_matches(|c: char| c == ':' || c.is_ascii_digit()).trim_start();
     let rest = rest.strip_prefix(&format!("--set {set}: ")).unwrap_or(rest);
+    // The file's message names the value's key, which the `--set` names.
+    let key = set.split('=').next().and_then(|k| k.rsplit('.').next()).unwrap_or_default();
+    let rest = rest.strip_prefix(&format!("`{key}`: ")).unwrap_or(rest);
     let rest = rest.split(&format!(" (this table also has --set {set})")).next().unwrap_or(rest);
     let mut out = String::new();
     let mut pieces = rest.split(path);

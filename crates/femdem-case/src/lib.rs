@@ -116,6 +116,20 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
     span.start
 }
 
+/// The key of the value that starts at byte `start` of `source`: the bare
+/// or quoted key before the `=` that precedes it on its line (in an inline
+/// table, the innermost one). `None` where the value is not written as
+/// `key = value` on that line (an array's later element, say).
+fn value_key(source: &str, start: usize) -> Option<&str> {
+    let before = source.get(..start)?;
+    let line = &before[before.rfind('\n').map_or(0, |i| i + 1)..];
+    let head = line.trim_end().strip_suffix('=')?.trim_end();
+    let key = head.rsplit(['{', ',']).next()?.trim();
+    let bare = |k: &str| k.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
+    let quoted = key.len() >= 2 && key.starts_with('"') && key.ends_with('"');
+    (!key.is_empty() && (bare(key) || quoted)).then_some(key)
+}
+
 /// An error at byte range `span` of `source` (a line and column of the
 /// file) or of a `--set` argument of `overrides` (named before the
 /// message, with no line).
@@ -172,6 +186,11 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
             }
         }
         let at = Some(line_col(&source, key_offset(&source, s.clone(), &message)));
+        // Serde reports a bad value at the value alone: name its key.
+        let message = match value_key(&source, s.start) {
+            Some(key) if !message.contains(&format!("`{key}`")) => format!("`{key}`: {message}"),
+            _ => message,
+        };
         CaseError { path: path.to_path_buf(), at, message: overrides.noted(&s, message) }
     })?;
     let loaded = LoadedCase { case, path: path.to_path_buf(), source, overrides };
@@ -187,6 +206,17 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
 #[cfg(test)]
 mod tests {
     use super::line_col;
+
+    #[test]
+    fn a_value_is_named_by_the_key_before_it() {
+        let t = "[[platens]]\nvelocity = [1, 2]\nnodes = { group = 3, box = 4 }\nlist = [\n  5,\n]\n";
+        let at = |v: &str| super::value_key(t, t.find(v).unwrap());
+        assert_eq!(at("[1, 2]"), Some("velocity"));
+        assert_eq!(at("3,"), Some("group"));
+        assert_eq!(at("4 }"), Some("box"));
+        assert_eq!(at("5,"), None);
+        assert_eq!(at("[[platens]]"), None);
+    }
 
     #[test]
     fn line_col_counts_from_one() {

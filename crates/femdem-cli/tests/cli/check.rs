@@ -215,7 +215,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
             ":28:1:",
             "contact.pairs[1]: the regions `rock` and `rock` already have a friction, in contact.pairs[0]",
         ),
-        ("contact_pair_three_regions.toml", ":25:11:", "invalid length 3, expected an array of 2"),
+        ("contact_pair_three_regions.toml", ":25:11:", "`regions`: invalid length 3, expected an array of 2"),
         (
             "contact_unknown_activation.toml",
             ":20:1:",

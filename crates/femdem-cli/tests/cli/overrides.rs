@@ -109,7 +109,8 @@ fn refused_overrides_name_the_argument_not_a_line() {
 }
 
 /// An override gets the message the same value gets in the file; only the
-/// place differs (the argument instead of `file:line:col`).
+/// place differs (the argument instead of `file:line:col` and, for a value
+/// of the wrong type, its key).
 #[test]
 fn an_override_is_refused_as_the_same_value_in_the_file() {
     let dir = fresh("set-as-in-file");
@@ -126,7 +127,11 @@ fn an_override_is_refused_as_the_same_value_in_the_file() {
         assert!(has_line(&in_file), "{in_file}");
         let after_line = in_file.split_once(".toml:").unwrap().1.splitn(3, ':').nth(2).unwrap();
         let after_set = by_set.split_once(&format!("--set {set}: ")).unwrap().1;
-        assert_eq!(after_set.trim(), after_line.trim(), "{set}");
+        // The file's message of a bad value names its key, as the argument does.
+        let key = set.split('=').next().unwrap().rsplit('.').next().unwrap();
+        let after_line = after_line.trim();
+        let after_line = after_line.strip_prefix(&format!("`{key}`: ")).unwrap_or(after_line);
+        assert_eq!(after_set.trim(), after_line, "{set}");
     }
 }
 

@@ -33,6 +33,7 @@ pub fn resolve(
     out: Option<PathBuf>,
     resume: &Option<Option<PathBuf>>,
 ) -> Result<PathBuf> {
+    femdem_case::setup::check_dir(case)?;
     let from_case = case.case.output.as_ref().and_then(|o| o.get_ref().dir.as_ref()).map(|d| case.dir().join(d));
     Ok(match (resume, out) {
         (Some(Some(from)), Some(out)) if from != &out => {
@@ -68,7 +69,10 @@ pub fn refuse_dangerous(dir: &Path, case_file: &Path) -> Result<()> {
     };
     if let Some(why) = why {
         let resolved = if full == dir { String::new() } else { format!(" ({})", full.display()) };
-        bail!("refusing to write results into {shown}{resolved}: {why}; name a folder of its own with --out");
+        bail!(
+            "refusing to write results into {shown}{resolved}: {why}; name a folder of its own with --out or \
+             `[output] dir`"
+        );
     }
     Ok(())
 }

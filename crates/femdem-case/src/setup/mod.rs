@@ -10,5 +10,6 @@ pub use contact::{ContactCheck, activation_name, contact, contact_check};
 pub use loads::loads;
 pub use materials::{DEFAULT_PENALTY_FACTOR, behaviours, model};
 pub use output::{
-    CHECKPOINT_WALL_DEFAULT, CheckpointSettings, FIELDS, LoadStrain, OutputSettings, compression, load_strain, output,
+    CHECKPOINT_WALL_DEFAULT, CheckpointSettings, FIELDS, LoadStrain, OutputSettings, check_dir, compression,
+    load_strain, output,
 };

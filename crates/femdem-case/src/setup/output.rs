@@ -108,7 +108,7 @@ pub struct CheckpointSettings {
 /// that writes none (but the one a signal asks for).
 pub const CHECKPOINT_WALL_DEFAULT: f64 = 1800.0;
 
-/// Resolves and checks `[output]`: intervals finite and > 0 s (defaults
+/// Resolves and checks `[output]`: `dir` as [`check_dir`], intervals finite and > 0 s (defaults
 /// `end_time / 20` and a tenth of the frame interval), fields among
 /// `fields_known`, the compression one of [`compression`]'s.
 ///
@@ -124,6 +124,7 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
         Some(span) => case.error_at(span, format!("output: {msg}")),
         None => CaseError { path: case.path.clone(), at: None, message: format!("output: {msg}") },
     };
+    check_dir(case)?;
     let interval = spec.interval.unwrap_or(end_time / 20.0);
     if !(interval.is_finite() && interval > 0.0) {
         return Err(at(format!("`interval` must be finite and > 0 s, got {interval} s")));
@@ -152,6 +153,22 @@ pub fn output(case: &LoadedCase, end_time: f64, fields_known: &[&str]) -> Result
     }
     let checkpoint = CheckpointSettings { interval_steps: cp.interval_steps.unwrap_or(0), interval_wall };
     Ok(OutputSettings { interval, history_interval, fields, compression, checkpoint })
+}
+
+/// Checks `[output] dir`: an empty name would put the results beside the
+/// case file.
+///
+/// # Errors
+/// A located [`CaseError`] at `[output]` for an empty or blank `dir`.
+pub fn check_dir(case: &LoadedCase) -> Result<(), CaseError> {
+    match &case.case.output {
+        Some(o) if o.get_ref().dir.as_deref().is_some_and(|d| d.trim().is_empty()) => Err(case.error_at(
+            o.span(),
+            "output: `dir` is empty; name a folder for the results (relative to the case file), or leave `dir` \
+             out for out/<case file stem>",
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// `[output] compression`: `lz4` (read by VTK 8.1 and later, ParaView 5.5

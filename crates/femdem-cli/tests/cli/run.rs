@@ -300,6 +300,7 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("load_named_external", ":55:", "a load or platen named `external`: its `external_work` column"),
         ("empty_selector", ":55:", "`nodes` has no `group`, `region` or `box`"),
         ("zero_output_interval", ":68:", "output: `interval` must be finite and > 0 s"),
+        ("empty_output_dir", ":68:", "output: `dir` is empty; name a folder for the results"),
         ("unknown_output_field", ":68:", "output: `fields`: `strain` is not one of"),
         ("unknown_compression", ":68:", "output: `compression`: `gzip` is not one of lz4, zlib, zlib:N"),
         ("negative_damping_ratio", ":23:", "`damping_ratio` must be finite and ≥ 0, got -0.5"),

@@ -19,7 +19,8 @@ pub const DEFAULT_PENALTY_FACTOR: f64 = 10.0;
 /// materials, a deformable region without one, bad parameters, or missing
 /// joint strengths in a breakable region. What is legal but probably not
 /// meant (a cohesion that caps the tensile strength through Eq. 5's
-/// tension cut-off) is pushed onto `warnings`.
+/// tension cut-off; values outside any solid's range, see
+/// [`super::plausible`]) is pushed onto `warnings`.
 pub fn behaviours(
     case: &LoadedCase,
     mesh: &JointedMesh,
@@ -44,6 +45,9 @@ pub fn behaviours(
         let s = spec.get_ref();
         let key = format!("materials[{i}]");
         let at = |msg: String| case.error_at(spec.span(), format!("{key}: {msg}"));
+        for warning in super::plausible::material_warnings(s) {
+            warnings.push(at(warning).to_string());
+        }
         let r = m
             .region_index(&s.region)
             .ok_or_else(|| at(format!("region `{}` is not a region of the mesh", s.region)))?;

@@ -5,6 +5,7 @@ mod contact;
 mod loads;
 mod materials;
 mod output;
+pub mod plausible;
 
 pub use contact::{ContactCheck, activation_name, contact, contact_check};
 pub use loads::loads;

@@ -344,3 +344,20 @@ fn a_constraint_that_starts_after_the_run_is_a_warning() {
     let full = femdem(&["check", case]);
     assert!(!String::from_utf8_lossy(&full.stderr).contains("never acts"), "a hold within the run warned");
 }
+
+/// A density given in g/cm³ (2.34 for 2,340 kg/m³) is legal but no solid
+/// is that light: `check` warns at the material's table, naming the key
+/// and the slip, and still passes; the case as written gives no such
+/// warning.
+#[test]
+fn a_unit_slip_in_a_material_is_a_warning() {
+    let case = "crates/femdem-cli/tests/cases/small_brazilian.toml";
+    let out = femdem(&["check", case, "--set", "materials.0.density=2.34"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8(out.stderr).unwrap();
+    let line = err.lines().find(|l| l.contains("range of solids")).expect(&err);
+    assert!(line.contains("materials[0]: `density` = 2.34e0 kg/m³"), "{line}");
+    assert!(line.contains("g/cm³"), "{line}");
+    let plain = femdem(&["check", case]);
+    assert!(!String::from_utf8_lossy(&plain.stderr).contains("range of solids"), "the case as written warned");
+}

@@ -1,0 +1,116 @@
+//! Warnings for material values that are legal but lie outside what any
+//! quasi-brittle solid has: the marks of a unit slip (g/cm³ for kg/m³, MPa
+//! or GPa for Pa, radians for degrees, N/mm for J/m²). A case may mean
+//! them (a scaled model, a numerical experiment), so they warn, never
+//! refuse.
+
+use crate::format::MaterialSpec;
+
+/// Densities of solids, kg/m³: below the lightest rocks (pumice, ~250) and
+/// foamed concretes (~300) by a margin, above osmium (22,590).
+pub const DENSITY: (f64, f64) = (100.0, 25_000.0);
+
+/// Young's moduli of solids, Pa: from soft rubber (~10⁶) to diamond
+/// (~1.2·10¹²).
+pub const YOUNG: (f64, f64) = (1.0e6, 2.0e12);
+
+/// Fracture energies, J/m²: from glass and silicon (a few J/m²) to tough
+/// metals' (~10⁵); rocks and concretes lie at 10–500.
+pub const FRACTURE_ENERGY: (f64, f64) = (1.0, 1.0e5);
+
+/// A strength above this fraction of E would put the peak at a strain of
+/// more than 10%, which no brittle material reaches.
+pub const STRENGTH_OVER_YOUNG: f64 = 0.1;
+
+/// The warnings for material `s` (empty when every value is plausible),
+/// each naming the key, the value with its unit, the range and the slip
+/// it suggests.
+pub fn material_warnings(s: &MaterialSpec) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut outside = |key: &str, v: f64, (lo, hi): (f64, f64), unit: &str, slip: &str| {
+        if v.is_finite() && !(lo..=hi).contains(&v) {
+            out.push(format!(
+                "`{key}` = {v:e} {unit} lies outside [{lo:e}, {hi:e}] {unit}, the range of solids; {slip}"
+            ));
+        }
+    };
+    outside("density", s.density, DENSITY, "kg/m³", "is it in g/cm³ (× 1000 for kg/m³)?");
+    outside("young", s.young, YOUNG, "Pa", "is it in MPa or GPa (× 10⁶ or × 10⁹ for Pa)?");
+    for (key, v) in [("fracture_energy", s.fracture_energy), ("fracture_energy_shear", s.fracture_energy_shear)] {
+        if let Some(v) = v {
+            outside(key, v, FRACTURE_ENERGY, "J/m²", "is it in N/mm (× 1000 for J/m² = N/m)?");
+        }
+    }
+    for (key, v) in [("tensile_strength", s.tensile_strength), ("cohesion", s.cohesion)] {
+        if let Some(v) = v.filter(|v| s.young > 0.0 && *v > STRENGTH_OVER_YOUNG * s.young) {
+            out.push(format!(
+                "`{key}` = {v:e} Pa is more than {STRENGTH_OVER_YOUNG} × young ({:e} Pa): the joints would peak at \
+                 a strain above 10%; are both in Pa?",
+                s.young
+            ));
+        }
+    }
+    if let Some(phi) = s.friction_angle.filter(|phi| *phi > 0.0 && *phi < std::f64::consts::FRAC_PI_2) {
+        out.push(format!(
+            "`friction_angle` = {phi}° is below π/2: if it is in radians, it is {:.1}° (the key is in degrees)",
+            phi.to_degrees()
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn granite() -> MaterialSpec {
+        MaterialSpec {
+            region: "rock".into(),
+            law: "neo-hookean".into(),
+            density: 2700.0,
+            young: 60.0e9,
+            poisson: 0.25,
+            viscosity: None,
+            damping_ratio: None,
+            penalty: None,
+            tensile_strength: Some(8.0e6),
+            cohesion: Some(25.0e6),
+            friction_angle: Some(35.0),
+            fracture_energy: Some(100.0),
+            fracture_energy_shear: None,
+            gf_calibration: None,
+            joint_coupling: None,
+        }
+    }
+
+    #[test]
+    fn a_rock_in_si_units_gives_no_warning() {
+        assert!(material_warnings(&granite()).is_empty(), "{:?}", material_warnings(&granite()));
+        let glued = MaterialSpec { tensile_strength: None, cohesion: None, friction_angle: None, ..granite() };
+        assert!(material_warnings(&glued).is_empty());
+    }
+
+    #[test]
+    fn each_unit_slip_is_named_by_its_key() {
+        let cases: [(MaterialSpec, &str); 7] = [
+            (MaterialSpec { density: 2.7, ..granite() }, "`density` = 2.7e0 kg/m³"),
+            (MaterialSpec { young: 60.0e3, ..granite() }, "`young` = 6e4 Pa"),
+            (MaterialSpec { young: 60.0e18, ..granite() }, "`young` = 6e19 Pa"),
+            (MaterialSpec { fracture_energy: Some(0.1), ..granite() }, "`fracture_energy` = 1e-1 J/m²"),
+            (MaterialSpec { fracture_energy_shear: Some(2e6), ..granite() }, "`fracture_energy_shear` = 2e6 J/m²"),
+            (MaterialSpec { tensile_strength: Some(8.0e9), ..granite() }, "`tensile_strength` = 8e9 Pa"),
+            (MaterialSpec { friction_angle: Some(0.61), ..granite() }, "it is 35.0°"),
+        ];
+        for (spec, words) in cases {
+            // A modulus in kPa also makes the strengths too large for it.
+            let w = material_warnings(&spec);
+            assert!(w.iter().any(|w| w.contains(words)), "{words} not in {w:?}");
+        }
+    }
+
+    #[test]
+    fn frictionless_joints_are_not_taken_for_radians() {
+        let spec = MaterialSpec { friction_angle: Some(0.0), ..granite() };
+        assert!(material_warnings(&spec).is_empty());
+    }
+}

@@ -214,9 +214,11 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
         // The estimate itself overflowed or underflowed: material values
         // far outside any solid's (a unit slip, e.g. MPa given as Pa×10⁶
         // twice, or g/cm³ as kg/m³).
+        // A unit slip's warning says which value to look at.
+        let warned: String = warnings.iter().map(|w| format!("\n  warning: {w}")).collect();
         bail!(at(format!(
             "the stable time step could not be estimated (got {:e} s): check the materials' young (Pa) and \
-             density (kg/m³), whose wave speeds set it",
+             density (kg/m³), whose wave speeds set it{warned}",
             stable.critical
         )));
     }
@@ -247,16 +249,22 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
             .to_string(),
         );
     }
-    // A constraint that starts at or after the run's end never acts.
+    // A constraint acts from the step with t_n + Δt/2 ≥ start_time; the
+    // last step starts at t = (steps − 1) Δt, so one that starts after
+    // (steps − ½) Δt never acts.
+    let last_act = (steps as f64 - 0.5) * dt;
     for (i, l) in loaded.case.loads.iter().enumerate() {
-        let (LoadSpec::Fixed { start_time: Some(t), .. } | LoadSpec::Velocity { start_time: Some(t), .. }) =
+        let (LoadSpec::Fixed { start_time: Some(t), name, .. } | LoadSpec::Velocity { start_time: Some(t), name, .. }) =
             l.get_ref()
         else {
             continue;
         };
-        if *t >= s.end_time {
+        if *t > last_act {
+            let named = name.as_ref().map_or(String::new(), |n| format!(" (`{n}`)"));
             let message = format!(
-                "loads[{i}]: `start_time` {t:e} s is not before `end_time` {:e} s: this constraint never acts",
+                "loads[{i}]{named}: `start_time` {t:e} s comes after the run's last step (from {:e} s, \
+                 `end_time` {:e} s): this constraint never acts",
+                last_act - 0.5 * dt,
                 s.end_time
             );
             warnings.push(loaded.error_at(l.span(), message).to_string());

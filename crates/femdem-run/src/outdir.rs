@@ -25,14 +25,16 @@ use femdem_case::LoadedCase;
 pub const CASE_COMMENT: &str = "case: ";
 
 /// The output directory of a run of `case` (file stem `stem`): `--resume
-/// DIR`, else `--out`, else `[output] dir` (relative to the case file),
-/// else `out/<stem>`.
+/// DIR`, else `--out`, else `[output] dir` (relative to the case file;
+/// an empty one is refused even with `--out`), else `out/<stem>`.
 pub fn resolve(
     case: &LoadedCase,
     stem: &str,
     out: Option<PathBuf>,
     resume: &Option<Option<PathBuf>>,
 ) -> Result<PathBuf> {
+    // An empty `dir` is a fault of the case, refused as `check` refuses it,
+    // whatever --out says.
     femdem_case::setup::check_dir(case)?;
     let from_case = case.case.output.as_ref().and_then(|o| o.get_ref().dir.as_ref()).map(|d| case.dir().join(d));
     Ok(match (resume, out) {
@@ -51,7 +53,10 @@ pub fn resolve(
 pub fn refuse_dangerous(dir: &Path, case_file: &Path) -> Result<()> {
     let shown = dir.display();
     if fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
-        bail!("output directory {shown}: it exists and is not a directory; name a directory with --out");
+        bail!(
+            "output directory {shown}: it exists and is not a directory; name a directory with --out or \
+             `[output] dir`"
+        );
     }
     let full = normalised(dir);
     let why = if full.parent().is_none() {

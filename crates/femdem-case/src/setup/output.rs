@@ -165,7 +165,7 @@ pub fn check_dir(case: &LoadedCase) -> Result<(), CaseError> {
         Some(o) if o.get_ref().dir.as_deref().is_some_and(|d| d.trim().is_empty()) => Err(case.error_at(
             o.span(),
             "output: `dir` is empty; name a folder for the results (relative to the case file), or leave `dir` \
-             out for out/<case file stem>",
+             out for out/<case file stem> (in the current folder)",
         )),
         _ => Ok(()),
     }

@@ -27,10 +27,12 @@ pub const STRENGTH_OVER_YOUNG: f64 = 0.1;
 /// it suggests.
 pub fn material_warnings(s: &MaterialSpec) -> Vec<String> {
     let mut out = Vec::new();
-    let mut outside = |key: &str, v: f64, (lo, hi): (f64, f64), unit: &str, slip: &str| {
+    let mut outside = |key: &str, v: f64, (lo, hi): (f64, f64), unit: &str, low: &str| {
         if v.is_finite() && !(lo..=hi).contains(&v) {
+            // Below the range a common slip is named; above it, none is.
+            let hint = if v < lo { low } else { "check its unit" };
             out.push(format!(
-                "`{key}` = {v:e} {unit} lies outside [{lo:e}, {hi:e}] {unit}, the range of solids; {slip}"
+                "`{key}` = {v:e} {unit} lies outside [{lo:e}, {hi:e}] {unit}, the range of solids; {hint}"
             ));
         }
     };
@@ -52,7 +54,7 @@ pub fn material_warnings(s: &MaterialSpec) -> Vec<String> {
     }
     if let Some(phi) = s.friction_angle.filter(|phi| *phi > 0.0 && *phi < std::f64::consts::FRAC_PI_2) {
         out.push(format!(
-            "`friction_angle` = {phi}° is below π/2: if it is in radians, it is {:.1}° (the key is in degrees)",
+            "`friction_angle` = {phi}° is below π/2 ≈ 1.571, as if given in radians ({:.1}°); the key is in degrees",
             phi.to_degrees()
         ));
     }
@@ -92,14 +94,24 @@ mod tests {
 
     #[test]
     fn each_unit_slip_is_named_by_its_key() {
-        let cases: [(MaterialSpec, &str); 7] = [
-            (MaterialSpec { density: 2.7, ..granite() }, "`density` = 2.7e0 kg/m³"),
+        let cases: [(MaterialSpec, &str); 8] = [
+            (
+                MaterialSpec { density: 2.7, ..granite() },
+                "`density` = 2.7e0 kg/m³ lies outside [1e2, 2.5e4] kg/m³, the range of solids; is it in g/cm³",
+            ),
             (MaterialSpec { young: 60.0e3, ..granite() }, "`young` = 6e4 Pa"),
-            (MaterialSpec { young: 60.0e18, ..granite() }, "`young` = 6e19 Pa"),
+            (
+                MaterialSpec { young: 60.0e18, ..granite() },
+                "`young` = 6e19 Pa lies outside [1e6, 2e12] Pa, the range of solids; check its unit",
+            ),
             (MaterialSpec { fracture_energy: Some(0.1), ..granite() }, "`fracture_energy` = 1e-1 J/m²"),
             (MaterialSpec { fracture_energy_shear: Some(2e6), ..granite() }, "`fracture_energy_shear` = 2e6 J/m²"),
+            (
+                MaterialSpec { density: 2.7e5, ..granite() },
+                "2.7e5 kg/m³ lies outside [1e2, 2.5e4] kg/m³, the range of solids; check its unit",
+            ),
             (MaterialSpec { tensile_strength: Some(8.0e9), ..granite() }, "`tensile_strength` = 8e9 Pa"),
-            (MaterialSpec { friction_angle: Some(0.61), ..granite() }, "it is 35.0°"),
+            (MaterialSpec { friction_angle: Some(0.61), ..granite() }, "as if given in radians (35.0°)"),
         ];
         for (spec, words) in cases {
             // A modulus in kPa also makes the strengths too large for it.

@@ -329,9 +329,9 @@ fn multilayer_case_is_the_paper_block_with_a_layered_map() {
     assert!(lines.len() > interfaces + 10, "{} cross fractures", lines.len() - interfaces);
 }
 
-/// A constraint whose `start_time` is not before `end_time` never acts:
-/// `check` says so at the load's table (the hold of the fixture starts at
-/// 2 ms; the run is cut to 1.5 ms), and still passes.
+/// A constraint whose `start_time` comes after the run's last step never
+/// acts: `check` says so at the load's table, naming it (the hold of the
+/// fixture starts at 2 ms; the run is cut to 1.5 ms), and still passes.
 #[test]
 fn a_constraint_that_starts_after_the_run_is_a_warning() {
     let case = "crates/femdem-cli/tests/cases/hold_after_ramp.toml";
@@ -340,7 +340,7 @@ fn a_constraint_that_starts_after_the_run_is_a_warning() {
     let err = String::from_utf8(out.stderr).unwrap();
     let line = err.lines().find(|l| l.contains("never acts")).expect(&err);
     assert!(line.starts_with("warning: "), "{line}");
-    assert!(line.contains("hold_after_ramp.toml:41:1: loads[2]: `start_time` 2e-3 s"), "{line}");
+    assert!(line.contains("hold_after_ramp.toml:41:1: loads[2] (`hold`): `start_time` 2e-3 s comes after"), "{line}");
     let full = femdem(&["check", case]);
     assert!(!String::from_utf8_lossy(&full.stderr).contains("never acts"), "a hold within the run warned");
 }

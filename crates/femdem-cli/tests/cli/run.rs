@@ -315,7 +315,11 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("prescribed_twice", ":36:", "z velocity prescribed twice: by a fixed constraint and by drive `push`"),
         ("mass_scaling_below_one", ":64:", "solver: mass_scaling must be finite and ≥ 1, got 0.5"),
         ("velocity_in_a_free_component", ":55:", "`velocity` has x = 0.5 m/s, but `components = \"z\"` leaves x free"),
-        ("absurd_density", ":64:", "solver: the stable time step could not be estimated"),
+        (
+            "absurd_density",
+            ":64:1: solver: the stable time step could not be estimated",
+            "`density` = 1e-300 kg/m³ lies outside",
+        ),
         ("region_without_material", ":15:", "mesh.regions[1]: region `spare` has no [[materials]] entry"),
     ];
     for (name, line, message) in cases {

@@ -175,6 +175,12 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
         let msh = matches!(part.get_ref(), PartSpec::Msh { .. });
         femdem_mesh::check::check(&body)
             .map_err(|e| case.error_at(span.clone(), format!("{key}: {}", located(&e, &body, msh))))?;
+        if msh {
+            // A mesher's order is often far from spatial (femdem's own
+            // generators write theirs cell by cell); checked first, so that
+            // errors count tets in the file's order.
+            body = femdem_mesh::order::spatially_ordered(&body);
+        }
         if names.contains(&name) {
             return Err(
                 case.error_at(span, format!("{key}: part name `{name}` is used twice; set `name` to tell them apart"))

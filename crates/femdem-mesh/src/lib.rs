@@ -94,6 +94,7 @@ pub mod generate;
 pub mod joints;
 mod mesh;
 pub mod msh;
+pub mod order;
 pub mod stats;
 pub mod trace_file;
 

@@ -173,12 +173,15 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
             }
         };
         let msh = matches!(part.get_ref(), PartSpec::Msh { .. });
+        let meshed = msh || matches!(part.get_ref(), PartSpec::Extrusion { .. });
         femdem_mesh::check::check(&body)
             .map_err(|e| case.error_at(span.clone(), format!("{key}: {}", located(&e, &body, msh))))?;
-        if msh {
-            // A mesher's order is often far from spatial (femdem's own
-            // generators write theirs cell by cell); checked first, so that
-            // errors count tets in the file's order.
+        if meshed {
+            // A mesher's order is often far from spatial: Gmsh's, and the
+            // order in which spade's refinement leaves the extrusion's
+            // triangles (the box and platen generators write theirs cell by
+            // cell). Checked first, so that errors count an MSH part's tets
+            // in the file's order.
             body = femdem_mesh::order::spatially_ordered(&body);
         }
         if names.contains(&name) {

@@ -137,7 +137,10 @@ impl Identity {
         let mut what = match (self.case_hash == now.case_hash, self.mesh_hash == now.mesh_hash) {
             (true, true) => String::new(),
             (false, true) => "its case text differs".to_owned(),
-            (true, false) => "its mesh differs (an MSH file it reads changed?)".to_owned(),
+            (true, false) => {
+                "its mesh differs (an MSH file it reads changed, or a femdem that numbers meshes otherwise wrote it?)"
+                    .to_owned()
+            }
             (false, false) => "its case text and mesh differ".to_owned(),
         };
         if self.overrides != now.overrides {

@@ -213,8 +213,7 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     if !(dt.is_finite() && dt > 0.0) {
         // The estimate itself overflowed or underflowed: material values
         // far outside any solid's (a unit slip, e.g. MPa given as Pa×10⁶
-        // twice, or g/cm³ as kg/m³).
-        // A unit slip's warning says which value to look at.
+        // twice, or g/cm³ as kg/m³), whose warnings say which value.
         let warned: String = warnings.iter().map(|w| format!("\n  warning: {w}")).collect();
         bail!(at(format!(
             "the stable time step could not be estimated (got {:e} s): check the materials' young (Pa) and \

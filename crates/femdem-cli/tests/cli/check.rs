@@ -329,20 +329,28 @@ fn multilayer_case_is_the_paper_block_with_a_layered_map() {
     assert!(lines.len() > interfaces + 10, "{} cross fractures", lines.len() - interfaces);
 }
 
+/// The warning line of `femdem check CASE --set SET` that contains
+/// `words`, the check passing; and whether `femdem check CASE` alone warns
+/// with those words.
+fn warning_of(case: &str, set: &str, words: &str) -> (String, bool) {
+    let out = femdem(&["check", case, "--set", set]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8(out.stderr).unwrap();
+    let line = err.lines().find(|l| l.contains(words)).expect(&err).to_owned();
+    let plain = femdem(&["check", case]);
+    (line, String::from_utf8_lossy(&plain.stderr).contains(words))
+}
+
 /// A constraint whose `start_time` comes after the run's last step never
 /// acts: `check` says so at the load's table, naming it (the hold of the
 /// fixture starts at 2 ms; the run is cut to 1.5 ms), and still passes.
 #[test]
 fn a_constraint_that_starts_after_the_run_is_a_warning() {
     let case = "crates/femdem-cli/tests/cases/hold_after_ramp.toml";
-    let out = femdem(&["check", case, "--set", "solver.end_time=1.5e-3"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let err = String::from_utf8(out.stderr).unwrap();
-    let line = err.lines().find(|l| l.contains("never acts")).expect(&err);
+    let (line, plain) = warning_of(case, "solver.end_time=1.5e-3", "never acts");
     assert!(line.starts_with("warning: "), "{line}");
     assert!(line.contains("hold_after_ramp.toml:41:1: loads[2] (`hold`): `start_time` 2e-3 s comes after"), "{line}");
-    let full = femdem(&["check", case]);
-    assert!(!String::from_utf8_lossy(&full.stderr).contains("never acts"), "a hold within the run warned");
+    assert!(!plain, "a hold within the run warned");
 }
 
 /// A density given in g/cm³ (2.34 for 2,340 kg/m³) is legal but no solid
@@ -352,12 +360,8 @@ fn a_constraint_that_starts_after_the_run_is_a_warning() {
 #[test]
 fn a_unit_slip_in_a_material_is_a_warning() {
     let case = "crates/femdem-cli/tests/cases/small_brazilian.toml";
-    let out = femdem(&["check", case, "--set", "materials.0.density=2.34"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let err = String::from_utf8(out.stderr).unwrap();
-    let line = err.lines().find(|l| l.contains("range of solids")).expect(&err);
+    let (line, plain) = warning_of(case, "materials.0.density=2.34", "range of solids");
     assert!(line.contains("materials[0]: `density` = 2.34e0 kg/m³"), "{line}");
     assert!(line.contains("g/cm³"), "{line}");
-    let plain = femdem(&["check", case]);
-    assert!(!String::from_utf8_lossy(&plain.stderr).contains("range of solids"), "the case as written warned");
+    assert!(!plain, "the case as written warned");
 }

@@ -173,15 +173,15 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
             }
         };
         let msh = matches!(part.get_ref(), PartSpec::Msh { .. });
+        let meshed = msh || matches!(part.get_ref(), PartSpec::Extrusion { .. });
         femdem_mesh::check::check(&body)
             .map_err(|e| case.error_at(span.clone(), format!("{key}: {}", located(&e, &body, msh))))?;
-        if msh {
-            // A mesher's order is often far from spatial (femdem's own
-            // generators write theirs cell by cell, or, for an extrusion,
-            // layer by layer in spade's triangle order: ordering those too
-            // measured 1.05-1.11x on the multi-layer 48 mm proxy, not
-            // landed, docs/performance.md). Checked first, so that errors
-            // count tets in the file's order.
+        if meshed {
+            // A mesher's order is often far from spatial: Gmsh's, and the
+            // order in which spade's refinement leaves the extrusion's
+            // triangles (the box and platen generators write theirs cell by
+            // cell). Checked first, so that errors count an MSH part's tets
+            // in the file's order.
             body = femdem_mesh::order::spatially_ordered(&body);
         }
         if names.contains(&name) {

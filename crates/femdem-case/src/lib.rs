@@ -117,7 +117,7 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
 }
 
 /// The key of the value that starts at byte `start` of `source`: the bare
-/// or quoted key before the `=` that precedes it on its line (in an inline
+/// or quoted (basic `"…"` or literal `'…'`) key before the `=` that precedes it on its line (in an inline
 /// table, the innermost one). `None` where the value is not written as
 /// `key = value` on that line (an array's later element, say).
 fn value_key(source: &str, start: usize) -> Option<&str> {
@@ -126,7 +126,7 @@ fn value_key(source: &str, start: usize) -> Option<&str> {
     let head = line.trim_end().strip_suffix('=')?.trim_end();
     let key = head.rsplit(['{', ',']).next()?.trim();
     let bare = |k: &str| k.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
-    let quoted = key.len() >= 2 && key.starts_with('"') && key.ends_with('"');
+    let quoted = key.len() >= 2 && ['"', '\''].iter().any(|&q| key.starts_with(q) && key.ends_with(q));
     (!key.is_empty() && (bare(key) || quoted)).then_some(key)
 }
 
@@ -216,6 +216,10 @@ mod tests {
         assert_eq!(at("4 }"), Some("box"));
         assert_eq!(at("5,"), None);
         assert_eq!(at("[[platens]]"), None);
+        let q = "\"young\" = \"a\"\n'poisson' = \"b\"\n";
+        let at = |v: &str| super::value_key(q, q.find(v).unwrap());
+        assert_eq!(at("\"a\""), Some("\"young\""));
+        assert_eq!(at("\"b\""), Some("'poisson'"));
     }
 
     #[test]

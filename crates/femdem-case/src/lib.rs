@@ -117,9 +117,10 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
 }
 
 /// The key of the value that starts at byte `start` of `source`: the bare
-/// or quoted (basic `"…"` or literal `'…'`) key before the `=` that precedes it on its line (in an inline
-/// table, the innermost one). `None` where the value is not written as
-/// `key = value` on that line (an array's later element, say).
+/// or quoted (basic `"…"` or literal `'…'`) key before the `=` that
+/// precedes it on its line (in an inline table, the innermost one). `None`
+/// where the value is not written as `key = value` on that line (an
+/// array's later element, say).
 fn value_key(source: &str, start: usize) -> Option<&str> {
     let before = source.get(..start)?;
     let line = &before[before.rfind('\n').map_or(0, |i| i + 1)..];

@@ -10,7 +10,9 @@
 //! neighbours near in memory; joint insertion orders the joints by their
 //! faces' node ids, so they follow. The mesh is the same set of tets: only
 //! the numbering changes, and with it the order of floating-point sums
-//! (results move at round-off) and of random draws per joint.
+//! (results move at round-off until joints fail; after that, which of two
+//! nearly tied joints fails first may change) and of random draws per
+//! joint.
 
 use crate::{FaceRef, TetMesh};
 

@@ -45,12 +45,13 @@ fn elastic_bar_runs_and_writes_a_series_and_a_history() {
 /// blocks at rest, one placed 0.1 mm into the other, frictionless: with
 /// the Eq. 18 ramp on the pairs that start overlapped the blocks are
 /// pushed apart by energy that no load supplied (measured: 5.49 J, half of
-/// the run's energy scale, whose other half is the kinetic energy it
-/// became), which the balance cannot see. The guard stops that run by
-/// default (`energy_check = "stop"`), naming the amount and what the
+/// the run's energy scale, whose other half is the kinetic and elastic
+/// energy it became), which the balance cannot see. The guard stops that
+/// run by default (`energy_check = "stop"`), naming the amount and what the
 /// started pairs gave back; with `"warn"` the run goes on to its end and
 /// says so once, and the history carries the started pairs' columns. This
-/// premise is closed-form and holds for any numbering of the mesh (an
+/// premise holds by construction for any numbering of the mesh (no load
+/// acts, so every joule of motion came from the planted overlap; an
 /// earlier version rested on what the ramp gave back after the small
 /// Brazilian disc's failures, 3% of its scale, a chaotic outcome of the
 /// failure sequence that moved when the disc was renumbered). On that

@@ -24,6 +24,7 @@ pub mod mesh;
 pub mod overrides;
 pub mod prepare;
 pub mod probes;
+pub mod refinement;
 pub mod setup;
 pub mod zones;
 

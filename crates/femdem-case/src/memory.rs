@@ -25,6 +25,7 @@ use std::path::Path;
 
 use anyhow::{Result, bail};
 use femdem_core::{Mat3, Vec3};
+use femdem_mesh::TetMesh;
 
 use crate::LoadedCase;
 use crate::format::PartSpec;
@@ -110,11 +111,7 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
         }
         zones_of(section, region).map_or(1.0, |zones| sampled_share(&zones, lo, hi, inside))
     };
-    let viscous = case.case.materials.iter().any(|m| {
-        let m = m.get_ref();
-        m.viscosity.is_some_and(|v| v > 0.0) || m.damping_ratio.is_some_and(|r| r > 0.0)
-    });
-    let mut out = Estimate { viscous, ..Estimate::default() };
+    let mut out = Estimate { viscous: viscous(case), ..Estimate::default() };
     // The bounding box of the parts so far, for platens.
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -208,6 +205,55 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
         }
     }
     Some(out)
+}
+
+/// Whether a material of `case` is viscous (its nodes then carry
+/// [`PER_VISCOUS_NODE`] more).
+fn viscous(case: &LoadedCase) -> bool {
+    case.case.materials.iter().any(|m| {
+        let m = m.get_ref();
+        m.viscosity.is_some_and(|v| v > 0.0) || m.damping_ratio.is_some_and(|r| r > 0.0)
+    })
+}
+
+/// The estimate of `case`'s mesh once built, `mesh` with its joint zone
+/// `zone` (false for the tets that `joints_within` leaves without joints),
+/// before its joints are inserted: exact in tets, the jointed share from
+/// the breakable regions and the zone, nodes and joints counted as
+/// [`estimate`] counts them. It differs from [`estimate`]'s where an
+/// extrusion refines around crowded features ([`crate::refinement`]).
+pub fn of_built(case: &LoadedCase, mesh: &TetMesh, zone: &[bool]) -> Estimate {
+    let tets = mesh.num_tets();
+    let jointed = (0..tets)
+        .filter(|&t| mesh.regions[mesh.tet_region[t] as usize].breakable && zone.get(t).copied().unwrap_or(true))
+        .count();
+    let mut out = Estimate { viscous: viscous(case), ..Estimate::default() };
+    out.add(tets as f64, mesh.num_nodes() as f64, if tets == 0 { 0.0 } else { jointed as f64 / tets as f64 });
+    out
+}
+
+/// The refusal message when the mesh built, whose estimate is `built`,
+/// would need more than the `available` memory: the check that
+/// [`refuse_if_too_big`] made from the parts' sizes, made again on the
+/// tets that were actually made, before joint insertion multiplies the
+/// nodes by four. `warnings` (what meshing noted) are appended: they say
+/// where a mesh grew beyond its sizes.
+pub fn refusal_built(built: &Estimate, available: Available, warnings: &[String]) -> Option<String> {
+    const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+    let source = if available.from_flag { "--memory-available" } else { "MemAvailable" };
+    (built.bytes > available.bytes).then(|| {
+        let noted: String = warnings.iter().map(|w| format!("\n  warning: {w}")).collect();
+        format!(
+            "the mesh built has {:.3e} tets and, with its joints, would need about {:.1} GiB ({:.3e} nodes, \
+             {:.3e} joints), more than the {:.1} GiB of memory available ({source}); use a larger element_size, \
+             or --force to try anyway{noted}",
+            built.tets,
+            built.bytes / GIB,
+            built.nodes,
+            built.joints,
+            available.bytes / GIB
+        )
+    })
 }
 
 /// Whether `p` lies inside the polygon `poly` (even–odd rule).
@@ -356,6 +402,12 @@ mod tests {
             assert!(rel(e.tets, tets) <= tet_tol, "{file}: tets {} vs {tets}", e.tets);
             assert!(rel(e.joints, joints) <= joint_tol, "{file}: joints {} vs {joints}", e.joints);
             assert!(e.bytes > jointed.array_bytes() as f64, "the run holds more than the jointed mesh");
+            // Counted on the mesh built: exact in tets, the joints as close
+            // as the parts' estimate (two a jointed tet).
+            let built = of_built(&loaded, &mesh, &zone);
+            assert_eq!(built.tets, tets, "{file}");
+            assert!(rel(built.joints, joints) <= joint_tol.max(0.05), "{file}: joints {} vs {joints}", built.joints);
+            assert!(built.bytes > jointed.array_bytes() as f64, "{file}");
         }
     }
 

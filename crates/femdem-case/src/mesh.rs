@@ -18,6 +18,17 @@ pub const DEFAULT_JITTER: f64 = 0.1;
 /// # Errors
 /// A [`CaseError`] located at the offending part or region.
 pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
+    build_mesh_noting(case, &mut Vec::new())
+}
+
+/// [`build_mesh`], pushing onto `warnings` what is legal but probably not
+/// meant, one located sentence each: an extrusion meshed far finer than
+/// its `element_size` because features of its outline or traces crowd
+/// ([`crate::refinement`]).
+///
+/// # Errors
+/// As [`build_mesh`].
+pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Result<TetMesh, CaseError> {
     let section = &case.case.mesh;
     let mut regions: Vec<Region> = Vec::new();
     for (i, r) in section.regions.iter().enumerate() {
@@ -105,6 +116,11 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
                     }
                     _ => fail(e),
                 })?;
+                let layers =
+                    spec.layers.unwrap_or_else(|| ((spec.thickness / spec.element_size).round() as usize).max(1));
+                if let Some(w) = crate::refinement::warning(&key, &body, spec.element_size, layers, spec.thickness) {
+                    warnings.push(case.error_at(span.clone(), w).to_string());
+                }
                 (name.clone().unwrap_or_else(|| r.clone()), body)
             }
             PartSpec::Platen { name, region: r, side, thickness, extent, element_size } => {

@@ -153,11 +153,26 @@ pub fn set_threads(loaded: &LoadedCase, threads: Option<usize>) -> Result<()> {
 /// `--threads`) overrides `[solver] threads`; either is set before any
 /// parallel work, meshing included.
 pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) -> Result<Prepared> {
+    prepare_within(path, threads, sets, None)
+}
+
+/// [`prepare`], refusing a case whose mesh, once built, would need more
+/// than `memory` with its joints (`None`: no check, as `--force` asks).
+/// The command line checks the parts' sizes against the same figure
+/// before meshing ([`crate::memory::refuse_if_too_big`]); this check is
+/// for the meshes that grow beyond their sizes ([`crate::refinement`]).
+pub fn prepare_within(
+    path: &std::path::Path,
+    threads: Option<usize>,
+    sets: &[String],
+    memory: Option<crate::memory::Available>,
+) -> Result<Prepared> {
     let loaded = crate::load(path, sets)?;
     set_threads(&loaded, threads)?;
-    let (mesh, zone, jointed) = jointed(&loaded)?;
+    let mut warnings = Vec::new();
+    let (mesh, zone, jointed) = jointed_within(&loaded, memory, &mut warnings)?;
     let Some(spec) = &loaded.case.solver else {
-        return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None, warnings: Vec::new() });
+        return Ok(Prepared { case: loaded, mesh, zone, jointed, run: None, warnings });
     };
     let s = spec.get_ref();
     let at = |msg: String| loaded.error_at(spec.span(), format!("solver: {msg}"));
@@ -180,7 +195,6 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
     if !(s.mass_scaling.is_finite() && s.mass_scaling >= 1.0) {
         bail!(at(format!("mass_scaling must be finite and ≥ 1, got {}", s.mass_scaling)));
     }
-    let mut warnings = Vec::new();
     let model = crate::setup::model(&loaded, &jointed, s.mass_scaling, &mut warnings)?;
     let mut loads = crate::setup::loads(&loaded, &jointed, s.gravity)?;
     if start == Start::Static {
@@ -304,9 +318,29 @@ pub fn prepare(path: &std::path::Path, threads: Option<usize>, sets: &[String]) 
 /// A located [`crate::CaseError`] for a bad zone or mesh, or when joint
 /// insertion fails.
 pub fn jointed(loaded: &LoadedCase) -> Result<(TetMesh, Vec<bool>, JointedMesh), crate::CaseError> {
+    jointed_within(loaded, None, &mut Vec::new())
+}
+
+/// [`jointed`], pushing what meshing notes onto `warnings`, and refusing
+/// the mesh before its joints are inserted when it would need more than
+/// `memory` ([`crate::memory::refusal_built`]; `None`: no check).
+///
+/// # Errors
+/// As [`jointed`], and the refusal.
+pub fn jointed_within(
+    loaded: &LoadedCase,
+    memory: Option<crate::memory::Available>,
+    warnings: &mut Vec<String>,
+) -> Result<(TetMesh, Vec<bool>, JointedMesh), crate::CaseError> {
     crate::zones::check(loaded)?;
-    let mesh = crate::mesh::build_mesh(loaded)?;
+    let mesh = crate::mesh::build_mesh_noting(loaded, warnings)?;
     let zone = crate::zones::joint_zone(loaded, &mesh)?;
+    if let Some(available) = memory {
+        let built = crate::memory::of_built(loaded, &mesh, &zone);
+        if let Some(message) = crate::memory::refusal_built(&built, available, warnings) {
+            return Err(crate::CaseError { path: loaded.path.clone(), at: None, message });
+        }
+    }
     let jointed = femdem_mesh::insert_joints_within(&mesh, &zone).map_err(|e| crate::CaseError {
         path: loaded.path.clone(),
         at: None,

@@ -122,12 +122,18 @@ enum Command {
     },
 }
 
+/// The memory a run or check may use once its mesh is built: none checked
+/// with `--force`, else `--memory-available` or `MemAvailable`.
+fn memory_limit(force: bool, memory_available: Option<f64>) -> Option<femdem_case::memory::Available> {
+    if force { None } else { femdem_case::memory::Available::of(memory_available) }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { case, json, threads, set, force, memory_available } => {
             femdem_case::memory::refuse_if_too_big(&case, &set, threads, force, memory_available, "check")
-                .and_then(|()| commands::check::run(&case, json, threads, &set))
+                .and_then(|()| commands::check::run(&case, json, threads, &set, memory_limit(force, memory_available)))
         }
         Command::Run {
             case,
@@ -153,6 +159,7 @@ fn main() -> ExitCode {
                     pause_checkpoint,
                     device,
                     overwrite,
+                    memory: memory_limit(force, memory_available),
                 };
                 commands::run::run(&case, options, progress_interval)
             },

@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use femdem_case as case;
-use femdem_case::prepare::{Start, prepare, start_static};
+use femdem_case::prepare::{Start, prepare_within, start_static};
 use femdem_solver::{Solver, Want};
 
 use crate::checkpoint::{self, Identity, Schedule};
@@ -27,7 +27,8 @@ use crate::{Observer, PastPeak, RunOptions, Status, Summary, outdir};
 /// written; and the run guard's verdict (after writing the state that
 /// shows the trouble).
 pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut dyn Observer) -> Result<Summary> {
-    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, device, overwrite } = options;
+    let RunOptions { out, threads, set, resume, stop_after_steps, pause_checkpoint, device, overwrite, memory } =
+        options;
     let stem = path.file_stem().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     let case_name = path.file_name().map_or("case".into(), |s| s.to_string_lossy().into_owned());
     // The output directory is checked before the mesh is built: a refusal
@@ -37,7 +38,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     if resume.is_none() {
         outdir::refuse_earlier_results(&dir, &stem, &case_name, overwrite)?;
     }
-    let prepared = prepare(path, threads, &set)?;
+    let prepared = prepare_within(path, threads, &set, memory)?;
     for warning in &prepared.warnings {
         observer.note(&format!("warning: {warning}"));
     }

@@ -59,6 +59,10 @@ pub struct RunOptions {
     /// Remove the results of an earlier run from the output directory
     /// (femdem's own files only) instead of refusing it.
     pub overwrite: bool,
+    /// The memory the run may use: a mesh that, once built, would need
+    /// more with its joints is refused before they are inserted
+    /// (`femdem_case::prepare::prepare_within`; `None`: not checked).
+    pub memory: Option<femdem_case::memory::Available>,
 }
 
 /// The state of the model a progress report shows, besides steps and

@@ -8,7 +8,7 @@ use femdem_mesh::{face_adjacency, faces::face_key, stats};
 use serde::Serialize;
 
 use femdem_case as case;
-use femdem_case::prepare::prepare;
+use femdem_case::prepare::prepare_within;
 
 /// One region in the report.
 #[derive(Serialize)]
@@ -77,8 +77,14 @@ struct TimeStepReport {
 }
 
 /// Runs the command.
-pub fn run(path: &Path, json: bool, threads: Option<usize>, sets: &[String]) -> Result<()> {
-    let prepared = prepare(path, threads, sets)?;
+pub fn run(
+    path: &Path,
+    json: bool,
+    threads: Option<usize>,
+    sets: &[String],
+    memory: Option<femdem_case::memory::Available>,
+) -> Result<()> {
+    let prepared = prepare_within(path, threads, sets, memory)?;
     for warning in &prepared.warnings {
         eprintln!("warning: {warning}");
     }

@@ -54,3 +54,48 @@ fn check_reports_the_estimate() {
     let arrays = report["memory_bytes"].as_f64().unwrap();
     assert!(estimate > arrays, "estimate {estimate} vs the jointed mesh's arrays {arrays}");
 }
+
+/// Two traces 2 mm apart in an outline meshed at 0.1 m: the extrusion
+/// refines to the gap (5,250 tets where `element_size` gives 416), which
+/// the estimate from the parts' sizes cannot see. `check` warns with the
+/// part, the ratio and the shortest edge's place (on the gap, between
+/// the traces' lines y = 0.2 + x/3 and 2 mm above); with memory enough
+/// for the sizes' estimate (about 0.9 MB) but not for the mesh built
+/// (about 11 MB), `check` and `run` refuse it once built, with the
+/// warning, and `--force` lets it through.
+#[test]
+fn a_mesh_refined_beyond_its_sizes_is_named_and_checked_again_once_built() {
+    let case = root().join("tests/cases/crowded_traces.toml");
+    let case = case.to_str().unwrap();
+    let o = femdem(&["check", case]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let warning = stderr.lines().find(|l| l.starts_with("warning:")).expect("a warning");
+    assert!(warning.contains("crowded_traces.toml:11:1: mesh.parts[0]: 5250 tets, 13 times the 416"), "{warning}");
+    let coordinate = |name: &str| -> f64 {
+        let from = warning.find(&format!("{name} = ")).unwrap() + name.len() + 3;
+        warning[from..].split([',', ' ']).next().unwrap().parse().unwrap()
+    };
+    let (x, y) = (coordinate("x"), coordinate("y"));
+    let below = 0.2 + (x - 0.2) / 3.0;
+    assert!((0.2..=0.8).contains(&x) && y > below - 1e-3 && y < below + 3e-3, "({x}, {y}) is not on the gap");
+
+    let out = std::env::temp_dir().join("femdem-crowded-traces");
+    let _ = std::fs::remove_dir_all(&out);
+    for command in ["check", "run"] {
+        let mut args = vec![command, case, "--memory-available", "5e6"];
+        if command == "run" {
+            args.extend(["--out", out.to_str().unwrap()]);
+        }
+        let o = femdem(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{command}: {stderr}");
+        assert!(stderr.contains("crowded_traces.toml: the mesh built has 5.250e3 tets"), "{stderr}");
+        assert!(stderr.contains("(--memory-available); use a larger element_size, or --force"), "{stderr}");
+        assert!(stderr.contains("warning: ") && stderr.contains("13 times the 416"), "{stderr}");
+        args.push("--force");
+        let o = femdem(&args);
+        assert!(o.status.success(), "{command} --force: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -200,9 +200,13 @@ pub fn prepare_within(
     if start == Start::Static {
         femdem_static::hold_surface_loads(&mut loads);
     }
-    let load_strain = crate::setup::load_strain(&loaded, &loads)?;
+    let load_strain = crate::setup::load_strain(&loaded, &loads, &model.x0, &mut warnings)?;
     let held = held_nodes(&model, &loads).map_err(|e| at(e.to_string()))?;
+    crate::setup::surface_loads_on_held_nodes(&loaded, &loads, &held, &mut warnings);
     let contact = crate::setup::contact(&loaded, &jointed)?;
+    if contact.is_none() {
+        crate::setup::platens_that_touch_nothing(&loaded, &mut warnings);
+    }
     let contact_check = crate::setup::contact_check(&loaded)?;
     let mut stable = stable_time_step(&model, &held, POWER_ITERATIONS);
     if let Some(settings) = &contact {

@@ -43,6 +43,59 @@ fn components(s: &str) -> Option<[bool; 3]> {
     c.iter().any(|&b| b).then_some(c)
 }
 
+/// The refusal of a surface load (`what`) on boundary group `group`,
+/// which holds no triangle (an MSH physical surface of quadrangles, whose
+/// faces are no tet's): it would act on nothing.
+fn no_faces(group: &str, what: &str) -> String {
+    format!(
+        "`group` `{group}` has no faces, so the {what} would act on nothing (an MSH physical surface meshed \
+         with quadrangles, or lying on no tet's face, gives an empty group: `femdem check` lists each group's \
+         faces)"
+    )
+}
+
+/// Pushes onto `warnings` every pressure or traction of `case` whose
+/// faces' nodes (`loads.surfaces`, in the order of `[[loads]]`) are all
+/// `held` in the three directions from the start (by a platen, a fixed
+/// support or a velocity load): such a load moves nothing and only adds
+/// to those supports' recorded reactions.
+pub fn surface_loads_on_held_nodes(case: &LoadedCase, loads: &Loads, held: &[bool], warnings: &mut Vec<String>) {
+    let specs = case.case.loads.iter().enumerate().filter_map(|(i, l)| match l.get_ref() {
+        LoadSpec::Pressure { .. } => Some((i, l, "pressure")),
+        LoadSpec::Traction { .. } => Some((i, l, "traction")),
+        _ => None,
+    });
+    for ((i, l, what), surface) in specs.zip(&loads.surfaces) {
+        if surface.faces.iter().flatten().all(|&n| held.get(n as usize).copied().unwrap_or(false)) {
+            let message = format!(
+                "loads[{i}]: every node of the {} faces of `{}` is held in all three directions from the start (by \
+                 a platen, a fixed support or a velocity load): the {what} moves nothing and only adds to those \
+                 supports' recorded reactions",
+                surface.faces.len(),
+                surface.name
+            );
+            warnings.push(case.error_at(l.span(), message).to_string());
+        }
+    }
+}
+
+/// Pushes onto `warnings` every platen without `drives` in a case without
+/// `[contact]`: it can neither touch the specimen nor move any of its
+/// nodes, so it passes through it and its recorded force stays zero.
+pub fn platens_that_touch_nothing(case: &LoadedCase, warnings: &mut Vec<String>) {
+    for (i, p) in case.case.platens.iter().enumerate() {
+        if p.get_ref().drives.is_none() {
+            let message = format!(
+                "platens[{i}] (`{}`): without [contact] and without `drives`, the platen touches nothing: it moves \
+                 through the specimen and its force stays zero; add a [contact] section, or glue specimen nodes to \
+                 it with `drives`",
+                p.get_ref().region
+            );
+            warnings.push(case.error_at(p.span(), message).to_string());
+        }
+    }
+}
+
 fn unknown(u: UnknownName) -> String {
     format!("no {} `{}` in the mesh (have: {})", u.kind, u.name, u.available.join(", "))
 }
@@ -143,6 +196,9 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             }
             LoadSpec::Pressure { group, pressure, ramp_time, stop_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                if faces.is_empty() {
+                    return Err(at(no_faces(group, "pressure")));
+                }
                 finite("pressure", &[*pressure], "Pa").map_err(at)?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),
@@ -153,6 +209,9 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             }
             LoadSpec::Traction { group, traction, ramp_time, stop_time } => {
                 let faces = group_faces(mesh, group).map_err(|u| at(unknown(u)))?;
+                if faces.is_empty() {
+                    return Err(at(no_faces(group, "traction")));
+                }
                 finite("traction", traction, "Pa").map_err(at)?;
                 loads.surfaces.push(SurfaceLoad {
                     name: group.clone(),

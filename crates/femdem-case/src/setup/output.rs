@@ -42,12 +42,27 @@ impl LoadStrain {
     }
 }
 
-/// Resolves `[output.load_strain]`, if any.
+/// Resolves `[output.load_strain]`, if any, and checks it against where
+/// the platens are: the centres `c_u`, `c_l` of the upper and lower
+/// drives' nodes at `x0` (the reference positions). With `a` the unit
+/// axis and `D = (c_u − c_l)·a`, the upper platen must lie on the +axis
+/// side (`D > 0`), else `F` and `ε` would both come out with the wrong
+/// sign and `stop_below_peak` would never fire; an axis more than 30°
+/// from `c_u − c_l`, or a `length` above 1.5 `D` (the specimen lies
+/// between the platens' faces, inside their centres) or below `D / 10`
+/// (a length in mm, or a platen far thicker than the specimen) is
+/// pushed onto `warnings`.
 ///
 /// # Errors
 /// A located [`CaseError`] when a name is not a platen of the case, the two
-/// are the same, the length is not positive or the axis is zero.
-pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain>, CaseError> {
+/// are the same, the length is not positive, the axis is zero or the
+/// upper platen does not lie on the axis' side of the lower.
+pub fn load_strain(
+    case: &LoadedCase,
+    loads: &Loads,
+    x0: &[Vec3],
+    warnings: &mut Vec<String>,
+) -> Result<Option<LoadStrain>, CaseError> {
     let Some(spec) = case.case.output.as_ref().and_then(|o| o.get_ref().load_strain.as_ref()) else {
         return Ok(None);
     };
@@ -76,7 +91,50 @@ pub fn load_strain(case: &LoadedCase, loads: &Loads) -> Result<Option<LoadStrain
     {
         return Err(at(format!("stop_below_peak must be a fraction in (0, 1), got {f}")));
     }
-    Ok(Some(LoadStrain { upper, lower, length: s.length, axis: axis.normalize(), stop_below_peak: s.stop_below_peak }))
+    let axis = axis.normalize();
+    let centre = |d: usize| {
+        let nodes = &loads.drives[d].nodes;
+        nodes.iter().fold(Vec3::zeros(), |c, &n| c + x0[n as usize]) / nodes.len().max(1) as f64
+    };
+    let (c_u, c_l) = (centre(upper), centre(lower));
+    let gap = c_u - c_l;
+    let along = gap.dot(&axis);
+    let show = |v: Vec3| format!("[{:.4e}, {:.4e}, {:.4e}]", v.x, v.y, v.z);
+    if along.is_nan() || along <= 0.0 {
+        return Err(at(format!(
+            "axis: the upper platen `{}` (its nodes centred at {} m) does not lie on the +axis side of the lower \
+             `{}` (at {} m) along axis {}: the load and the strain would come out zero or with the wrong sign; \
+             swap `upper` and `lower`, or reverse `axis`",
+            s.upper,
+            show(c_u),
+            s.lower,
+            show(c_l),
+            show(axis)
+        )));
+    }
+    let angle = (along / gap.norm()).clamp(-1.0, 1.0).acos().to_degrees();
+    if angle > 30.0 {
+        warnings.push(
+            at(format!(
+                "axis: {} is {angle:.0}° from the line between the platens' centres ({} m): the load and the \
+                 strain are taken along `axis`",
+                show(axis),
+                show(gap)
+            ))
+            .to_string(),
+        );
+    }
+    if s.length > 1.5 * along || s.length < 0.1 * along {
+        warnings.push(
+            at(format!(
+                "length: {} m, against {along:.4e} m between the platens' centres along the axis: `length` is the \
+                 specimen's length d of Eq. 22 in m (the disc's diameter), which lies between the platens' faces",
+                s.length
+            ))
+            .to_string(),
+        );
+    }
+    Ok(Some(LoadStrain { upper, lower, length: s.length, axis, stop_below_peak: s.stop_below_peak }))
 }
 
 /// What `[output]` resolves to for a run of `end_time` seconds.

@@ -243,6 +243,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
             ":55:1:",
             "output.load_strain.stop_below_peak must be a fraction in (0, 1), got 1.5",
         ),
+        ("pressure_on_quads.toml", ":24:1:", "loads[1]: `group` `cube.top` has no faces, so the pressure would act"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");
@@ -364,4 +365,49 @@ fn a_unit_slip_in_a_material_is_a_warning() {
     assert!(line.contains("materials[0]: `density` = 2.34e0 kg/m³"), "{line}");
     assert!(line.contains("g/cm³"), "{line}");
     assert!(!plain, "the case as written warned");
+}
+
+/// `[output.load_strain]` against where its platens are (the small disc's
+/// platens are centred at y = ±11 mm, their faces at ±10 mm): an axis
+/// that puts the upper platen on its − side is refused, naming both
+/// centres (the load and strain would change sign, and `stop_below_peak`
+/// never fire); one perpendicular to them too; a `length` given in mm
+/// (20 for 0.020 m) is a warning; the case as written gives neither.
+#[test]
+fn a_load_strain_is_checked_against_its_platens() {
+    let case = "crates/femdem-cli/tests/cases/small_brazilian.toml";
+    for axis in ["[0.0, -1.0, 0.0]", "[0.0, 0.0, 1.0]"] {
+        let out = femdem(&["check", case, "--set", &format!("output.load_strain.axis={axis}")]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{axis}: {err}");
+        assert!(err.contains("output.load_strain.axis: the upper platen `platen_top` (its nodes centred at"), "{err}");
+        assert!(err.contains("swap `upper` and `lower`, or reverse `axis`"), "{err}");
+    }
+    let (line, plain) = warning_of(case, "output.load_strain.length=20", "between the platens' centres");
+    assert!(line.contains("output.load_strain.length: 20 m, against 2.2000e-2 m"), "{line}");
+    assert!(!plain, "the case as written warned");
+    let (line, _) = warning_of(case, "output.load_strain.axis=[1.0, 1.0, 0.0]", "from the line between");
+    assert!(line.contains("is 45° from the line between the platens' centres"), "{line}");
+}
+
+/// Platens that can touch nothing (no `[contact]`, no `drives`) and a
+/// pressure on a platen's face (every node under it held by the platen's
+/// drive) are legal and do nothing: `check` warns for each, naming its
+/// table, and passes. The same disc with `[contact]` does not warn.
+#[test]
+fn platens_and_loads_that_act_on_nothing_are_warnings() {
+    let out = femdem(&["check", "crates/femdem-cli/tests/cases/platens_touch_nothing.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let warnings: Vec<&str> = err.lines().filter(|l| l.starts_with("warning: ")).collect();
+    assert_eq!(warnings.len(), 3, "{err}");
+    assert!(warnings.iter().any(|w| w.contains(":65:1: loads[0]: every node of the 12 faces of `platen_top.ymax`")));
+    for (line, name) in [(55, "platens[0] (`platen_top`)"), (60, "platens[1] (`platen_bottom`)")] {
+        assert!(
+            warnings.iter().any(|w| w.contains(&format!(":{line}:1: {name}: without [contact] and without `drives`"))),
+            "{err}"
+        );
+    }
+    let with_contact = femdem(&["check", "crates/femdem-cli/tests/cases/small_brazilian.toml"]);
+    assert!(!String::from_utf8_lossy(&with_contact.stderr).contains("touches nothing"));
 }

@@ -112,7 +112,15 @@ struct Planar {
     trace_edges: HashSet<(u32, u32)>,
 }
 
-fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
+/// Triangulates the outline and traces at edge `h` for an extrusion of
+/// `layers` layers. The refinement may add at most the vertices whose
+/// triangles (about two a vertex) make [`MAX_CELLS`] tets in those layers:
+/// beyond that the mesh would be refused anyway, and outline points or
+/// traces crowding far closer than `h` would otherwise refine on to
+/// tens of millions of vertices (gigabytes, minutes) before the count is
+/// seen. Running out is refused with the place of the shortest edge,
+/// where the crowding is.
+fn triangulate(spec: &ExtrusionSpec, h: f64, layers: usize) -> Result<Planar, MeshError> {
     let network = trace_network(&outline_points(&spec.outline, h)?, &spec.traces)?;
     let outline = network.outline;
     let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
@@ -162,13 +170,42 @@ fn triangulate(spec: &ExtrusionSpec, h: f64) -> Result<Planar, MeshError> {
     // dropped afterwards: spade's `exclude_outer_faces` tells inside from
     // outside by the parity of constraint edges crossed, which open traces
     // would flip.
+    // The vertex budget: about two triangles a vertex, three tets a
+    // triangle and layer, scaled by the outline's bounding box over its
+    // area (≥ the hull's share refined outside a non-convex outline).
+    let area = 0.5
+        * (0..outline.len())
+            .map(|i| {
+                let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum::<f64>()
+            .abs();
+    let lo = outline.iter().fold([f64::INFINITY; 2], |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
+    let hi = outline.iter().fold([f64::NEG_INFINITY; 2], |l, p| [l[0].max(p[0]), l[1].max(p[1])]);
+    let hull_share = ((hi[0] - lo[0]) * (hi[1] - lo[1]) / area).max(1.0);
+    let budget = (MAX_CELLS / (6.0 * layers as f64) * hull_share).min(MAX_CELLS / 3.0);
     let params = RefinementParameters::<f64>::new()
         .with_max_allowed_area(max_area)
         .with_angle_limit(AngleLimit::from_deg(25.0))
-        .with_max_additional_vertices(MAX_CELLS as usize / 3);
+        .with_max_additional_vertices(budget as usize);
     let result = cdt.refine(params);
     if !result.refinement_complete {
-        return Err(MeshError::Triangulation("refinement ran out of vertices".into()));
+        let shortest = cdt
+            .undirected_edges()
+            .map(|e| {
+                let [a, b] = e.vertices().map(|v| v.position());
+                (((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt(), [(a.x + b.x) / 2.0, (a.y + b.y) / 2.0])
+            })
+            .min_by(|p, q| p.0.total_cmp(&q.0));
+        let place = shortest.map_or(String::new(), |(l, m)| {
+            format!(" (edges down to {l:.3e} m, the shortest at x = {:.6}, y = {:.6} m)", m[0], m[1])
+        });
+        return Err(MeshError::Triangulation(format!(
+            "the mesh would exceed {MAX_CELLS:e} tets: the refinement has to fill gaps far narrower than \
+             element_size = {h} m{place}, where points of the outline or traces lie that close together; move \
+             them apart or join them"
+        )));
     }
 
     let all_points: Vec<[f64; 2]> = cdt.vertices().map(|v| [v.position().x, v.position().y]).collect();
@@ -267,7 +304,7 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
             ),
         });
     }
-    let planar = triangulate(spec, h)?;
+    let planar = triangulate(spec, h, layers)?;
     if (planar.triangles.len() * layers * 3) as f64 > MAX_CELLS {
         return Err(MeshError::InvalidParameter {
             name: "element_size",

@@ -331,3 +331,30 @@ fn a_non_finite_z0_and_a_flat_outline_are_refused() {
         matches!(femdem_mesh::check::check(&empty), Err(femdem_mesh::MeshError::Inconsistent(m)) if m.contains("no tets"))
     );
 }
+
+/// Two traces 10⁻⁷ m apart in an outline meshed at 0.05 m: the refinement
+/// would fill the gap down to 10⁻⁷ m edges, tens of millions of vertices
+/// (the `femdem check` of such a case grew by some 70 MB/s until killed).
+/// It may add only the vertices whose triangles make the 2e8-tet limit in
+/// the extrusion's layers (here 2,000 layers, so some 17k vertices and a
+/// quick refusal), and its refusal names the place of the shortest edge:
+/// on the gap, between x = 0.2 and 0.8 at y = 0.3.
+#[test]
+fn crowded_traces_are_refused_at_the_tet_limit_naming_the_gap() {
+    let spec = ExtrusionSpec {
+        outline: Outline::Polygon(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 0.6], [0.0, 0.6]]),
+        traces: vec![vec![[0.2, 0.3], [0.8, 0.3]], vec![[0.2, 0.3 + 1e-7], [0.8, 0.3 + 1e-7]]],
+        z0: 0.0,
+        thickness: 1.0,
+        element_size: 0.05,
+        layers: Some(2000),
+        region: region(),
+    };
+    let e = generate_extrusion(&spec).unwrap_err().to_string();
+    assert!(e.contains("the mesh would exceed 2e8 tets: the refinement has to fill gaps far narrower"), "{e}");
+    let at = |name: &str| -> f64 {
+        let from = e.find(&format!("{name} = ")).unwrap() + name.len() + 3;
+        e[from..].split([',', ' ']).next().unwrap().parse().unwrap()
+    };
+    assert!((0.2..=0.8).contains(&at("x")) && (at("y") - 0.3).abs() < 1e-6, "{e}");
+}

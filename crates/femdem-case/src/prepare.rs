@@ -338,6 +338,7 @@ pub fn jointed_within(
 ) -> Result<(TetMesh, Vec<bool>, JointedMesh), crate::CaseError> {
     crate::zones::check(loaded)?;
     let mesh = crate::mesh::build_mesh_noting(loaded, warnings)?;
+    warnings.extend(crate::placement::warning(&mesh).map(|w| format!("{}: {w}", loaded.path.display())));
     let zone = crate::zones::joint_zone(loaded, &mesh)?;
     if let Some(available) = memory {
         let built = crate::memory::of_built(loaded, &mesh, &zone);

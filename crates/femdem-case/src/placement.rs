@@ -1,0 +1,68 @@
+//! A mesh far from the origin. A position `x` carries a round-off of
+//! about `ε |x|` (`ε` = 2.2·10⁻¹⁶), and every step adds to it an increment
+//! `v Δt` that is some 10⁻⁶ of an edge under quasi-static loading, while a
+//! joint opens by about 10⁻⁵ of an edge before its peak (Eq. 5–9 with the
+//! default penalty): a mesh lying `10⁵` of its shortest edges or more
+//! from the origin (an MSH file in site coordinates, a UTM easting of
+//! 5·10⁵ m under millimetre elements) loses those increments and openings
+//! to round-off, and its runs change with where it sits. femdem does not
+//! translate the mesh itself (its inputs — boxes, probes, outputs — are
+//! all in the case's coordinates); it says so.
+
+use femdem_mesh::TetMesh;
+
+/// The ratio of the mesh's largest coordinate to its shortest edge above
+/// which [`warning`] speaks: `ε` times it is 2.2·10⁻¹¹ of an edge, which
+/// the per-step increments (about 10⁻⁶ of an edge) feel at 10⁻⁵ each. The
+/// bundled cases lie within 60 of their shortest edges from the origin.
+pub const RATIO: f64 = 1e5;
+
+/// The warning for a mesh lying more than [`RATIO`] times its shortest
+/// edge from the origin, with the figures; `None` otherwise.
+pub fn warning(mesh: &TetMesh) -> Option<String> {
+    let far = mesh.coords.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+    let shortest = femdem_mesh::stats::stats(mesh).min_edge;
+    if !(far.is_finite() && shortest > 0.0 && far > RATIO * shortest) {
+        return None;
+    }
+    let roundoff = f64::EPSILON * far;
+    Some(format!(
+        "mesh: the mesh lies up to {far:.4e} m from the origin, {:.1e} times its shortest edge ({shortest:.3e} m): \
+         a position there carries a round-off of about {roundoff:.1e} m, {:.1e} of that edge, which a step's \
+         position increments (some 10⁻⁶ of an edge) and the joints' openings before their peak (some 10⁻⁵) \
+         feel, so results change with where the mesh sits; translate the mesh near the origin (its coordinates \
+         in the MSH file or the case)",
+        far / shortest,
+        roundoff / shortest
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use femdem_mesh::Region;
+    use femdem_mesh::generate::{BoxSpec, generate_box};
+
+    /// A 10 mm cube of 5 mm cells at the origin, at 1 m, and at a UTM-like
+    /// (5·10⁵, 5·10⁶) m: only the last is 10⁵ of its shortest edge (some
+    /// 4 mm with the jitter) away, and its warning gives the distance and
+    /// the round-off, ε × 5·10⁶ m ≈ 1.1·10⁻⁹ m.
+    #[test]
+    fn a_mesh_far_from_the_origin_is_a_warning() {
+        let at = |o: [f64; 3]| {
+            let spec = BoxSpec {
+                min: o,
+                max: [o[0] + 0.01, o[1] + 0.01, o[2] + 0.01],
+                element_size: 0.005,
+                jitter: 0.1,
+                seed: 1,
+                region: Region { name: "rock".into(), breakable: true },
+            };
+            super::warning(&generate_box(&spec).unwrap())
+        };
+        assert_eq!(at([0.0; 3]), None);
+        assert_eq!(at([1.0, 1.0, 0.0]), None);
+        let w = at([5e5, 5e6, 0.0]).expect("a warning");
+        assert!(w.contains("the mesh lies up to 5.0000e6 m from the origin"), "{w}");
+        assert!(w.contains("a round-off of about 1.1e-9 m"), "{w}");
+    }
+}

@@ -37,6 +37,33 @@ fn contact_model(name: &str) -> Option<ContactModel> {
 /// `negligible` outside `[0, 1e-3)`, an unknown `activation` or `model`,
 /// or an unknown region in `[[contact.pairs]]`.
 pub fn contact(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSettings>, CaseError> {
+    contact_noting(case, mesh, &mut Vec::new())
+}
+
+/// [`contact`], pushing onto `warnings` a friction coefficient far above
+/// rock's ([`super::plausible::friction_warning`]: an angle given for μ).
+///
+/// # Errors
+/// As [`contact`].
+pub fn contact_noting(
+    case: &LoadedCase,
+    mesh: &JointedMesh,
+    warnings: &mut Vec<String>,
+) -> Result<Option<ContactSettings>, CaseError> {
+    if let Some(c) = &case.case.contact {
+        if let Some(w) = super::plausible::friction_warning("friction", c.get_ref().friction) {
+            warnings.push(case.error_at(c.span(), format!("contact: {w}")).to_string());
+        }
+        for (i, p) in c.get_ref().pairs.iter().enumerate() {
+            if let Some(w) = super::plausible::friction_warning("friction", p.get_ref().friction) {
+                warnings.push(case.error_at(p.span(), format!("contact.pairs[{i}]: {w}")).to_string());
+            }
+        }
+    }
+    settings(case, mesh)
+}
+
+fn settings(case: &LoadedCase, mesh: &JointedMesh) -> Result<Option<ContactSettings>, CaseError> {
     let Some(c) = &case.case.contact else { return Ok(None) };
     let spec = c.get_ref();
     let at = |msg: String| case.error_at(c.span(), format!("contact.{msg}"));

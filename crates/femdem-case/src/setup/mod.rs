@@ -7,7 +7,7 @@ mod materials;
 mod output;
 pub mod plausible;
 
-pub use contact::{ContactCheck, activation_name, contact, contact_check};
+pub use contact::{ContactCheck, activation_name, contact, contact_check, contact_noting};
 pub use loads::{loads, platens_that_touch_nothing, surface_loads_on_held_nodes};
 pub use materials::{DEFAULT_PENALTY_FACTOR, behaviours, model};
 pub use output::{

@@ -22,6 +22,42 @@ pub const FRACTURE_ENERGY: (f64, f64) = (1.0, 1.0e5);
 /// more than 10%, which no brittle material reaches.
 pub const STRENGTH_OVER_YOUNG: f64 = 0.1;
 
+/// A strength below this fraction of E would put the peak at a strain
+/// below 10⁻⁶ (3 Pa for 3 MPa against a rock's tens of GPa).
+pub const STRENGTH_OVER_YOUNG_MIN: f64 = 1e-6;
+
+/// A joint penalty below E: a joint's compliance `h/p₀` then exceeds its
+/// tets' `h/E`, and the jointed body is far softer than E says (the
+/// paper's default is 10 E, Eq. 9).
+pub const PENALTY_OVER_YOUNG_MIN: f64 = 1.0;
+
+/// Poisson's ratios above this are nearly incompressible: the bulk
+/// modulus is more than 50 times the shear modulus, and the stable step
+/// shrinks with the dilatational wave speed (ν = 0.4999999 made it 400
+/// times smaller).
+pub const POISSON_MAX: f64 = 0.49;
+
+/// A `damping_ratio` above 1 damps the element's top mode beyond critical,
+/// and the stable step shrinks as `2/(√(ω²+β²/4)+β/2)` (5 made it 17 times
+/// smaller): a percentage given as a fraction?
+pub const DAMPING_RATIO_MAX: f64 = 1.0;
+
+/// Coulomb coefficients of rock and concrete surfaces lie at 0.3–1 (up to
+/// about 1.5 for rough joints); far above is an angle given for μ = tan φ.
+pub const FRICTION_MAX: f64 = 2.0;
+
+/// The warning for a Coulomb coefficient `mu` of `key` above
+/// [`FRICTION_MAX`].
+pub fn friction_warning(key: &str, mu: f64) -> Option<String> {
+    (mu.is_finite() && mu > FRICTION_MAX).then(|| {
+        format!(
+            "`{key}` = {mu} is a Coulomb coefficient far above rock's 0.3–1 (> {FRICTION_MAX}); if {mu} is a \
+             friction angle in degrees, μ = tan φ = {:.3}",
+            mu.to_radians().tan()
+        )
+    })
+}
+
 /// The warnings for material `s` (empty when every value is plausible),
 /// each naming the key, the value with its unit, the range and the slip
 /// it suggests.
@@ -51,6 +87,36 @@ pub fn material_warnings(s: &MaterialSpec) -> Vec<String> {
                 s.young
             ));
         }
+    }
+    for (key, v) in [("tensile_strength", s.tensile_strength), ("cohesion", s.cohesion)] {
+        if let Some(v) = v.filter(|v| *v > 0.0 && *v < STRENGTH_OVER_YOUNG_MIN * s.young) {
+            out.push(format!(
+                "`{key}` = {v:.4e} Pa is less than {STRENGTH_OVER_YOUNG_MIN:e} × young ({:e} Pa): the joints \
+                 would peak at a strain below 10⁻⁶; is it in MPa (× 10⁶ for Pa)?",
+                s.young
+            ));
+        }
+    }
+    if let Some(p) = s.penalty.filter(|p| p.is_finite() && *p > 0.0 && *p < PENALTY_OVER_YOUNG_MIN * s.young) {
+        out.push(format!(
+            "`penalty` = {p:e} Pa is below young ({:e} Pa): each joint's compliance h/p₀ then exceeds its tets' \
+             h/E and the jointed body is far softer than E says (the default is 10 E, Eq. 9); is it in MPa or GPa?",
+            s.young
+        ));
+    }
+    if s.poisson > POISSON_MAX && s.poisson < 0.5 {
+        out.push(format!(
+            "`poisson` = {} is nearly incompressible (> {POISSON_MAX}): the bulk modulus is {:.0} times the shear \
+             modulus, and the stable step shrinks with the dilatational wave speed",
+            s.poisson,
+            2.0 * (1.0 + s.poisson) / (3.0 * (1.0 - 2.0 * s.poisson))
+        ));
+    }
+    if let Some(r) = s.damping_ratio.filter(|r| r.is_finite() && *r > DAMPING_RATIO_MAX) {
+        out.push(format!(
+            "`damping_ratio` = {r} damps the element's top mode beyond critical (> {DAMPING_RATIO_MAX}), and the \
+             stable step shrinks with it; is it a percentage (0.05 for 5%)?"
+        ));
     }
     if let Some(phi) = s.friction_angle.filter(|phi| *phi > 0.0 && *phi < std::f64::consts::FRAC_PI_2) {
         out.push(format!(
@@ -94,7 +160,12 @@ mod tests {
 
     #[test]
     fn each_unit_slip_is_named_by_its_key() {
-        let cases: [(MaterialSpec, &str); 8] = [
+        let cases: [(MaterialSpec, &str); 13] = [
+            (MaterialSpec { tensile_strength: Some(8.0), ..granite() }, "`tensile_strength` = 8.0000e0 Pa is less"),
+            (MaterialSpec { cohesion: Some(25.0), ..granite() }, "is it in MPa (× 10⁶ for Pa)?"),
+            (MaterialSpec { penalty: Some(6.0e4), ..granite() }, "`penalty` = 6e4 Pa is below young (6e10 Pa)"),
+            (MaterialSpec { poisson: 0.4999999, ..granite() }, "`poisson` = 0.4999999 is nearly incompressible"),
+            (MaterialSpec { damping_ratio: Some(5.0), ..granite() }, "`damping_ratio` = 5 damps the element's"),
             (
                 MaterialSpec { density: 2.7, ..granite() },
                 "`density` = 2.7e0 kg/m³ lies outside [1e2, 2.5e4] kg/m³, the range of solids; is it in g/cm³",
@@ -118,6 +189,19 @@ mod tests {
             let w = material_warnings(&spec);
             assert!(w.iter().any(|w| w.contains(words)), "{words} not in {w:?}");
         }
+    }
+
+    #[test]
+    fn plausible_neighbours_of_the_new_bounds_give_no_warning() {
+        for spec in [
+            MaterialSpec { penalty: Some(60.0e9), poisson: 0.45, damping_ratio: Some(1.0), ..granite() },
+            MaterialSpec { tensile_strength: Some(0.1e6), cohesion: Some(0.0), ..granite() },
+        ] {
+            assert!(material_warnings(&spec).is_empty(), "{:?}", material_warnings(&spec));
+        }
+        assert_eq!(friction_warning("contact.friction", 1.5), None);
+        let w = friction_warning("contact.friction", 30.0).expect("a warning");
+        assert!(w.contains("μ = tan φ = 0.577"), "{w}");
     }
 
     #[test]

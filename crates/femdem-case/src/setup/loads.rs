@@ -140,6 +140,23 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
             start_time: None,
         });
     }
+    // The nodes the platens drive in x, y and z (their own and those of
+    // their `drives`), to refuse a load that would claim them again at
+    // its own table (the solver's check would name only the node).
+    let platens = loads.drives.clone();
+    let on_platen = |nodes: &[u32]| -> Option<String> {
+        platens.iter().find_map(|d| {
+            let n = nodes.iter().filter(|n| d.nodes.binary_search(n).is_ok()).count();
+            (n > 0).then(|| {
+                format!(
+                    "`nodes` selects {n} node(s) that platen `{}` already drives in x, y and z (its region's, or \
+                     those of its `drives`): a platen moves only as its `velocity` says; set that velocity (0 \
+                     holds it), or select nodes off the platen",
+                    d.name
+                )
+            })
+        })
+    };
     for (i, l) in case.case.loads.iter().enumerate() {
         let at = |msg: String| case.error_at(l.span(), format!("loads[{i}]: {msg}"));
         match l.get_ref() {
@@ -147,6 +164,9 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                 let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
+                }
+                if let Some(message) = on_platen(&nodes) {
+                    return Err(at(message));
                 }
                 let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;
                 let start_time = start(*start_time).map_err(at)?;
@@ -171,6 +191,9 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
                 let nodes = select_nodes(mesh, &selector(nodes, "nodes").map_err(at)?).map_err(|u| at(unknown(u)))?;
                 if nodes.is_empty() {
                     return Err(at("`nodes` selects no node".into()));
+                }
+                if let Some(message) = on_platen(&nodes) {
+                    return Err(at(message));
                 }
                 let c = c.as_deref().unwrap_or("xyz");
                 let components = components(c).ok_or_else(|| at(format!("components `{c}` is not letters of xyz")))?;

@@ -244,6 +244,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
             "output.load_strain.stop_below_peak must be a fraction in (0, 1), got 1.5",
         ),
         ("pressure_on_quads.toml", ":24:1:", "loads[1]: `group` `cube.top` has no faces, so the pressure would act"),
+        ("fixed_platen.toml", ":63:1:", "loads[0]: `nodes` selects 24 node(s) that platen `platen_bottom` already"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");

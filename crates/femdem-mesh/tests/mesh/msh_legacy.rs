@@ -317,6 +317,20 @@ fn a_file_saved_with_save_all_is_refused() {
     assert_eq!((mesh.regions.len(), mesh.boundary.len()), (1, 0));
 }
 
+/// A file of triangles only, in named physical surfaces and volume (a
+/// surface mesh saved where a volume mesh was meant): its trouble is that
+/// it holds no tet, which is what the reader says — not that its elements
+/// carry physical tag 0, which they do not.
+#[test]
+fn a_file_without_tets_says_so_though_its_groups_are_named() {
+    let text = SMALL
+        .replace("5 4 4 7 1 1 2 10 20 30 40\n6 4 2 0 2 30 20 40 50\n", "")
+        .replace("$Elements\n6\n", "$Elements\n4\n");
+    let (_, message) = msh_error(&text);
+    assert!(message.contains("no 4-node tetrahedra (element type 4) in the file"), "{message}");
+    assert!(!message.contains("physical tag 0"), "{message}");
+}
+
 #[test]
 fn parametric_nodes_are_refused_by_name() {
     let text = SMALL.replace("$Nodes\n", "$ParametricNodes\n0\n$EndParametricNodes\n$Nodes\n");

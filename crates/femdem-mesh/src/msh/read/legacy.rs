@@ -167,7 +167,9 @@ impl<'a, S: Source<'a>> Reader<S> {
     /// it, is refused (the module documentation).
     pub(super) fn groups_v2(&mut self) -> Result<(), MeshError> {
         let named = |d: i32| self.names.keys().any(|&(dim, _)| dim == d);
-        let tets_grouped = self.tet_phys.iter().any(Option::is_some);
+        // A file without tets is not refused here: `assemble` says that it
+        // has none, which is the trouble then.
+        let tets_grouped = self.tet_phys.is_empty() || self.tet_phys.iter().any(Option::is_some);
         let triangles_grouped = !self.triangles.is_empty();
         let ungrouped = self.report.ungrouped_triangles > 0;
         if (named(3) && !tets_grouped)

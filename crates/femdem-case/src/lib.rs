@@ -118,6 +118,34 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
     span.start
 }
 
+/// The parser's "duplicate key" at byte `start` of `source`, with what is
+/// duplicated: a table header given twice, or a key given twice in a table
+/// (named with the table's header).
+fn duplicate(source: &str, start: usize) -> String {
+    let line_start = source.get(..start).and_then(|b| b.rfind('\n')).map_or(0, |i| i + 1);
+    let line = source.get(line_start..).and_then(|l| l.lines().next()).unwrap_or("").trim();
+    if line.starts_with('[') {
+        let header = line.split('#').next().unwrap_or(line).trim();
+        return format!(
+            "duplicate table: `{header}` is given a second time here (give each table once; a list of tables is \
+             written `[[name]]`)"
+        );
+    }
+    let key = line.split('=').next().unwrap_or("").trim();
+    let table = source
+        .get(..line_start)
+        .unwrap_or("")
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .map(|h| h.split('#').next().unwrap_or(h).trim());
+    match table {
+        Some(t) => format!("duplicate key: `{key}` is given a second time in `{t}`"),
+        None => format!("duplicate key: `{key}` is given a second time"),
+    }
+}
+
 /// The key of the value that starts at byte `start` of `source`: the bare
 /// or quoted (basic `"…"` or literal `'…'`) key before the `=` that
 /// precedes it on its line (in an inline table, the innermost one). `None`
@@ -163,7 +191,12 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
     let (case, applied) = {
         let document = toml::de::DeTable::parse(&source).map_err(|e| {
             let at = e.span().map(|s| line_col(&source, key_offset(&source, s, e.message())));
-            CaseError { path: path.to_path_buf(), at, message: e.message().trim_end().to_string() }
+            let message = e.message().trim_end();
+            let message = match e.span() {
+                Some(s) if message == "duplicate key" => duplicate(&source, s.start),
+                _ => message.to_string(),
+            };
+            CaseError { path: path.to_path_buf(), at, message }
         })?;
         let (document, applied) = overrides.apply(document).map_err(error)?;
         (Case::deserialize(toml::de::Deserializer::from(document)), applied)
@@ -223,6 +256,15 @@ mod tests {
         let at = |v: &str| super::value_key(q, q.find(v).unwrap());
         assert_eq!(at("\"a\""), Some("\"young\""));
         assert_eq!(at("\"b\""), Some("'poisson'"));
+    }
+
+    #[test]
+    fn a_duplicate_names_the_key_and_its_table_or_the_table() {
+        let t = "[solver]\nsafety = 0.5\n\n[[materials]] # rock\ndensity = 1.0\ndensity = 2.0\n[solver]\n";
+        let key = super::duplicate(t, t.rfind("density").unwrap());
+        assert_eq!(key, "duplicate key: `density` is given a second time in `[[materials]]`");
+        let table = super::duplicate(t, t.rfind("[solver]").unwrap() + 1);
+        assert!(table.starts_with("duplicate table: `[solver]` is given a second time here"), "{table}");
     }
 
     #[test]

@@ -247,9 +247,13 @@ pub fn prepare_within(
     }
     let steps = (s.end_time / dt).ceil();
     if steps > MAX_STEPS {
+        // A step that small may come from the materials (a modulus given
+        // in the wrong unit): their warnings say which value.
+        let warned: String = warnings.iter().map(|w| format!("\n  warning: {w}")).collect();
         bail!(at(format!(
             "end_time {:e} s at time_step {dt:e} s is {steps:e} steps, more than the {MAX_STEPS:e} a run may take; \
-             check time_step and end_time (they are in seconds)",
+             check time_step and end_time (they are in seconds), and the materials' young and density, whose \
+             wave speeds set the stable step{warned}",
             s.end_time
         )));
     }

@@ -164,9 +164,9 @@ impl Identity {
             return Ok(());
         }
         bail!(
-            "checkpoint {} was written by case {} (text {:016x}, mesh {:016x}), not by {} (text {:016x}, mesh {:016x}): \
-             {what}; resume with the case that wrote it and its --set arguments, or run without --resume to start \
-             again",
+            "checkpoint {} was written by case {} (text {:016x}, mesh {:016x}); this run is case {} (text {:016x}, \
+             mesh {:016x}), and {what}; resume with the case that wrote it and its --set arguments, or run without \
+             --resume to start again",
             file.display(),
             self.case_path,
             self.case_hash,

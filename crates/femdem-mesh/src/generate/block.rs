@@ -52,6 +52,14 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
     let mut n = [0usize; 3];
     let mut step = [0.0; 3];
     for k in 0..3 {
+        for (name, v) in [("min", spec.min[k]), ("max", spec.max[k])] {
+            if !v.is_finite() {
+                return Err(MeshError::InvalidParameter {
+                    name,
+                    reason: format!("must be finite on every axis, got {v} on axis {k}"),
+                });
+            }
+        }
         let len = spec.max[k] - spec.min[k];
         positive(["size x", "size y", "size z"][k], len).map_err(|_| MeshError::InvalidParameter {
             name: "max",

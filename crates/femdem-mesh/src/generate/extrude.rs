@@ -288,10 +288,21 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
                 .abs()
         }
     };
+    if let Outline::Polygon(p) = &spec.outline
+        && let Some(q) = p.iter().find(|q| !(q[0].is_finite() && q[1].is_finite()))
+    {
+        return Err(MeshError::InvalidParameter {
+            name: "outline",
+            reason: format!("has a point that is not finite: {q:?}"),
+        });
+    }
     if area.is_nan() || area <= 0.0 {
         return Err(MeshError::InvalidParameter {
             name: "outline",
-            reason: format!("encloses no area ({area:e} m²): its vertices lie on one line"),
+            reason: format!(
+                "encloses no area ({area:e} m²): its vertices lie on one line, or it crosses itself so that its \
+                 parts' signed areas cancel"
+            ),
         });
     }
     let estimate = area / (3f64.sqrt() / 4.0 * h * h) * layers as f64 * 3.0;

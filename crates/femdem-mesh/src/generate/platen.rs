@@ -71,7 +71,7 @@ pub fn generate_platen(spec: &PlatenSpec, lo: [f64; 3], hi: [f64; 3]) -> Result<
     for (k, &a) in others.iter().enumerate() {
         let mid = 0.5 * (lo[a] + hi[a]);
         let w = match spec.extent[k] {
-            Some(w) => positive("width", w)?,
+            Some(w) => positive(["extent[0]", "extent[1]"][k], w)?,
             None => hi[a] - lo[a],
         };
         min[a] = mid - 0.5 * w;

@@ -155,7 +155,22 @@ fn bad_parameters_are_rejected_with_their_name() {
         layers: None,
         region: region(),
     };
-    assert!(generate_extrusion(&crossing).is_err(), "a self-intersecting outline must be refused");
+    let e = generate_extrusion(&crossing).unwrap_err().to_string();
+    assert!(e.contains("or it crosses itself"), "a self-intersecting outline must be refused: {e}");
+    let nan =
+        ExtrusionSpec { outline: Outline::Polygon(vec![[0.0, 0.0], [1.0, f64::NAN], [1.0, 1.0]]), ..crossing.clone() };
+    let e = generate_extrusion(&nan).unwrap_err().to_string();
+    assert!(e.contains("has a point that is not finite: [1.0, NaN]"), "{e}");
+    let infinite = BoxSpec {
+        min: [f64::NEG_INFINITY, 0.0, 0.0],
+        max: [1.0; 3],
+        element_size: 0.5,
+        jitter: 0.0,
+        seed: 0,
+        region: region(),
+    };
+    let e = generate_box(&infinite).unwrap_err().to_string();
+    assert!(e.contains("`min`: must be finite on every axis, got -inf on axis 0"), "{e}");
 }
 
 /// The element size of an extrusion is the in-plane edge length: the mean

@@ -66,7 +66,16 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     let gpu = match gpu {
         case::prepare::Device::Cpu => None,
         case::prepare::Device::Gpu => {
-            Some(femdem_solver::Gpu::new().map_err(|e| anyhow::anyhow!("{from}: no device for the run: {e}"))?)
+            let g = femdem_solver::Gpu::new().map_err(|e| anyhow::anyhow!("{from}: no device for the run: {e}"))?;
+            if g.is_software() {
+                observer.note(&format!(
+                    "warning: {from}: the best device found is {}, a software device on the CPU: its results are \
+                     the GPU path's, but it runs slower than the CPU path (`--device cpu`); a GPU needs its \
+                     vendor's Vulkan driver",
+                    g.adapter()
+                ));
+            }
+            Some(g)
         }
     };
     let attach = |solver: &mut Solver| -> Result<()> {

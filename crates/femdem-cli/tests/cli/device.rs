@@ -48,6 +48,10 @@ fn run(case: &str, device: &str, name: &str, extra: &[&str]) -> Option<PathBuf> 
         return None;
     }
     assert!(o.status.success(), "{case} on {device}: {stderr}");
+    // Mesa's software Vulkan (CI's device) runs correctly but slowly: said.
+    if device == "gpu" && stderr.contains("on llvmpipe") {
+        assert!(stderr.contains("is llvmpipe") && stderr.contains("a software device on the CPU"), "{stderr}");
+    }
     Some(dir)
 }
 

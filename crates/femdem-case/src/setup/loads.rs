@@ -79,6 +79,28 @@ pub fn surface_loads_on_held_nodes(case: &LoadedCase, loads: &Loads, held: &[boo
     }
 }
 
+/// Pushes onto `warnings` every load of `case` whose `stop_time` comes
+/// before its `ramp_time` ends: it stops at the fraction
+/// `stop_time / ramp_time` of its value, never reaching it.
+pub fn loads_that_stop_while_ramping(case: &LoadedCase, warnings: &mut Vec<String>) {
+    for (i, l) in case.case.loads.iter().enumerate() {
+        let (ramp_time, stop_time) = match l.get_ref() {
+            LoadSpec::Velocity { ramp_time, stop_time, .. }
+            | LoadSpec::Pressure { ramp_time, stop_time, .. }
+            | LoadSpec::Traction { ramp_time, stop_time, .. } => (*ramp_time, *stop_time),
+            LoadSpec::Fixed { .. } => continue,
+        };
+        if let Some(t) = stop_time.filter(|t| *t < ramp_time) {
+            let message = format!(
+                "loads[{i}]: `stop_time` {t:e} s comes before `ramp_time` {ramp_time:e} s ends: the load stops at \
+                 {:.3} of its value, never reaching it",
+                t / ramp_time
+            );
+            warnings.push(case.error_at(l.span(), message).to_string());
+        }
+    }
+}
+
 /// Pushes onto `warnings` every platen without `drives` in a case without
 /// `[contact]`: it can neither touch the specimen nor move any of its
 /// nodes, so it passes through it and its recorded force stays zero.

@@ -180,6 +180,16 @@ pub fn model(
     if let Some(h) = &case.case.heterogeneity {
         let spec = h.get_ref();
         let at = |msg: String| case.error_at(h.span(), format!("heterogeneity: {msg}"));
+        // The other distribution's parameter would be ignored without a word.
+        match (spec.distribution.as_str(), spec.modulus, spec.cov) {
+            ("weibull", _, Some(_)) => {
+                return Err(at("`cov` is the normal distribution's; a Weibull one takes `modulus` only".into()));
+            }
+            ("normal", Some(_), _) => {
+                return Err(at("`modulus` is the Weibull distribution's; a normal one takes `cov` only".into()));
+            }
+            _ => {}
+        }
         let dist = match spec.distribution.as_str() {
             "weibull" => Distribution::Weibull {
                 modulus: spec.modulus.ok_or_else(|| at("`modulus` is required for a Weibull distribution".into()))?,

@@ -122,23 +122,34 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
 /// duplicated: a table header given twice, or a key given twice in a table
 /// (named with the table's header).
 fn duplicate(source: &str, start: usize) -> String {
+    // A table header, not a row of a multi-line array (`[0.0, 1.0],`).
+    let header = |l: &str| {
+        let rest = l.strip_prefix("[[").or_else(|| l.strip_prefix('[')).unwrap_or("").trim_start();
+        l.starts_with('[') && rest.starts_with(|c: char| c.is_ascii_alphabetic() || matches!(c, '_' | '"' | '\''))
+    };
     let line_start = source.get(..start).and_then(|b| b.rfind('\n')).map_or(0, |i| i + 1);
     let line = source.get(line_start..).and_then(|l| l.lines().next()).unwrap_or("").trim();
-    if line.starts_with('[') {
-        let header = line.split('#').next().unwrap_or(line).trim();
-        return format!(
-            "duplicate table: `{header}` is given a second time here (give each table once; a list of tables is \
-             written `[[name]]`)"
-        );
+    if header(line) {
+        let name = line.split('#').next().unwrap_or(line).trim();
+        let hint = if name.starts_with("[[") { "" } else { "; a list of tables is written `[[name]]`" };
+        return format!("duplicate table: `{name}` is given a second time here (give each table once{hint})");
     }
-    let key = line.split('=').next().unwrap_or("").trim();
+    // The key the parser points at, where its span starts one (an inline
+    // table's key), else the line's.
+    let at = source.get(start..).unwrap_or("");
+    let key = at
+        .split(['=', '\n'])
+        .next()
+        .map(str::trim)
+        .filter(|k| !k.is_empty() && !k.contains([',', '{', '[']))
+        .unwrap_or_else(|| line.split('=').next().unwrap_or("").trim());
     let table = source
         .get(..line_start)
         .unwrap_or("")
         .lines()
         .rev()
         .map(str::trim)
-        .find(|l| l.starts_with('['))
+        .find(|l| header(l))
         .map(|h| h.split('#').next().unwrap_or(h).trim());
     match table {
         Some(t) => format!("duplicate key: `{key}` is given a second time in `{t}`"),
@@ -265,6 +276,11 @@ mod tests {
         assert_eq!(key, "duplicate key: `density` is given a second time in `[[materials]]`");
         let table = super::duplicate(t, t.rfind("[solver]").unwrap() + 1);
         assert!(table.starts_with("duplicate table: `[solver]` is given a second time here"), "{table}");
+        assert!(table.ends_with("a list of tables is written `[[name]]`)"), "{table}");
+        // A multi-line array's rows are not headers.
+        let t = "[[mesh.parts]]\npolygon = [\n  [0.0, 0.0],\n  [1.0, 0.0],\n]\nthickness = 1\nthickness = 2\n";
+        let key = super::duplicate(t, t.rfind("thickness").unwrap());
+        assert_eq!(key, "duplicate key: `thickness` is given a second time in `[[mesh.parts]]`");
     }
 
     #[test]

@@ -28,8 +28,8 @@ pub fn expected_tets(area: f64, h: f64, layers: usize) -> f64 {
 /// The warning for extrusion part `key`, meshed as `body` at element size
 /// `h` in `layers` layers of total `thickness`, when it holds more than
 /// [`FACTOR`] times the tets `h` gives: the count, the ratio, and the
-/// shortest edge with where it lies (its midpoint), which is where the
-/// features crowd. `None` for a mesh of the size asked.
+/// shortest edge in the plane with where it lies (its midpoint), which
+/// is where the features crowd. `None` for a mesh of the size asked.
 pub fn warning(key: &str, body: &TetMesh, h: f64, layers: usize, thickness: f64) -> Option<String> {
     let volume: f64 = (0..body.num_tets()).map(|t| femdem_core::tet::signed_volume(&body.tet_points(t)).abs()).sum();
     let expected = expected_tets(volume / thickness, h, layers);
@@ -37,7 +37,8 @@ pub fn warning(key: &str, body: &TetMesh, h: f64, layers: usize, thickness: f64)
     if !(expected > 0.0 && tets > FACTOR * expected) {
         return None;
     }
-    let (length, mid) = shortest_edge(body)?;
+    // In the plane: a thin layer's vertical edges say nothing of the gap.
+    let (length, mid) = shortest_edge(body, |a, b| a.z == b.z)?;
     Some(format!(
         "{key}: {} tets, {:.0} times the {:.0} that element_size = {h} m gives over this outline: the mesh \
          refines down to edges of {length:.3e} m (the shortest at x = {:.6}, y = {:.6} m), where points of the \
@@ -52,13 +53,20 @@ pub fn warning(key: &str, body: &TetMesh, h: f64, layers: usize, thickness: f64)
     ))
 }
 
-/// The length and midpoint of the shortest edge of `body`'s tets.
-fn shortest_edge(body: &TetMesh) -> Option<(f64, [f64; 3])> {
+/// The length and midpoint of the shortest edge of `body`'s tets among
+/// those whose ends `keep` accepts.
+pub(crate) fn shortest_edge(
+    body: &TetMesh,
+    keep: impl Fn(&femdem_core::Vec3, &femdem_core::Vec3) -> bool,
+) -> Option<(f64, [f64; 3])> {
     const EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
     let mut best: Option<(f64, [f64; 3])> = None;
     for t in 0..body.num_tets() {
         let p = body.tet_points(t);
         for (a, b) in EDGES {
+            if !keep(&p[a], &p[b]) {
+                continue;
+            }
             let length = (p[b] - p[a]).norm();
             if best.is_none_or(|(l, _)| length < l) {
                 let m = 0.5 * (p[a] + p[b]);

@@ -82,13 +82,18 @@ pub fn surface_loads_on_held_nodes(case: &LoadedCase, loads: &Loads, held: &[boo
 /// Pushes onto `warnings` every load of `case` whose `stop_time` comes
 /// before its `ramp_time` ends: it stops at the fraction
 /// `stop_time / ramp_time` of its value, never reaching it.
-pub fn loads_that_stop_while_ramping(case: &LoadedCase, warnings: &mut Vec<String>) {
+/// With `surfaces_held` (a static start, which applies pressures and
+/// tractions in full from t = 0) only velocity loads ramp.
+pub fn loads_that_stop_while_ramping(case: &LoadedCase, surfaces_held: bool, warnings: &mut Vec<String>) {
     for (i, l) in case.case.loads.iter().enumerate() {
         let (ramp_time, stop_time) = match l.get_ref() {
-            LoadSpec::Velocity { ramp_time, stop_time, .. }
-            | LoadSpec::Pressure { ramp_time, stop_time, .. }
-            | LoadSpec::Traction { ramp_time, stop_time, .. } => (*ramp_time, *stop_time),
-            LoadSpec::Fixed { .. } => continue,
+            LoadSpec::Velocity { ramp_time, stop_time, .. } => (*ramp_time, *stop_time),
+            LoadSpec::Pressure { ramp_time, stop_time, .. } | LoadSpec::Traction { ramp_time, stop_time, .. }
+                if !surfaces_held =>
+            {
+                (*ramp_time, *stop_time)
+            }
+            _ => continue,
         };
         if let Some(t) = stop_time.filter(|t| *t < ramp_time) {
             let message = format!(
@@ -102,11 +107,28 @@ pub fn loads_that_stop_while_ramping(case: &LoadedCase, warnings: &mut Vec<Strin
 }
 
 /// Pushes onto `warnings` every platen without `drives` in a case without
-/// `[contact]`: it can neither touch the specimen nor move any of its
-/// nodes, so it passes through it and its recorded force stays zero.
-pub fn platens_that_touch_nothing(case: &LoadedCase, warnings: &mut Vec<String>) {
+/// `[contact]` that is joined to no other region of `mesh` (no node shared
+/// with another region's tet, no joint to one, as an MSH part meshing
+/// platen and specimen together has): it can neither touch the specimen
+/// nor move any of its nodes, so it passes through it and its recorded
+/// force stays zero.
+pub fn platens_that_touch_nothing(case: &LoadedCase, mesh: &JointedMesh, warnings: &mut Vec<String>) {
+    let m = &mesh.mesh;
+    let joined = |region: &str| {
+        let Some(r) = m.region_index(region) else { return false };
+        let mut on = vec![false; m.num_nodes()];
+        for (t, tet) in m.tets.iter().enumerate() {
+            if m.tet_region[t] == r {
+                tet.iter().for_each(|&n| on[n as usize] = true);
+            }
+        }
+        let shared =
+            m.tets.iter().enumerate().any(|(t, tet)| m.tet_region[t] != r && tet.iter().any(|&n| on[n as usize]));
+        let of = |f: &femdem_mesh::FaceRef| m.tet_region[f.tet as usize] == r;
+        shared || mesh.joint_faces.iter().any(|(a, b)| of(a) != of(b))
+    };
     for (i, p) in case.case.platens.iter().enumerate() {
-        if p.get_ref().drives.is_none() {
+        if p.get_ref().drives.is_none() && !joined(&p.get_ref().region) {
             let message = format!(
                 "platens[{i}] (`{}`): without [contact] and without `drives`, the platen touches nothing: it moves \
                  through the specimen and its force stays zero; add a [contact] section, or glue specimen nodes to \

@@ -180,15 +180,15 @@ pub fn model(
     if let Some(h) = &case.case.heterogeneity {
         let spec = h.get_ref();
         let at = |msg: String| case.error_at(h.span(), format!("heterogeneity: {msg}"));
-        // The other distribution's parameter would be ignored without a word.
-        match (spec.distribution.as_str(), spec.modulus, spec.cov) {
-            ("weibull", _, Some(_)) => {
-                return Err(at("`cov` is the normal distribution's; a Weibull one takes `modulus` only".into()));
-            }
-            ("normal", Some(_), _) => {
-                return Err(at("`modulus` is the Weibull distribution's; a normal one takes `cov` only".into()));
-            }
-            _ => {}
+        // The other distribution's parameter is ignored: said (a warning,
+        // since `--set` switching the distribution cannot remove the key).
+        let stray = match (spec.distribution.as_str(), spec.modulus, spec.cov) {
+            ("weibull", _, Some(_)) => Some("`cov` is the normal distribution's, and a Weibull one ignores it"),
+            ("normal", Some(_), _) => Some("`modulus` is the Weibull distribution's, and a normal one ignores it"),
+            _ => None,
+        };
+        if let Some(message) = stray {
+            warnings.push(at(message.into()).to_string());
         }
         let dist = match spec.distribution.as_str() {
             "weibull" => Distribution::Weibull {

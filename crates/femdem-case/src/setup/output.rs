@@ -46,7 +46,7 @@ impl LoadStrain {
 /// the platens are: the centres `c_u`, `c_l` of the upper and lower
 /// drives' nodes at `x0` (the reference positions). With `a` the unit
 /// axis and `D = (c_u − c_l)·a`, the upper platen must lie on the +axis
-/// side (`D > 0`), else `F` and `ε` would both come out with the wrong
+/// side (`D > 10⁻³ |c_u − c_l|`), else `F` and `ε` would both come out with the wrong
 /// sign and `stop_below_peak` would never fire; an axis more than 30°
 /// from `c_u − c_l`, or a `length` above 1.5 `D` (the specimen lies
 /// between the platens' faces, inside their centres) or below `D / 10`
@@ -100,7 +100,9 @@ pub fn load_strain(
     let gap = c_u - c_l;
     let along = gap.dot(&axis);
     let show = |v: Vec3| format!("[{:.4e}, {:.4e}, {:.4e}]", v.x, v.y, v.z);
-    if along.is_nan() || along <= 0.0 {
+    // Refused at or below round-off of perpendicular too (1e-3 of the
+    // centres' distance: within 0.06° of it), where the sign is chance.
+    if along.is_nan() || along <= 1e-3 * gap.norm() {
         return Err(at(format!(
             "axis: the upper platen `{}` (its nodes centred at {} m) does not lie on the +axis side of the lower \
              `{}` (at {} m) along axis {}: the load and the strain would come out zero or with the wrong sign; \

@@ -184,7 +184,10 @@ fn triangulate(spec: &ExtrusionSpec, h: f64, layers: usize) -> Result<Planar, Me
     let lo = outline.iter().fold([f64::INFINITY; 2], |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
     let hi = outline.iter().fold([f64::NEG_INFINITY; 2], |l, p| [l[0].max(p[0]), l[1].max(p[1])]);
     let hull_share = ((hi[0] - lo[0]) * (hi[1] - lo[1]) / area).max(1.0);
-    let budget = (MAX_CELLS / (6.0 * layers as f64) * hull_share).min(MAX_CELLS / 3.0);
+    // Twice that, for the vertices a narrow notch draws into the hull
+    // and those on the outline; the exact count below decides a mesh that
+    // completes.
+    let budget = (2.0 * MAX_CELLS / (6.0 * layers as f64) * hull_share).min(MAX_CELLS / 3.0);
     let params = RefinementParameters::<f64>::new()
         .with_max_allowed_area(max_area)
         .with_angle_limit(AngleLimit::from_deg(25.0))
@@ -198,14 +201,17 @@ fn triangulate(spec: &ExtrusionSpec, h: f64, layers: usize) -> Result<Planar, Me
                 (((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt(), [(a.x + b.x) / 2.0, (a.y + b.y) / 2.0])
             })
             .min_by(|p, q| p.0.total_cmp(&q.0));
-        let place = shortest.map_or(String::new(), |(l, m)| {
-            format!(" (edges down to {l:.3e} m, the shortest at x = {:.6}, y = {:.6} m)", m[0], m[1])
-        });
-        return Err(MeshError::Triangulation(format!(
-            "the mesh would exceed {MAX_CELLS:e} tets: the refinement has to fill gaps far narrower than \
-             element_size = {h} m{place}, where points of the outline or traces lie that close together; move \
-             them apart or join them"
-        )));
+        let why = match shortest {
+            // Crowding, where the edges fall far below h.
+            Some((l, m)) if l < h / 5.0 => format!(
+                ": the refinement has to fill gaps far narrower than element_size = {h} m (edges down to {l:.3e} \
+                 m, the shortest at x = {:.6}, y = {:.6} m), where points of the outline or traces lie that close \
+                 together; move them apart or join them",
+                m[0], m[1]
+            ),
+            _ => format!(" at element_size = {h} m in {layers} layers; use a larger element_size"),
+        };
+        return Err(MeshError::Triangulation(format!("the mesh would exceed {MAX_CELLS:e} tets{why}")));
     }
 
     let all_points: Vec<[f64; 2]> = cdt.vertices().map(|v| [v.position().x, v.position().y]).collect();

@@ -350,8 +350,8 @@ fn a_non_finite_z0_and_a_flat_outline_are_refused() {
 /// Two traces 10⁻⁷ m apart in an outline meshed at 0.05 m: the refinement
 /// would fill the gap down to 10⁻⁷ m edges, tens of millions of vertices
 /// (the `femdem check` of such a case grew by some 70 MB/s until killed).
-/// It may add only the vertices whose triangles make the 2e8-tet limit in
-/// the extrusion's layers (here 2,000 layers, so some 17k vertices and a
+/// It may add at most twice the vertices whose triangles make the 2e8-tet limit in
+/// the extrusion's layers (here 2,000 layers, so some 33k vertices and a
 /// quick refusal), and its refusal names the place of the shortest edge:
 /// on the gap, between x = 0.2 and 0.8 at y = 0.3.
 #[test]

@@ -210,7 +210,8 @@ fn set_argument(doc: &mut Value, path: &[Step]) -> Option<String> {
 }
 
 /// The message of an error of case `path`, without its place: the path and
-/// a `:line:col` or a `--set ARG`, without the note naming `--set ARG`,
+/// a `:line:col` or a `--set ARG` (its own, and those of warnings appended
+/// to it), without the note naming `--set ARG`,
 /// and with `path` named `CASE` wherever else it appears (with any
 /// `:line:col` after it).
 fn message_of(error: &str, path: &str, set: &str) -> String {
@@ -228,7 +229,10 @@ fn message_of(error: &str, path: &str, set: &str) -> String {
         out.push_str("CASE");
         out.push_str(piece.trim_start_matches(|c: char| c == ':' || c.is_ascii_digit()));
     }
-    out
+    // A warning appended to the message (a unit slip under a step that
+    // could not be estimated) is placed by `--set ARG` where the file's
+    // is placed by `:line:col`.
+    out.replace(&format!(" --set {set}: "), " ")
 }
 
 /// One mutation of `base` (named `name`), in the file and as a `--set`

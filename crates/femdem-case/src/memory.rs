@@ -137,14 +137,7 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
                         [c.center[0] + c.radius, c.center[1] + c.radius],
                     ),
                     (None, Some(p)) if !p.is_empty() => {
-                        let area = 0.5
-                            * (0..p.len())
-                                .map(|i| {
-                                    let (a, b) = (p[i], p[(i + 1) % p.len()]);
-                                    a[0] * b[1] - b[0] * a[1]
-                                })
-                                .sum::<f64>()
-                                .abs();
+                        let area = femdem_mesh::generate::polygon_area(p);
                         let lo = p.iter().fold([f64::INFINITY; 2], |l, q| [l[0].min(q[0]), l[1].min(q[1])]);
                         let hi = p.iter().fold([f64::NEG_INFINITY; 2], |l, q| [l[0].max(q[0]), l[1].max(q[1])]);
                         (area, lo, hi)

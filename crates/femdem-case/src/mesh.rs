@@ -116,8 +116,7 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
                     }
                     _ => fail(e),
                 })?;
-                let layers =
-                    spec.layers.unwrap_or_else(|| ((spec.thickness / spec.element_size).round() as usize).max(1));
+                let layers = spec.layer_count();
                 if let Some(w) = crate::refinement::warning(&key, &body, spec.element_size, layers, spec.thickness) {
                     warnings.push(case.error_at(span.clone(), w).to_string());
                 }

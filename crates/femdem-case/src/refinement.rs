@@ -17,14 +17,6 @@ use femdem_mesh::TetMesh;
 /// smaller than `element_size` makes some 5–20 times it.
 pub const FACTOR: f64 = 2.0;
 
-/// The tets an extrusion of outline area `area` (m²) in `layers` layers
-/// gets at triangle edge `h` (m): three per prism, the outline's area
-/// over an equilateral triangle of edge `h` (the generator's own estimate,
-/// `femdem_mesh::generate::generate_extrusion`).
-pub fn expected_tets(area: f64, h: f64, layers: usize) -> f64 {
-    3.0 * layers as f64 * area / (3f64.sqrt() / 4.0 * h * h)
-}
-
 /// The warning for extrusion part `key`, meshed as `body` at element size
 /// `h` in `layers` layers of total `thickness`, when it holds more than
 /// [`FACTOR`] times the tets `h` gives: the count, the ratio, and the
@@ -32,7 +24,7 @@ pub fn expected_tets(area: f64, h: f64, layers: usize) -> f64 {
 /// is where the features crowd. `None` for a mesh of the size asked.
 pub fn warning(key: &str, body: &TetMesh, h: f64, layers: usize, thickness: f64) -> Option<String> {
     let volume: f64 = (0..body.num_tets()).map(|t| femdem_core::tet::signed_volume(&body.tet_points(t)).abs()).sum();
-    let expected = expected_tets(volume / thickness, h, layers);
+    let expected = femdem_mesh::generate::estimated_tets(volume / thickness, h, layers);
     let tets = body.num_tets() as f64;
     if !(expected > 0.0 && tets > FACTOR * expected) {
         return None;

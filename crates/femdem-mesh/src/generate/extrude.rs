@@ -103,6 +103,33 @@ fn point(p: [f64; 2]) -> Result<Point2<f64>, MeshError> {
     }
 }
 
+impl ExtrusionSpec {
+    /// The layers: `layers`, else `round(thickness / element_size)`, at
+    /// least 1.
+    pub fn layer_count(&self) -> usize {
+        self.layers.unwrap_or_else(|| ((self.thickness / self.element_size).round() as usize).max(1))
+    }
+}
+
+/// The area enclosed by the polygon `p` (shoelace formula; its absolute
+/// value, either orientation), m².
+pub fn polygon_area(p: &[[f64; 2]]) -> f64 {
+    0.5 * (0..p.len())
+        .map(|i| {
+            let (a, b) = (p[i], p[(i + 1) % p.len()]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum::<f64>()
+        .abs()
+}
+
+/// The generator's estimate of an extrusion's tets: the outline's `area`
+/// over an equilateral triangle of edge `h`, three tets per prism in each
+/// of `layers` layers.
+pub fn estimated_tets(area: f64, h: f64, layers: usize) -> f64 {
+    3.0 * layers as f64 * area / (3f64.sqrt() / 4.0 * h * h)
+}
+
 /// A planar triangulation: points, triangles (counter-clockwise), the
 /// outline's edges and the trace edges as vertex pairs `(min, max)`.
 struct Planar {
@@ -173,14 +200,7 @@ fn triangulate(spec: &ExtrusionSpec, h: f64, layers: usize) -> Result<Planar, Me
     // The vertex budget: about two triangles a vertex, three tets a
     // triangle and layer, scaled by the outline's bounding box over its
     // area (≥ the hull's share refined outside a non-convex outline).
-    let area = 0.5
-        * (0..outline.len())
-            .map(|i| {
-                let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
-                a[0] * b[1] - b[0] * a[1]
-            })
-            .sum::<f64>()
-            .abs();
+    let area = polygon_area(&outline);
     let lo = outline.iter().fold([f64::INFINITY; 2], |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
     let hi = outline.iter().fold([f64::NEG_INFINITY; 2], |l, p| [l[0].max(p[0]), l[1].max(p[1])]);
     let hull_share = ((hi[0] - lo[0]) * (hi[1] - lo[1]) / area).max(1.0);
@@ -272,27 +292,16 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
     if !spec.z0.is_finite() {
         return Err(MeshError::InvalidParameter { name: "z0", reason: format!("must be finite, got {}", spec.z0) });
     }
-    let layers = match spec.layers {
-        Some(0) => {
-            return Err(MeshError::InvalidParameter { name: "layers", reason: "must be at least 1".into() });
-        }
-        Some(n) => n,
-        None => ((thickness / h).round() as usize).max(1),
-    };
+    if spec.layers == Some(0) {
+        return Err(MeshError::InvalidParameter { name: "layers", reason: "must be at least 1".into() });
+    }
+    let layers = spec.layer_count();
     // Estimate before triangulating (a tiny element size would exhaust
     // memory in the 2D mesher first): the outline's area over the area of
     // an equilateral triangle of edge h, three tets per prism per layer.
     let area = match &spec.outline {
         Outline::Circle { radius, .. } => std::f64::consts::PI * radius * radius,
-        Outline::Polygon(p) => {
-            0.5 * (0..p.len())
-                .map(|i| {
-                    let (a, b) = (p[i], p[(i + 1) % p.len()]);
-                    a[0] * b[1] - b[0] * a[1]
-                })
-                .sum::<f64>()
-                .abs()
-        }
+        Outline::Polygon(p) => polygon_area(p),
     };
     if let Outline::Polygon(p) = &spec.outline
         && let Some(q) = p.iter().find(|q| !(q[0].is_finite() && q[1].is_finite()))
@@ -311,7 +320,7 @@ pub fn generate_extrusion(spec: &ExtrusionSpec) -> Result<TetMesh, MeshError> {
             ),
         });
     }
-    let estimate = area / (3f64.sqrt() / 4.0 * h * h) * layers as f64 * 3.0;
+    let estimate = estimated_tets(area, h, layers);
     if estimate > MAX_CELLS {
         return Err(MeshError::InvalidParameter {
             name: "element_size",

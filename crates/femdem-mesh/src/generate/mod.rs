@@ -9,7 +9,9 @@ mod prism;
 mod traces;
 
 pub use block::{BoxSpec, generate_box};
-pub use extrude::{AREA_FACTOR, ExtrusionSpec, Outline, circle_segments, generate_extrusion};
+pub use extrude::{
+    AREA_FACTOR, ExtrusionSpec, Outline, circle_segments, estimated_tets, generate_extrusion, polygon_area,
+};
 pub use platen::{PlatenSpec, Side, generate_platen};
 pub use traces::{TRACE_TOLERANCE, TraceNetwork, trace_network};
 

@@ -47,6 +47,8 @@ pub fn parse_traces(text: &str) -> Result<Vec<TracePolyline>, TraceFileError> {
     // the line and column where it started.
     let mut numbers: Vec<(f64, (usize, usize))> = Vec::new();
     let mut start = (0, 0);
+    // A byte order mark an editor put first is not part of line 1.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
         let content = raw.split('#').next().unwrap_or("");
@@ -134,6 +136,14 @@ mod tests {
         assert_eq!(t[0].points, vec![[0.0, 0.0], [1.0, 1.0]]);
         assert_eq!(t[1].points, vec![[0.5, 0.2], [0.5, 0.8], [0.7, 0.9]]);
         assert_eq!(t[1].at, vec![(4, 1), (4, 11), (5, 3)]);
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_not_part_of_the_first_line() {
+        let t = parse_traces("\u{feff}0 0 1 1\n").unwrap();
+        assert_eq!(t[0].points, vec![[0.0, 0.0], [1.0, 1.0]]);
+        assert_eq!(t[0].at[0], (1, 1));
+        assert_eq!(parse_traces("\u{feff}0 0 x 1\n").unwrap_err(), error(1, 5, "`x` is not a finite number (metres)"));
     }
 
     #[test]

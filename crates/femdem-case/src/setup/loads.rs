@@ -79,6 +79,59 @@ pub fn surface_loads_on_held_nodes(case: &LoadedCase, loads: &Loads, held: &[boo
     }
 }
 
+/// Pushes onto `warnings` every pressure or traction of `case` whose group
+/// holds faces inside `mesh` (each a face of two tets of the input mesh: a
+/// surface embedded in a volume, a pre-existing fracture, or where two
+/// parts meet). The load acts on the one side the face was given to, as a
+/// net force on the body rather than a load on its boundary.
+pub fn surface_loads_on_interior_faces(
+    case: &LoadedCase,
+    loads: &Loads,
+    mesh: &JointedMesh,
+    warnings: &mut Vec<String>,
+) {
+    // A face by the input mesh's vertices, which joint insertion split.
+    let key = |f: &[u32; 3]| {
+        let mut k = f.map(|n| mesh.origin[n as usize]);
+        k.sort_unstable();
+        k
+    };
+    let mut tets_of: std::collections::HashMap<[u32; 3], u8> =
+        loads.surfaces.iter().flat_map(|s| s.faces.iter().map(|f| (key(f), 0))).collect();
+    if tets_of.is_empty() {
+        return;
+    }
+    let tets = &mesh.mesh.tets;
+    for t in 0..tets.len() {
+        for local in 0..4 {
+            let face = femdem_mesh::FaceRef { tet: t as u32, local }.nodes(tets);
+            if let Some(n) = tets_of.get_mut(&key(&face)) {
+                *n = n.saturating_add(1);
+            }
+        }
+    }
+    let specs = case.case.loads.iter().enumerate().filter_map(|(i, l)| match l.get_ref() {
+        LoadSpec::Pressure { .. } => Some((i, l, "pressure")),
+        LoadSpec::Traction { .. } => Some((i, l, "traction")),
+        _ => None,
+    });
+    for ((i, l, what), surface) in specs.zip(&loads.surfaces) {
+        let inside = surface.faces.iter().filter(|f| tets_of[&key(f)] > 1).count();
+        if inside > 0 {
+            let message = format!(
+                "loads[{i}]: {inside} of the {} faces of `{}` lie inside the mesh (each a face of two tets: a \
+                 surface embedded in a volume, a pre-existing fracture, or where two parts meet): the {what} acts \
+                 on one side of each only (the tet the face belongs to; in an MSH file, the one whose outward \
+                 order agrees with the triangle's), a net force on the body rather than a load on its boundary; \
+                 load only outer surfaces, unless one side is meant",
+                surface.faces.len(),
+                surface.name
+            );
+            warnings.push(case.error_at(l.span(), message).to_string());
+        }
+    }
+}
+
 /// Pushes onto `warnings` every load of `case` whose `stop_time` comes
 /// before its `ramp_time` ends: it stops at the fraction
 /// `stop_time / ramp_time` of its value, never reaching it.

@@ -8,7 +8,10 @@ mod output;
 pub mod plausible;
 
 pub use contact::{ContactCheck, activation_name, contact, contact_check, contact_noting};
-pub use loads::{loads, loads_that_stop_while_ramping, platens_that_touch_nothing, surface_loads_on_held_nodes};
+pub use loads::{
+    loads, loads_that_stop_while_ramping, platens_that_touch_nothing, surface_loads_on_held_nodes,
+    surface_loads_on_interior_faces,
+};
 pub use materials::{DEFAULT_PENALTY_FACTOR, behaviours, model};
 pub use output::{
     CHECKPOINT_WALL_DEFAULT, CheckpointSettings, FIELDS, LoadStrain, OutputSettings, check_dir, compression,

@@ -413,6 +413,19 @@ fn platens_and_loads_that_act_on_nothing_are_warnings() {
     assert!(!String::from_utf8_lossy(&with_contact.stderr).contains("touches nothing"));
 }
 
+/// A pressure on a physical surface inside the mesh (the interface of the
+/// fixture's inclusion, 66 faces each shared by a matrix and an inclusion
+/// tet) pushes one side of each face only: a warning at the load's table,
+/// counting those faces. The same load on the outer `top` says nothing.
+#[test]
+fn a_pressure_on_faces_inside_the_mesh_is_a_warning() {
+    let case = "crates/femdem-cli/tests/cases/pressure_on_a_surface.toml";
+    let (line, plain) = warning_of(case, "loads.1.group=\"block.inclusion_boundary\"", "lie inside the mesh");
+    assert!(line.contains("pressure_on_a_surface.toml:42:1: loads[1]: 66 of the 66 faces of `block.inclusion_boundary`"), "{line}");
+    assert!(line.contains("the pressure acts on one side of each only"), "{line}");
+    assert!(!plain, "a pressure on the outer surface warned");
+}
+
 /// A load whose `stop_time` comes before its ramp ends never reaches its
 /// value (the elastic bar's piston, ramped over 2 µs, stopped at 1 µs:
 /// half of it): a warning at its table. A Weibull heterogeneity given a

@@ -26,8 +26,13 @@ pub(super) struct Lines<'a> {
 }
 
 impl<'a> Lines<'a> {
+    /// Lines of `bytes`, after a UTF-8 byte order mark if the file starts
+    /// with one (an editor's, not Gmsh's): byte offsets still count it.
     pub(super) fn new(bytes: &'a [u8]) -> Self {
-        Lines { rest: bytes, line: 0, offset: 0, line_start: 0, bytes: false }
+        const BOM: &[u8] = b"\xEF\xBB\xBF";
+        let rest = bytes.strip_prefix(BOM).unwrap_or(bytes);
+        let offset = bytes.len() - rest.len();
+        Lines { rest, line: 0, offset, line_start: offset, bytes: false }
     }
 
     /// From here on, places are byte offsets: the file is binary.

@@ -446,6 +446,18 @@ fn crlf_line_ends_are_accepted() {
     assert_eq!(read_msh(crlf.as_bytes()).unwrap(), expected_small());
 }
 
+#[test]
+fn a_byte_order_mark_an_editor_wrote_is_skipped() {
+    let bom = format!("\u{feff}{SMALL}");
+    assert_eq!(read_msh(bom.as_bytes()).unwrap(), expected_small());
+    // Lines are still counted from the file's first.
+    let (bad, n) = small_with("0 1 0", Some("0 x 0"));
+    let plain = read_msh(bad.as_bytes()).unwrap_err().to_string();
+    let marked = read_msh(format!("\u{feff}{bad}").as_bytes()).unwrap_err().to_string();
+    assert_eq!(plain, marked);
+    assert!(plain.contains(&format!("line {n}")), "{plain}");
+}
+
 // -------------------------------------------------------- malformed files
 
 /// 1-based number of the first line of `text` equal to `line`.

@@ -21,6 +21,7 @@ pub mod format;
 mod fuzz;
 pub mod memory;
 pub mod mesh;
+pub mod numbers;
 pub mod overrides;
 pub mod placement;
 pub mod prepare;
@@ -51,9 +52,10 @@ pub struct CaseError {
 
 impl fmt::Display for CaseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let message = numbers::shortened(&self.message);
         match self.at {
-            Some((l, c)) => write!(f, "{}:{l}:{c}: {}", self.path.display(), self.message),
-            None => write!(f, "{}: {}", self.path.display(), self.message),
+            Some((l, c)) => write!(f, "{}:{l}:{c}: {message}", self.path.display()),
+            None => write!(f, "{}: {message}", self.path.display()),
         }
     }
 }

@@ -421,7 +421,10 @@ fn platens_and_loads_that_act_on_nothing_are_warnings() {
 fn a_pressure_on_faces_inside_the_mesh_is_a_warning() {
     let case = "crates/femdem-cli/tests/cases/pressure_on_a_surface.toml";
     let (line, plain) = warning_of(case, "loads.1.group=\"block.inclusion_boundary\"", "lie inside the mesh");
-    assert!(line.contains("pressure_on_a_surface.toml:42:1: loads[1]: 66 of the 66 faces of `block.inclusion_boundary`"), "{line}");
+    assert!(
+        line.contains("pressure_on_a_surface.toml:42:1: loads[1]: 66 of the 66 faces of `block.inclusion_boundary`"),
+        "{line}"
+    );
     assert!(line.contains("the pressure acts on one side of each only"), "{line}");
     assert!(!plain, "a pressure on the outer surface warned");
 }

@@ -72,9 +72,17 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
     // box, and their integer product would wrap to a small number (it did:
     // max = [1e300, 1e300, 1] made 1 × 6 tets pass, then pushed vertices until memory ran out).
     if n.iter().map(|&c| c as f64).product::<f64>() * 6.0 > MAX_CELLS {
+        // The counts from the lengths, unsaturated.
+        let c = |k: usize| ((spec.max[k] - spec.min[k]) / h).round().max(1.0);
         return Err(MeshError::InvalidParameter {
             name: "element_size",
-            reason: format!("{h} m would make {}×{}×{}×6 tets; refuse above {MAX_CELLS:e}", n[0], n[1], n[2]),
+            reason: format!(
+                "{h:e} m would make {:.3e} tets ({:.3e}×{:.3e}×{:.3e} cells of 6); refuse above {MAX_CELLS:e}",
+                c(0) * c(1) * c(2) * 6.0,
+                c(0),
+                c(1),
+                c(2)
+            ),
         });
     }
     let [nx, ny, nz] = n;

@@ -22,6 +22,7 @@ mod fuzz;
 pub mod memory;
 pub mod mesh;
 pub mod numbers;
+pub mod outline;
 pub mod overrides;
 pub mod placement;
 pub mod prepare;

@@ -116,6 +116,11 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
                     }
                     _ => fail(e),
                 })?;
+                if let Outline::Circle { radius, .. } = spec.outline
+                    && let Some(w) = crate::outline::circle_warning(&key, radius, spec.element_size)
+                {
+                    warnings.push(case.error_at(span.clone(), w).to_string());
+                }
                 let layers = spec.layer_count();
                 if let Some(w) = crate::refinement::warning(&key, &body, spec.element_size, layers, spec.thickness) {
                     warnings.push(case.error_at(span.clone(), w).to_string());

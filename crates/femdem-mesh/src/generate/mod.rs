@@ -3,14 +3,17 @@
 //! for bit, and every tet it makes has positive volume.
 
 mod block;
+mod clearance;
 mod extrude;
 mod platen;
 mod prism;
 mod traces;
 
 pub use block::{BoxSpec, generate_box};
+pub use clearance::{Feature, NearMiss, closest_approach};
 pub use extrude::{
-    AREA_FACTOR, ExtrusionSpec, Outline, circle_segments, estimated_tets, generate_extrusion, polygon_area,
+    AREA_FACTOR, ExtrusionSpec, MIN_CLEARANCE, Outline, circle_segments, estimated_tets, generate_extrusion,
+    polygon_area,
 };
 pub use platen::{PlatenSpec, Side, generate_platen};
 pub use traces::{TRACE_TOLERANCE, TraceNetwork, trace_network};

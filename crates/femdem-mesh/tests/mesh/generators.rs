@@ -347,10 +347,10 @@ fn a_non_finite_z0_and_a_flat_outline_are_refused() {
     );
 }
 
-/// Two traces 10⁻⁷ m apart in an outline meshed at 0.05 m: the refinement
-/// would fill the gap down to 10⁻⁷ m edges, tens of millions of vertices
-/// (the `femdem check` of such a case grew by some 70 MB/s until killed).
-/// It may add at most twice the vertices whose triangles make the 2e8-tet limit in
+/// Two traces 2·10⁻⁵ m apart in an outline meshed at 0.05 m (above the
+/// clearance refused before meshing, 5·10⁻⁶ m): the refinement would fill
+/// the gap down to edges of its width, some 10⁵ vertices along it. It may
+/// add at most twice the vertices whose triangles make the 2e8-tet limit in
 /// the extrusion's layers (here 2,000 layers, so some 33k vertices and a
 /// quick refusal), and its refusal names the place of the shortest edge:
 /// on the gap, between x = 0.2 and 0.8 at y = 0.3.
@@ -358,7 +358,7 @@ fn a_non_finite_z0_and_a_flat_outline_are_refused() {
 fn crowded_traces_are_refused_at_the_tet_limit_naming_the_gap() {
     let spec = ExtrusionSpec {
         outline: Outline::Polygon(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 0.6], [0.0, 0.6]]),
-        traces: vec![vec![[0.2, 0.3], [0.8, 0.3]], vec![[0.2, 0.3 + 1e-7], [0.8, 0.3 + 1e-7]]],
+        traces: vec![vec![[0.2, 0.3], [0.8, 0.3]], vec![[0.2, 0.3 + 2e-5], [0.8, 0.3 + 2e-5]]],
         z0: 0.0,
         thickness: 1.0,
         element_size: 0.05,
@@ -371,5 +371,28 @@ fn crowded_traces_are_refused_at_the_tet_limit_naming_the_gap() {
         let from = e.find(&format!("{name} = ")).unwrap() + name.len() + 3;
         e[from..].split([',', ' ']).next().unwrap().parse().unwrap()
     };
-    assert!((0.2..=0.8).contains(&at("x")) && (at("y") - 0.3).abs() < 1e-6, "{e}");
+    assert!((0.2..=0.8).contains(&at("x")) && (at("y") - 0.3).abs() < 1e-4, "{e}");
+}
+
+/// A trace 10⁻⁷ m from the outline along 0.6 m of it, at 0.05 m in 4
+/// layers: meshing it took three minutes and 5.6 GB and ended in a
+/// degenerate tet. It is refused before the refinement, naming the point
+/// and the gap; a trace 10⁻⁵ m off (above 10⁻⁴ × 0.05 m; 5 cm long, to
+/// keep the test quick) meshes.
+#[test]
+fn features_closer_than_the_clearance_are_refused_before_meshing() {
+    let spec = |gap: f64, end: f64| ExtrusionSpec {
+        outline: Outline::Polygon(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 0.6], [0.0, 0.6]]),
+        traces: vec![vec![[0.2, gap], [end, gap]]],
+        z0: 0.0,
+        thickness: 0.2,
+        element_size: 0.05,
+        layers: None,
+        region: region(),
+    };
+    let e = generate_extrusion(&spec(1e-7, 0.8)).unwrap_err().to_string();
+    assert!(e.contains("a point of a trace at (0.200000000, 0.000000100) m lies 1.000e-7 m from the outline"), "{e}");
+    assert!(e.contains("closer than 1e-4 of the element size or layer height (5.000e-6 m)"), "{e}");
+    let mesh = generate_extrusion(&spec(1e-5, 0.25)).unwrap();
+    femdem_mesh::check::check(&mesh).unwrap();
 }

@@ -215,6 +215,8 @@ fn set_argument(doc: &mut Value, path: &[Step]) -> Option<String> {
 /// and with `path` named `CASE` wherever else it appears (with any
 /// `:line:col` after it).
 fn message_of(error: &str, path: &str, set: &str) -> String {
+    // The message shows the `--set` argument as it shows any long number.
+    let set = &*crate::numbers::shortened(set);
     let rest = error.strip_prefix(path).unwrap_or(error);
     let rest = rest.trim_start_matches(|c: char| c == ':' || c.is_ascii_digit()).trim_start();
     let rest = rest.strip_prefix(&format!("--set {set}: ")).unwrap_or(rest);

@@ -140,13 +140,16 @@ pub fn estimated_tets(area: f64, h: f64, layers: usize) -> f64 {
 pub const MIN_CLEARANCE: f64 = 1e-4;
 
 /// Refuses a network whose features come closer than [`MIN_CLEARANCE`]
-/// times `max(h, dz)` without meeting, naming where.
+/// times `max(h, dz)` without meeting, naming where. That length is at
+/// most the outline's bounding-box diagonal `D` (an element size above
+/// the outline makes elements of the outline's size).
 fn clear_enough(network: &TraceNetwork, h: f64, dz: f64) -> Result<(), MeshError> {
     let lo = network.outline.iter().fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
     let hi = network.outline.iter().fold([f64::NEG_INFINITY; 2], |m, p| [m[0].max(p[0]), m[1].max(p[1])]);
-    let same = super::TRACE_TOLERANCE * ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
-    let below = MIN_CLEARANCE * h.max(dz);
-    match super::closest_approach(network, same, below, h) {
+    let diagonal = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
+    let same = super::TRACE_TOLERANCE * diagonal;
+    let below = MIN_CLEARANCE * h.max(dz).min(diagonal);
+    match super::closest_approach(network, same, below, h.min(diagonal)) {
         None => Ok(()),
         Some(m) => Err(MeshError::Triangulation(format!(
             "a point of {} at ({:.9}, {:.9}) m lies {:.3e} m from {} (nearest at ({:.9}, {:.9}) m), closer than \

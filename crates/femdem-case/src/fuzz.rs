@@ -223,6 +223,18 @@ fn message_of(error: &str, path: &str, set: &str) -> String {
     // The file's message names the value's key, which the `--set` names.
     let key = set.split('=').next().and_then(|k| k.rsplit('.').next()).unwrap_or_default();
     let rest = rest.strip_prefix(&format!("`{key}`: ")).unwrap_or(rest);
+    // An error at a table (inside a `kind`-tagged one, say) names the
+    // table's path, which the `--set` key path holds.
+    let tables = set.split('=').next().unwrap_or_default().split('.').scan(String::new(), |path, part| {
+        match part.parse::<usize>() {
+            Ok(i) => path.push_str(&format!("[{i}]")),
+            Err(_) if path.is_empty() => path.push_str(part),
+            Err(_) => path.push_str(&format!(".{part}")),
+        }
+        Some(path.clone())
+    });
+    let tables: Vec<String> = tables.collect();
+    let rest = tables.iter().rev().find_map(|t| rest.strip_prefix(&format!("{t}: "))).unwrap_or(rest);
     let rest = rest.split(&format!(" (this table also has --set {set})")).next().unwrap_or(rest);
     let mut out = String::new();
     let mut pieces = rest.split(path);

@@ -121,15 +121,116 @@ fn key_offset(source: &str, span: Range<usize>, message: &str) -> usize {
     span.start
 }
 
+/// Whether trimmed line `l` is a table header, not a row of a multi-line
+/// array (`[0.0, 1.0],`).
+fn header(l: &str) -> bool {
+    let rest = l.strip_prefix("[[").or_else(|| l.strip_prefix('[')).unwrap_or("").trim_start();
+    l.starts_with('[') && rest.starts_with(|c: char| c.is_ascii_alphabetic() || matches!(c, '_' | '"' | '\''))
+}
+
+/// The key path of the table whose header starts byte range `span` of
+/// `source`: `solver`, `loads[3]` for the fourth `[[loads]]`,
+/// `materials[0].cohesion` for a table inside a list's element, and so on
+/// down nested lists (`mesh.regions[0].joints_within[1]`). Serde reports a
+/// missing key at the table's header. `None` where that line is no header,
+/// or where the span runs on past the next element of the same list
+/// (serde gave the whole list: naming its first element would mislead).
+fn table_path(source: &str, span: Range<usize>) -> Option<String> {
+    let line_start = source.get(..span.start)?.rfind('\n').map_or(0, |i| i + 1);
+    let line = source.get(line_start..)?.lines().next()?.trim();
+    if !header(line) {
+        return None;
+    }
+    // A header's list flag and dotted path.
+    let name = |l: &str| -> Option<(bool, String)> {
+        let h = l.split('#').next()?.trim();
+        let inner = h.trim_start_matches('[').split(']').next()?;
+        Some((h.starts_with("[["), inner.split('.').map(str::trim).collect::<Vec<_>>().join(".")))
+    };
+    // Every header up to this one's line, with its line's start.
+    let mut headers = Vec::new();
+    let mut at = 0;
+    for l in source[..line_start].split_inclusive('\n') {
+        if header(l.trim()) {
+            headers.extend(name(l.trim()));
+        }
+        at += l.len();
+    }
+    let (list, path) = name(line)?;
+    if list {
+        let after = source.get(span.start + line.len()..span.end).unwrap_or("");
+        if after.lines().map(str::trim).filter(|l| header(l)).filter_map(name).any(|h| h == (true, path.clone())) {
+            return None;
+        }
+    }
+    debug_assert_eq!(at, line_start);
+    headers.push((list, path));
+    Some(indexed(&headers, headers.len() - 1))
+}
+
+/// The path of header `k` of `headers` (list flag and dotted path, in file
+/// order) with the index of each list element it lies in: the innermost
+/// list before it whose path begins its own gives the prefix, and a list's
+/// index counts its headers since that enclosing element began.
+fn indexed(headers: &[(bool, String)], k: usize) -> String {
+    let (list, path) = &headers[k];
+    let parent = headers[..k].iter().rposition(|(l, q)| *l && path.starts_with(&format!("{q}.")));
+    let head = match parent {
+        Some(j) => format!("{}{}", indexed(headers, j), &path[headers[j].1.len()..]),
+        None => path.clone(),
+    };
+    if !list {
+        return head;
+    }
+    let since = parent.map_or(0, |j| j + 1);
+    let index = headers[since..k].iter().filter(|(l, q)| *l && q == path).count();
+    format!("{head}[{index}]")
+}
+
+/// The element of a `[[list]]` that `error` comes from, where serde
+/// reports it at the list's first header (an error inside a `kind`-tagged
+/// table, such as a load or a part, loses its own place): each element in
+/// turn is copied over all the others, and the first whose copies give the
+/// same message is the one. Its span, or `None` where the error is not at
+/// a list's header or the list has one element.
+fn element_at_fault(
+    source: &str,
+    document: &toml::Spanned<toml::de::DeTable<'_>>,
+    error: &toml::de::Error,
+) -> Option<Range<usize>> {
+    use toml::de::DeValue;
+    let span = error.span()?;
+    let line = source.get(span.start..)?.lines().next()?.trim();
+    let path = line.strip_prefix("[[")?.split(']').next()?;
+    let keys: Vec<&str> = path.split('.').map(str::trim).collect();
+    // The list at `keys` in `value`.
+    fn list<'a, 'i>(value: &'a mut DeValue<'i>, keys: &[&str]) -> Option<&'a mut [toml::Spanned<DeValue<'i>>]> {
+        match (value, keys) {
+            (DeValue::Array(a), []) => Some(&mut **a),
+            (DeValue::Table(t), [k, rest @ ..]) => list(t.get_mut(*k)?.get_mut(), rest),
+            _ => None,
+        }
+    }
+    let root = || DeValue::Table(document.get_ref().clone());
+    let mut original = root();
+    let elements = list(&mut original, &keys)?;
+    if elements.len() < 2 {
+        return None;
+    }
+    let message = error.message().trim_end();
+    elements.iter().find_map(|element| {
+        let mut copy = root();
+        list(&mut copy, &keys)?.iter_mut().for_each(|e| *e = element.clone());
+        let DeValue::Table(t) = copy else { return None };
+        let again = Case::deserialize(toml::de::Deserializer::from(toml::Spanned::new(document.span(), t)));
+        again.err().filter(|e| e.message().trim_end() == message).map(|_| element.span())
+    })
+}
+
 /// The parser's "duplicate key" at byte `start` of `source`, with what is
 /// duplicated: a table header given twice, or a key given twice in a table
 /// (named with the table's header).
 fn duplicate(source: &str, start: usize) -> String {
-    // A table header, not a row of a multi-line array (`[0.0, 1.0],`).
-    let header = |l: &str| {
-        let rest = l.strip_prefix("[[").or_else(|| l.strip_prefix('[')).unwrap_or("").trim_start();
-        l.starts_with('[') && rest.starts_with(|c: char| c.is_ascii_alphabetic() || matches!(c, '_' | '"' | '\''))
-    };
     let line_start = source.get(..start).and_then(|b| b.rfind('\n')).map_or(0, |i| i + 1);
     let line = source.get(line_start..).and_then(|l| l.lines().next()).unwrap_or("").trim();
     if header(line) {
@@ -213,12 +314,14 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
             CaseError { path: path.to_path_buf(), at, message }
         })?;
         let (document, applied) = overrides.apply(document).map_err(error)?;
-        (Case::deserialize(toml::de::Deserializer::from(document)), applied)
+        let case = Case::deserialize(toml::de::Deserializer::from(document.clone()));
+        let element = case.as_ref().err().and_then(|e| element_at_fault(&source, &document, e));
+        (case.map_err(|e| (e, element)), applied)
     };
     overrides.record(applied);
-    let case = case.map_err(|e| {
+    let case = case.map_err(|(e, element)| {
         let message = e.message().trim_end().to_string();
-        let Some(s) = e.span() else { return error(message) };
+        let Some(s) = element.or_else(|| e.span()) else { return error(message) };
         if overrides.blame(&s, &message).is_some() {
             return located(path, &source, &overrides, s, message);
         }
@@ -236,9 +339,11 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
             }
         }
         let at = Some(line_col(&source, key_offset(&source, s.clone(), &message)));
-        // Serde reports a bad value at the value alone: name its key.
-        let message = match value_key(&source, s.start) {
-            Some(key) if !message.contains(&format!("`{key}`")) => format!("`{key}`: {message}"),
+        // Serde reports a bad value at the value alone: name its key; and a
+        // missing key at its table's header: name the table.
+        let message = match (value_key(&source, s.start), table_path(&source, s.clone())) {
+            (Some(key), _) if !message.contains(&format!("`{key}`")) => format!("`{key}`: {message}"),
+            (None, Some(table)) => format!("{table}: {message}"),
             _ => message,
         };
         CaseError { path: path.to_path_buf(), at, message: overrides.noted(&s, message) }
@@ -284,6 +389,26 @@ mod tests {
         let t = "[[mesh.parts]]\npolygon = [\n  [0.0, 0.0],\n  [1.0, 0.0],\n]\nthickness = 1\nthickness = 2\n";
         let key = super::duplicate(t, t.rfind("thickness").unwrap());
         assert_eq!(key, "duplicate key: `thickness` is given a second time in `[[mesh.parts]]`");
+    }
+
+    #[test]
+    fn a_table_is_named_by_its_path_and_index() {
+        let t = "[solver] # s\n[[loads]]\na = 1\n[[mesh.parts]]\n[[mesh.parts.zones]]\n[[mesh.parts]]\n\
+                 [[mesh.parts.zones]]\n[[mesh.parts.zones]]\n[[ loads ]]\nb = [\n  [1, 2],\n]\n[loads.nodes]\n";
+        let start = |needle: &str, n: usize| t.match_indices(needle).nth(n).unwrap().0;
+        let at = |needle: &str, n: usize| super::table_path(t, start(needle, n)..start(needle, n) + needle.len());
+        assert_eq!(at("[solver]", 0).as_deref(), Some("solver"));
+        assert_eq!(at("[[loads]]", 0).as_deref(), Some("loads[0]"));
+        assert_eq!(at("[[ loads ]]", 0).as_deref(), Some("loads[1]"));
+        assert_eq!(at("[[mesh.parts]]", 1).as_deref(), Some("mesh.parts[1]"));
+        assert_eq!(at("[[mesh.parts.zones]]", 0).as_deref(), Some("mesh.parts[0].zones[0]"));
+        assert_eq!(at("[[mesh.parts.zones]]", 2).as_deref(), Some("mesh.parts[1].zones[1]"));
+        assert_eq!(at("[loads.nodes]", 0).as_deref(), Some("loads[1].nodes"));
+        assert_eq!(at("a = 1", 0), None);
+        assert_eq!(at("[1, 2]", 0), None);
+        // A span over the whole list names none of its elements.
+        let all = start("[[loads]]", 0)..start("[[ loads ]]", 0) + 12;
+        assert_eq!(super::table_path(t, all), None);
     }
 
     #[test]

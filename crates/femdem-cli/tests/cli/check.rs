@@ -245,6 +245,8 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ),
         ("pressure_on_quads.toml", ":24:1:", "loads[1]: `group` `cube.top` has no faces, so the pressure would act"),
         ("fixed_platen.toml", ":63:1:", "loads[0]: `nodes` selects 24 node(s) that platen `platen_bottom` already"),
+        ("bad_value_in_second_load.toml", ":24:1:", "loads[1]: invalid type: integer `7`, expected a string"),
+        ("load_without_kind.toml", ":26:1:", "loads[2]: missing field `kind`"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");

@@ -110,7 +110,20 @@ struct Plot {
 }
 
 impl Plot {
+    /// Draws the figure; points that are not finite (a NaN or ±inf in the
+    /// history, from a run stopped by the guard, say) cannot be drawn and
+    /// are named in a warning.
     fn draw(&self, path: &Path) -> Result<()> {
+        for (name, points) in &self.series {
+            let bad = points.iter().filter(|(x, y)| !(x.is_finite() && y.is_finite())).count();
+            if bad > 0 {
+                eprintln!(
+                    "warning: {}: {bad} of the {} points of `{name}` are not finite (NaN or ±inf) and are not drawn",
+                    path.display(),
+                    points.len()
+                );
+            }
+        }
         LineChart::new(&self.title, &self.x, &self.y).scaled().draw(path, &self.series)?;
         Ok(())
     }

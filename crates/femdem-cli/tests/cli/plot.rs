@@ -105,3 +105,20 @@ fn a_missing_or_empty_history_is_refused_naming_the_path() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("history.csv is empty"), "{err}");
 }
+
+/// A history with a NaN (a run the guard stopped) is drawn without it,
+/// and the plot says how many points of which column it left out.
+#[test]
+fn points_that_are_not_finite_are_named_in_a_warning() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot-nan");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("history.csv"), "# case: x.toml\ntime,kinetic,tet_elastic\n0,0,0\n1e-6,NaN,1\n2e-6,1,inf\n3e-6,2,2\n")
+        .unwrap();
+    let o = femdem(&["plot", dir.to_str().unwrap(), "--y", "kinetic", "--y", "tet_elastic"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("1 of the 4 points of `kinetic` are not finite (NaN or ±inf) and are not drawn"), "{err}");
+    assert!(err.contains("1 of the 4 points of `tet_elastic` are not finite"), "{err}");
+    assert!(dir.join("plot_kinetic-tet_elastic_vs_time.png").is_file());
+}

@@ -24,6 +24,12 @@ where
     v.try_into().map_err(|_| serde::de::Error::invalid_length(n, &format!("an array of {N}").as_str()))
 }
 
+/// The keys whose value is a list of tables (`[[loads]]`), wherever they
+/// sit: written with a single `[…]`, or another key with `[[…]]`, they are
+/// the slip [`crate::load`] names.
+pub const TABLE_LISTS: &[&str] =
+    &["materials", "platens", "loads", "pairs", "probes", "regions", "parts", "joints_within"];
+
 /// A whole case file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -131,14 +131,17 @@ fn header(l: &str) -> bool {
 /// The key path of the table whose header starts byte range `span` of
 /// `source`: `solver`, `loads[3]` for the fourth `[[loads]]`,
 /// `materials[0].cohesion` for a table inside a list's element, and so on
-/// down nested lists (`mesh.regions[0].joints_within[1]`). Serde reports a
-/// missing key at the table's header. `None` where that line is no header,
-/// or where the span runs on past the next element of the same list
-/// (serde gave the whole list: naming its first element would mislead).
-fn table_path(source: &str, span: Range<usize>) -> Option<String> {
+/// down nested lists (`mesh.regions[0].joints_within[1]`); with `whole`,
+/// a list's path without the index of the element. Serde reports a
+/// missing key at the table's header (the span starts at its first `[`).
+/// `None` where the span does not start a header: the root's (empty),
+/// a table made implicitly by a longer header (the span of its key in
+/// that header), a misspelt table's unknown key.
+fn table_path(source: &str, span: Range<usize>, whole: bool) -> Option<String> {
     let line_start = source.get(..span.start)?.rfind('\n').map_or(0, |i| i + 1);
-    let line = source.get(line_start..)?.lines().next()?.trim();
-    if !header(line) {
+    let raw = source.get(line_start..)?.lines().next()?;
+    let line = raw.trim();
+    if span.is_empty() || span.start != line_start + (raw.len() - raw.trim_start().len()) || !header(line) {
         return None;
     }
     // A header's list flag and dotted path.
@@ -147,24 +150,11 @@ fn table_path(source: &str, span: Range<usize>) -> Option<String> {
         let inner = h.trim_start_matches('[').split(']').next()?;
         Some((h.starts_with("[["), inner.split('.').map(str::trim).collect::<Vec<_>>().join(".")))
     };
-    // Every header up to this one's line, with its line's start.
-    let mut headers = Vec::new();
-    let mut at = 0;
-    for l in source[..line_start].split_inclusive('\n') {
-        if header(l.trim()) {
-            headers.extend(name(l.trim()));
-        }
-        at += l.len();
-    }
+    // Every header before this one's line.
+    let mut headers: Vec<(bool, String)> =
+        source[..line_start].lines().map(str::trim).filter(|l| header(l)).filter_map(name).collect();
     let (list, path) = name(line)?;
-    if list {
-        let after = source.get(span.start + line.len()..span.end).unwrap_or("");
-        if after.lines().map(str::trim).filter(|l| header(l)).filter_map(name).any(|h| h == (true, path.clone())) {
-            return None;
-        }
-    }
-    debug_assert_eq!(at, line_start);
-    headers.push((list, path));
+    headers.push((list && !whole, path));
     Some(indexed(&headers, headers.len() - 1))
 }
 
@@ -199,7 +189,7 @@ fn element_at_fault(
     error: &toml::de::Error,
 ) -> Option<Range<usize>> {
     use toml::de::DeValue;
-    let span = error.span()?;
+    let span = error.span().filter(|s| !s.is_empty())?;
     let line = source.get(span.start..)?.lines().next()?.trim();
     let path = line.strip_prefix("[[")?.split(']').next()?;
     let keys: Vec<&str> = path.split('.').map(str::trim).collect();
@@ -329,8 +319,7 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
             // Serde reports some errors at a table, naming no key: they
             // are the overrides' if the file alone does not give them.
             let alone = toml::from_str::<Case>(&source);
-            let same =
-                alone.as_ref().err().is_some_and(|a| a.message().trim_end() == message && a.span() == Some(s.clone()));
+            let same = alone.as_ref().err().is_some_and(|a| a.message().trim_end() == message && a.span() == e.span());
             if !same {
                 let near = overrides.in_table(&s);
                 let args =
@@ -341,8 +330,20 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
         let at = Some(line_col(&source, key_offset(&source, s.clone(), &message)));
         // Serde reports a bad value at the value alone: name its key; and a
         // missing key at its table's header: name the table.
-        let message = match (value_key(&source, s.start), table_path(&source, s.clone())) {
+        // A list given where one table is wanted (`[[solver]]`) is the list's
+        // error, not its first element's.
+        // (A `[[name]]` header whose key takes one table, whatever serde
+        // then says of it.)
+        let whole = source.get(s.start..).and_then(|l| l.lines().next()).is_some_and(|l| {
+            let l = l.trim();
+            let path = l.trim_start_matches('[').split(']').next().unwrap_or("");
+            l.starts_with("[[") && !format::TABLE_LISTS.contains(&path.rsplit('.').next().unwrap_or("").trim())
+        });
+        let message = match (value_key(&source, s.start), table_path(&source, s.clone(), whole)) {
             (Some(key), _) if !message.contains(&format!("`{key}`")) => format!("`{key}`: {message}"),
+            (None, Some(table)) if whole => {
+                format!("{table}: {message} (`[[{table}]]` starts a list of tables; one table is written `[{table}]`)")
+            }
             (None, Some(table)) => format!("{table}: {message}"),
             _ => message,
         };
@@ -396,7 +397,8 @@ mod tests {
         let t = "[solver] # s\n[[loads]]\na = 1\n[[mesh.parts]]\n[[mesh.parts.zones]]\n[[mesh.parts]]\n\
                  [[mesh.parts.zones]]\n[[mesh.parts.zones]]\n[[ loads ]]\nb = [\n  [1, 2],\n]\n[loads.nodes]\n";
         let start = |needle: &str, n: usize| t.match_indices(needle).nth(n).unwrap().0;
-        let at = |needle: &str, n: usize| super::table_path(t, start(needle, n)..start(needle, n) + needle.len());
+        let at =
+            |needle: &str, n: usize| super::table_path(t, start(needle, n)..start(needle, n) + needle.len(), false);
         assert_eq!(at("[solver]", 0).as_deref(), Some("solver"));
         assert_eq!(at("[[loads]]", 0).as_deref(), Some("loads[0]"));
         assert_eq!(at("[[ loads ]]", 0).as_deref(), Some("loads[1]"));
@@ -406,9 +408,14 @@ mod tests {
         assert_eq!(at("[loads.nodes]", 0).as_deref(), Some("loads[1].nodes"));
         assert_eq!(at("a = 1", 0), None);
         assert_eq!(at("[1, 2]", 0), None);
-        // A span over the whole list names none of its elements.
-        let all = start("[[loads]]", 0)..start("[[ loads ]]", 0) + 12;
-        assert_eq!(super::table_path(t, all), None);
+        // The list itself, for a list given where one table is wanted.
+        let first = start("[[loads]]", 0);
+        assert_eq!(super::table_path(t, first..first + 9, true).as_deref(), Some("loads"));
+        // The root's empty span, and a key's span inside a header (a table
+        // made implicitly, `mesh` of `[[mesh.parts]]`), name no table.
+        assert_eq!(super::table_path(t, 0..0, false), None);
+        let mesh = start("[[mesh.parts]]", 0) + 2;
+        assert_eq!(super::table_path(t, mesh..mesh + 4, false), None);
     }
 
     #[test]

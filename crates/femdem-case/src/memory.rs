@@ -343,10 +343,10 @@ pub fn refuse_if_too_big(
     if force {
         return Ok(());
     }
-    if let Some(bytes) = memory_available {
-        if !(bytes.is_finite() && bytes > 0.0) {
-            bail!("--memory-available must be a number of bytes > 0, got {bytes}");
-        }
+    if let Some(bytes) = memory_available
+        && !(bytes.is_finite() && bytes > 0.0)
+    {
+        bail!("--memory-available must be a number of bytes > 0, got {bytes}");
     }
     let (Ok(loaded), Some(available)) = (crate::load(path, sets), Available::of(memory_available)) else {
         return Ok(());

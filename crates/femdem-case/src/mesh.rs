@@ -173,17 +173,30 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
                         ),
                     ));
                 }
-                for r in &mut m.regions {
+                for (k, r) in m.regions.iter_mut().enumerate() {
+                    // The reader's name for tets in no physical volume.
+                    let unnamed = r.name == "unnamed";
+                    let tets = m.tet_region.iter().filter(|&&t| t as usize == k).count();
                     r.breakable = region(&r.name)
                         .map_err(|_| {
-                            case.error_at(
-                                span.clone(),
+                            let message = if unnamed {
                                 format!(
-                                    "{key}: {} has physical volume `{}`, which is not declared in [[mesh.regions]]",
+                                    "{key}: {tets} tets of {} belong to no physical volume (the file has no \
+                                     $Entities section, or their volumes are in no physical group), and femdem \
+                                     puts such tets in a region called `unnamed`; declare a [[mesh.regions]] \
+                                     named `unnamed`, or give the volumes a physical group in Gmsh (Physical \
+                                     Volume) and declare its name",
+                                    file.display()
+                                )
+                            } else {
+                                format!(
+                                    "{key}: {} has physical volume `{}` ({tets} tets), which is not declared in \
+                                     [[mesh.regions]]",
                                     file.display(),
                                     r.name
-                                ),
-                            )
+                                )
+                            };
+                            case.error_at(span.clone(), message)
                         })?
                         .breakable;
                 }
@@ -211,6 +224,19 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
         }
         for g in &mut body.boundary {
             g.name = format!("{name}.{}", g.name);
+            // Dots in part or group names can make one name of two (part
+            // `a` with group `b.c`, part `a.b` with group `c`): appending
+            // would merge them into one group spanning both bodies.
+            if mesh.boundary_group(&g.name).is_some() {
+                return Err(case.error_at(
+                    span.clone(),
+                    format!(
+                        "{key}: its boundary group `{}` has the name of a group of an earlier part (part and group \
+                         names joined by a dot); rename the part (`name`) so that no two groups share a name",
+                        g.name
+                    ),
+                ));
+            }
         }
         names.push(name);
         mesh.append(&body);

@@ -7,8 +7,9 @@
 use femdem_mesh::generate::circle_segments;
 
 /// Area shortfall of the inscribed polygon above which the circle is
-/// called out (1%: `n` < 26 sides, an `element_size` above ≈ 0.24 of the
-/// radius). The bundled discs have 32 sides and more (0.6%).
+/// called out (1%: 24 sides or fewer, as the count is a multiple of 4, so
+/// an `element_size` at or above `2πr/24` ≈ 0.262 r). The bundled discs
+/// have 32 sides and more (0.6%).
 pub const AREA_SHORTFALL: f64 = 0.01;
 
 /// The fraction of a circle's area that its inscribed polygon of `n`
@@ -32,10 +33,10 @@ pub fn circle_warning(key: &str, radius: f64, h: f64) -> Option<String> {
         format!(
             "{key}: the circle of radius {radius} m is meshed as a polygon of {n} sides at element_size = {h} m: \
              {:.1}% less area than the circle, and a diameter across the flats {:.1}% short; an element_size \
-             below {:.3e} m keeps the area within {}%",
+             below {:.3e} m (28 sides or more) keeps the area within {}%",
             100.0 * short,
             100.0 * flats,
-            std::f64::consts::TAU * radius / 26.0,
+            std::f64::consts::TAU * radius / 24.0,
             100.0 * AREA_SHORTFALL
         )
     })
@@ -63,7 +64,7 @@ mod tests {
         // The README disc (r = 20 mm, h = 4 mm): 32 sides, 0.6%.
         assert!(circle_warning("mesh.parts[0]", 0.020, 0.004).is_none());
         // The size the warning suggests is within the bound.
-        let suggested = std::f64::consts::TAU * 0.025 / 26.0;
+        let suggested = std::f64::consts::TAU * 0.025 / 24.0;
         assert!(circle_warning("k", 0.025, suggested * 0.999).is_none());
         assert!(circle_warning("k", 0.025, suggested * 1.2).is_some());
     }

@@ -308,7 +308,12 @@ fn set_in<'i>(
         DeValue::Array(a) => {
             let len = a.len();
             let Ok(index) = name.parse::<usize>() else {
-                return Err(format!("`{}` is an array: `{name}` is not the index of an entry (0 to {len})", here()));
+                let indices = match len {
+                    0 => "it has none".to_owned(),
+                    1 => "its one entry is 0".to_owned(),
+                    n => format!("0 to {}", n - 1),
+                };
+                return Err(format!("`{}` is an array: `{name}` is not the index of an entry ({indices})", here()));
             };
             let Some(child) = a.get_mut(index) else {
                 let entries = if len == 1 { "entry" } else { "entries" };

@@ -147,6 +147,11 @@ pub fn set_threads(loaded: &LoadedCase, threads: Option<usize>) -> Result<()> {
     Ok(())
 }
 
+/// Frames above which an output `interval` shorter than the time step is
+/// named: a frame every step for a few thousand steps is a choice; for more,
+/// usually a slip of unit.
+pub const FRAMES_NOTED: f64 = 10_000.0;
+
 /// Loads the case with the command line's `--set` arguments `sets`
 /// applied, builds the mesh and joints, and, if the case has a `[solver]`,
 /// the model, the loads and the time step. `threads` (the command line's
@@ -205,8 +210,12 @@ pub fn prepare_within(
     crate::setup::surface_loads_on_held_nodes(&loaded, &loads, &held, &mut warnings);
     crate::setup::surface_loads_on_interior_faces(&loaded, &loads, &jointed, &mut warnings);
     crate::setup::loads_that_stop_while_ramping(&loaded, start == Start::Static, &mut warnings);
+    crate::setup::ramps_longer_than_the_run(&loaded, s.end_time, start == Start::Static, &mut warnings);
+    crate::setup::regions_without_tets(&loaded, &jointed, &mut warnings);
+    crate::setup::fractures_without_contact(&loaded, &jointed, &mut warnings);
+    crate::setup::heterogeneity_without_joints(&loaded, &jointed, &mut warnings);
     let contact = crate::setup::contact_noting(&loaded, &jointed, &mut warnings)?;
-    if contact.is_none() {
+    if contact.as_ref().is_none_or(|c| !c.surfaces) {
         crate::setup::platens_that_touch_nothing(&loaded, &jointed, &mut warnings);
     }
     let contact_check = crate::setup::contact_check(&loaded)?;
@@ -296,6 +305,19 @@ pub fn prepare_within(
     let end_time = s.end_time;
     let check_interval = s.check_interval;
     let output = crate::setup::output(&loaded, end_time, &crate::setup::FIELDS)?;
+    // Frames more often than steps are written once a step: name how many,
+    // where that is many (each frame is a VTU file of the whole mesh).
+    let frames = (end_time / output.interval.max(dt)).ceil();
+    if output.interval < dt && frames > FRAMES_NOTED {
+        let at = loaded.case.output.as_ref().map_or(0..0, |o| o.span());
+        let message = format!(
+            "output: `interval` {:e} s is shorter than the time step ({dt:.4e} s), so a frame is written at every \
+             step: {frames:.0} frames of {} tets each; a longer `interval` writes fewer",
+            output.interval,
+            jointed.mesh.num_tets()
+        );
+        warnings.push(loaded.error_at(at, message).to_string());
+    }
     let probes = crate::probes::probes(&loaded, solver.model(), solver.loads())?;
     Ok(Prepared {
         case: loaded,

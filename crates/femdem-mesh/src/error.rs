@@ -16,6 +16,10 @@ pub enum MeshError {
     /// The 2D triangulation failed (e.g. a self-intersecting outline).
     #[error("2D triangulation failed: {0}")]
     Triangulation(String),
+    /// Features of an extrusion's outline and traces that come too close
+    /// to each other to be meshed (see `generate::closest_approach`).
+    #[error("{0}")]
+    Clearance(String),
     /// A malformed Gmsh MSH file: an ASCII one, or the text head of a
     /// binary one (up to the file type in `$MeshFormat`).
     #[error("MSH line {line}: {message}")]

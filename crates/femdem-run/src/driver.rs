@@ -45,6 +45,12 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
     let Some(mut run) = prepared.run else {
         bail!("{}: a [solver] section is needed to run the case", path.display());
     };
+    // The directory is this run's from here to the end; what another run
+    // wrote while this one prepared is refused as any earlier results.
+    let _lock = outdir::lock(&dir)?;
+    if resume.is_none() {
+        outdir::refuse_earlier_results(&dir, &stem, &case_name, overwrite)?;
+    }
     let spec = run.output.clone();
     let (interval, history_interval) = (spec.interval, spec.history_interval);
     let written = (spec.fields, spec.compression);
@@ -122,10 +128,8 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         // Attached before `--overwrite` clears anything: a refusal keeps
         // the earlier results.
         attach(solver)?;
-        if overwrite {
-            if let Some(line) = outdir::clear(&dir, &stem)? {
-                observer.note(&line);
-            }
+        if overwrite && let Some(line) = outdir::clear(&dir, &stem)? {
+            observer.note(&line);
         }
         let comments = history_comments(&prepared.case, solver.device_summary().as_deref());
         let output = Output::create(&dir, &stem, written, solver, pre_existing, columns, &comments)

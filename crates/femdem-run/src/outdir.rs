@@ -24,6 +24,43 @@ use femdem_case::LoadedCase;
 /// `output::history_comments`).
 pub const CASE_COMMENT: &str = "case: ";
 
+/// The file a run holds an exclusive lock on for as long as it writes to
+/// its output directory (see [`lock`]). It stays in the directory, empty
+/// of meaning once no process holds it; it is neither a result nor
+/// anything `--overwrite` removes.
+pub const LOCK: &str = ".femdem.lock";
+
+/// Takes the output directory `dir` (created if missing) for this run: an
+/// exclusive lock on its [`LOCK`] file, held until the returned file is
+/// dropped (the operating system releases it when the process ends, however
+/// it ends). Two runs writing into one directory at once (a sweep started
+/// in parallel with the same `--out`) interleaved their frames, and the
+/// history of one of them was lost while both reported success.
+///
+/// # Errors
+/// When another process holds the lock (naming the directory), or the
+/// directory or file cannot be made.
+pub fn lock(dir: &Path) -> Result<fs::File> {
+    fs::create_dir_all(dir).with_context(|| format!("creating the output directory {}", dir.display()))?;
+    let path = dir.join(LOCK);
+    let file = fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .with_context(|| format!("creating the lock file {}", path.display()))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(fs::TryLockError::WouldBlock) => bail!(
+            "output directory {} is being written by another femdem run (it holds {}); wait for it to end, or \
+             name another directory with --out",
+            dir.display(),
+            path.display()
+        ),
+        Err(fs::TryLockError::Error(e)) => Err(e).with_context(|| format!("locking {}", path.display())),
+    }
+}
+
 /// The output directory of a run of `case` (file stem `stem`): `--resume
 /// DIR`, else `--out`, else `[output] dir` (relative to the case file;
 /// an empty one is refused even with `--out`), else `out/<stem>`.
@@ -154,6 +191,9 @@ pub fn survey(dir: &Path, stem: &str) -> Result<Survey> {
             || series.iter().any(|s| is_series_file(name, s))
     };
     for name in names {
+        if name == LOCK {
+            continue;
+        }
         if ours(&name) || name == checkpoint::TEMPORARY {
             survey.checkpoint |= checkpoint::is_checkpoint_name(&name);
             survey.ours.push(name);

@@ -40,10 +40,10 @@ impl Observer for Recorder<'_> {
 
     fn stepped(&mut self, steps: u64, _time: f64, status: &dyn Fn() -> Status) {
         self.last = Some((steps, status()));
-        if let Some((flag, at)) = self.stop {
-            if steps >= at {
-                flag.store(true, Ordering::SeqCst);
-            }
+        if let Some((flag, at)) = self.stop
+            && steps >= at
+        {
+            flag.store(true, Ordering::SeqCst);
         }
     }
 

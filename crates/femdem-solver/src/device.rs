@@ -276,12 +276,12 @@ impl crate::Solver {
         let device = OnDevice::new(gpu, &self.scene.model, &self.evolving.state.joints)
             .map_err(|e| SolverError::Device(e.to_string()))?;
         self.pipeline.device = Some(device);
-        if residency == Residency::Auto {
-            if let Err(e) = self.make_resident() {
-                // All or nothing: no half-attached device stays behind.
-                self.pipeline.device = None;
-                return Err(SolverError::Device(e.to_string()));
-            }
+        if residency == Residency::Auto
+            && let Err(e) = self.make_resident()
+        {
+            // All or nothing: no half-attached device stays behind.
+            self.pipeline.device = None;
+            return Err(SolverError::Device(e.to_string()));
         }
         Ok(())
     }

@@ -65,10 +65,10 @@ impl<P: Pass> pulp::WithSimd for Op<P> {
 #[inline(always)]
 pub(crate) fn widest<P: Pass>(path: VectorPath, pass: P) -> P::Output {
     #[cfg(target_arch = "x86_64")]
-    if path == VectorPath::Widest {
-        if let Some(v3) = pulp::x86::V3::try_new() {
-            return pulp::Simd::vectorize(v3, Op(pass));
-        }
+    if path == VectorPath::Widest
+        && let Some(v3) = pulp::x86::V3::try_new()
+    {
+        return pulp::Simd::vectorize(v3, Op(pass));
     }
     let _ = path;
     pulp::Simd::vectorize(pulp::Scalar::new(), Op(pass))

@@ -144,7 +144,7 @@ fn watch(s: &mut Solver, reference: &[Mat3], end: Real, every: u64, label: &str)
     let mut peak_kinetic: Real = 0.0;
     while s.state().time < end {
         let n = s.state().step;
-        let check = n % every == 0;
+        let check = n.is_multiple_of(every);
         let kinetic = s.step(Want { stress: check, energy: check }).energies.kinetic;
         if check {
             peak_kinetic = peak_kinetic.max(kinetic);
@@ -154,7 +154,7 @@ fn watch(s: &mut Solver, reference: &[Mat3], end: Real, every: u64, label: &str)
                     last_above[k] = (n + every, clock.elapsed().as_secs_f64());
                 }
             }
-            if n % (every * 50) == 0 {
+            if n.is_multiple_of(every * 50) {
                 eprintln!(
                     "{label}: step {n} t = {:.4e} s error {error:.4e} kinetic {kinetic:.3e} J failures {}",
                     s.state().time,

@@ -207,7 +207,7 @@ impl Data {
 // ------------------------------------------------------------ comparison --
 
 fn decode<const N: usize>(hex: &str) -> Vec<[u8; N]> {
-    assert!(hex.len() % (2 * N) == 0, "hex length {}", hex.len());
+    assert!(hex.len().is_multiple_of(2 * N), "hex length {}", hex.len());
     hex.as_bytes()
         .chunks(2 * N)
         .map(|c| {

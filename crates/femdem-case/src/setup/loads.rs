@@ -82,7 +82,7 @@ pub fn surface_loads_on_held_nodes(case: &LoadedCase, loads: &Loads, held: &[boo
 /// Pushes onto `warnings` every pressure or traction of `case` whose group
 /// holds faces inside `mesh` (each a face of two tets of the input mesh: a
 /// surface embedded in a volume, a pre-existing fracture, or where two
-/// parts meet). The load acts on the one side the face was given to, as a
+/// volumes of one MSH part meet). The load acts on the one side the face was given to, as a
 /// net force on the body rather than a load on its boundary.
 pub fn surface_loads_on_interior_faces(
     case: &LoadedCase,
@@ -120,7 +120,7 @@ pub fn surface_loads_on_interior_faces(
         if inside > 0 {
             let message = format!(
                 "loads[{i}]: {inside} of the {} faces of `{}` lie inside the mesh (each a face of two tets: a \
-                 surface embedded in a volume, a pre-existing fracture, or where two parts meet): the {what} acts \
+                 surface embedded in a volume, a pre-existing fracture, or where two volumes of one MSH file meet): the {what} acts \
                  on one side of each only (the tet the face belongs to; in an MSH file, the one whose outward \
                  order agrees with the triangle's), a net force on the body rather than a load on its boundary; \
                  load only outer surfaces, unless one side is meant",
@@ -183,9 +183,9 @@ pub fn platens_that_touch_nothing(case: &LoadedCase, mesh: &JointedMesh, warning
     for (i, p) in case.case.platens.iter().enumerate() {
         if p.get_ref().drives.is_none() && !joined(&p.get_ref().region) {
             let message = format!(
-                "platens[{i}] (`{}`): without [contact] and without `drives`, the platen touches nothing: it moves \
-                 through the specimen and its force stays zero; add a [contact] section, or glue specimen nodes to \
-                 it with `drives`",
+                "platens[{i}] (`{}`): without [contact] (or with its `surfaces = false`) and without `drives`, the \
+                 platen touches nothing: it moves through the specimen and its force stays zero; add a [contact] \
+                 section with outer surfaces in contact, or glue specimen nodes to it with `drives`",
                 p.get_ref().region
             );
             warnings.push(case.error_at(p.span(), message).to_string());
@@ -218,6 +218,13 @@ pub fn loads(case: &LoadedCase, mesh: &JointedMesh, gravity: [f64; 3]) -> Result
         let at = |msg: String| case.error_at(p.span(), format!("platens[{i}]: {msg}"));
         let mut nodes = select_nodes(mesh, &NodeSelection { region: Some(s.region.clone()), ..Default::default() })
             .map_err(|u| at(unknown(u)))?;
+        if nodes.is_empty() {
+            return Err(at(format!(
+                "region `{}` holds no tet (no part meshes it), so the platen would press nothing and record no \
+                 force; check the `region` of each [[mesh.parts]]",
+                s.region
+            )));
+        }
         if let Some(d) = &s.drives {
             let driven = select_nodes(mesh, &selector(d, "drives").map_err(at)?).map_err(|u| at(unknown(u)))?;
             if driven.is_empty() {
@@ -377,10 +384,10 @@ fn ramp(ramp_time: f64, stop_time: Option<f64>) -> Result<Ramp, String> {
     if !(ramp_time.is_finite() && ramp_time >= 0.0) {
         return Err(format!("`ramp_time` must be finite and ≥ 0 s, got {ramp_time} s"));
     }
-    if let Some(t) = stop_time {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(format!("`stop_time` must be finite and > 0 s, got {t} s"));
-        }
+    if let Some(t) = stop_time
+        && !(t.is_finite() && t > 0.0)
+    {
+        return Err(format!("`stop_time` must be finite and > 0 s, got {t} s"));
     }
     Ok(Ramp { ramp_time, stop_time })
 }

@@ -6,6 +6,7 @@ mod loads;
 mod materials;
 mod output;
 pub mod plausible;
+mod unused;
 
 pub use contact::{ContactCheck, activation_name, contact, contact_check, contact_noting};
 pub use loads::{
@@ -16,4 +17,7 @@ pub use materials::{DEFAULT_PENALTY_FACTOR, behaviours, model};
 pub use output::{
     CHECKPOINT_WALL_DEFAULT, CheckpointSettings, FIELDS, LoadStrain, OutputSettings, check_dir, compression,
     load_strain, output,
+};
+pub use unused::{
+    fractures_without_contact, heterogeneity_without_joints, ramps_longer_than_the_run, regions_without_tets,
 };

@@ -74,7 +74,7 @@ impl Progress {
     /// `status` is asked for only when a report is due.
     pub fn update(&mut self, steps: u64, time: f64, status: &dyn Fn() -> Status) {
         if let Some(b) = &self.bar {
-            if steps % 64 == 0 || steps == self.total {
+            if steps.is_multiple_of(64) || steps == self.total {
                 b.set_position(steps);
                 b.set_message(format!(
                     "{time:.4e} s  {}  {:.2e} el-steps/s",

@@ -247,6 +247,8 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("fixed_platen.toml", ":63:1:", "loads[0]: `nodes` selects 24 node(s) that platen `platen_bottom` already"),
         ("bad_value_in_second_load.toml", ":24:1:", "loads[1]: invalid type: integer `7`, expected a string"),
         ("load_without_kind.toml", ":26:1:", "loads[2]: missing field `kind`"),
+        ("group_names_collide.toml", ":12:1:", "mesh.parts[1]: its boundary group `a.b.c` has the name of a group"),
+        ("no_physical_volume.toml", ":8:1:", "no_physical_volume.msh belong to no physical volume"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");
@@ -407,7 +409,9 @@ fn platens_and_loads_that_act_on_nothing_are_warnings() {
     assert!(warnings.iter().any(|w| w.contains(":65:1: loads[0]: every node of the 12 faces of `platen_top.ymax`")));
     for (line, name) in [(55, "platens[0] (`platen_top`)"), (60, "platens[1] (`platen_bottom`)")] {
         assert!(
-            warnings.iter().any(|w| w.contains(&format!(":{line}:1: {name}: without [contact] and without `drives`"))),
+            warnings
+                .iter()
+                .any(|w| w.contains(&format!(":{line}:1: {name}: without [contact] (or with its `surfaces"))),
             "{err}"
         );
     }
@@ -446,4 +450,98 @@ fn a_load_stopped_while_ramping_and_a_stray_cov_are_warnings() {
     let (line, plain) = warning_of("cases/pulled-bar.toml", "heterogeneity.cov=0.1", "ignores it");
     assert!(line.contains("heterogeneity: `cov` is the normal distribution's, and a Weibull one ignores it"), "{line}");
     assert!(!plain, "the case as written warned");
+}
+
+/// Where serde places an error at a table, the message names the table's
+/// key path only where the place is that table's header: the element of
+/// the list the error comes from (also with an unrelated `--set`, which
+/// must not take the blame); the list itself for `[[solver]]`; no table
+/// for a missing top-level key or a table made implicitly by a longer
+/// header (`mesh` of `[[mesh.regions]]` without `parts`).
+#[test]
+fn table_errors_name_the_table_they_come_from() {
+    let bad = "crates/femdem-cli/tests/cases/bad/bad_value_in_second_load.toml";
+    let out = femdem(&["check", bad, "--set", "solver.end_time=2e-6"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains(&format!("{bad}:24:1: loads[1]: invalid type: integer `7`, expected a string")), "{err}");
+
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("table-errors");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(root().join(bad)).unwrap().replace("components = 7", "components = \"x\"");
+    let case = |name: &str, text: &str| -> String {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = femdem(&["check", path.to_str().unwrap()]);
+        assert!(!out.status.success(), "{name} was accepted");
+        String::from_utf8(out.stderr).unwrap()
+    };
+    let err = case("list_solver.toml", &text.replace("[solver]", "[[solver]]"));
+    assert!(err.contains(":32:1: solver: invalid type:"), "{err}");
+    assert!(err.contains("one table is written `[solver]`"), "{err}");
+    let start = text.find("[[mesh.parts]]").unwrap();
+    let end = text.find("[[materials]]").unwrap();
+    let err = case("no_parts.toml", &format!("{}{}", &text[..start], &text[end..]));
+    assert!(err.contains("missing field `parts`") && !err.contains("regions[0]"), "{err}");
+    let err = case("no_version.toml", &text.replace("version = 1\n", ""));
+    assert!(err.contains("missing field `version`") && !err.contains("mesh"), "{err}");
+}
+
+/// Declarations that would act on nothing, or not in full, are warnings at
+/// their tables (a platen with no tets is refused): pre-existing fractures
+/// without `[contact]`, platens under `[contact] surfaces = false` without
+/// `drives`, a region no part meshes, a `[heterogeneity]` with no joints,
+/// a ramp longer than the run, more than 10⁴ frames from an `interval`
+/// below the time step. The cases as written give none of them.
+#[test]
+fn unused_declarations_and_long_ramps_are_warnings() {
+    let warned = |args: &[&str], words: &str| -> String {
+        let out = femdem(&[&["check"], args].concat());
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(out.status.success(), "{err}");
+        err.lines()
+            .find(|l| l.starts_with("warning: ") && l.contains(words))
+            .unwrap_or_else(|| panic!("{err}"))
+            .to_owned()
+    };
+    let crowded = "crates/femdem-cli/tests/cases/crowded_traces.toml";
+    let line = warned(&[crowded], "tet pairs face each other across pre-existing fractures");
+    assert!(line.contains("crowded_traces.toml:11:1: mesh.parts[0]:") && line.contains("no [contact]"), "{line}");
+    let readme = "cases/brazilian-split.toml";
+    let line = warned(&[readme, "--set", "contact.surfaces=false"], "the platen touches nothing");
+    assert!(line.contains("platens[0] (`platen_top`): without [contact] (or with its `surfaces = false`)"), "{line}");
+    let line = warned(&[readme, "--set", "platens.0.ramp_time=1.0"], "longer than the run");
+    assert!(line.contains("platens[0]: `ramp_time` 1e0 s is longer than the run (`end_time` 1e-3 s)"), "{line}");
+    assert!(line.contains("it reaches only 0.001 of its value"), "{line}");
+    let blocks = "crates/femdem-cli/tests/cases/overlapping_blocks.toml";
+    let line = warned(&[blocks, "--set", "mesh.parts.1.region=\"a\""], "no part meshes this region");
+    assert!(line.contains("overlapping_blocks.toml:10:1: mesh.regions[1] (`b`)"), "{line}");
+    let bar = "cases/pulled-bar.toml";
+    let line = warned(&[bar, "--set", "mesh.regions.0.breakable=false"], "it changes nothing");
+    assert!(line.contains("heterogeneity: the mesh has no joints"), "{line}");
+    let line = warned(&[bar, "--set", "output.interval=1e-12", "--set", "solver.end_time=2e-3"], "frame is written");
+    assert!(line.contains("output: `interval` 1e-12 s is shorter than the time step"), "{line}");
+    for case in [crowded, readme, blocks, bar] {
+        let out = femdem(&["check", case]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        for words in
+            ["no part meshes", "longer than the run", "changes nothing", "frame is written", "surfaces = false"]
+        {
+            assert!(!err.contains(words), "{case} as written: {err}");
+        }
+    }
+    // A platen whose region no part meshes is refused at the platen.
+    let out = femdem(&[
+        "check",
+        readme,
+        "--set",
+        "mesh.parts.1.name=\"top\"",
+        "--set",
+        "mesh.parts.2.name=\"bottom\"",
+        "--set",
+        "mesh.parts.2.region=\"platen_top\"",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{err}");
+    assert!(err.contains("platens[1]: region `platen_bottom` holds no tet (no part meshes it)"), "{err}");
 }

@@ -177,3 +177,32 @@ fn dangerous_targets_are_refused_naming_the_path() {
     assert!(err.contains(&format!("output directory {}: it exists and is not a directory", file.display())), "{err}");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
 }
+
+/// A run takes its output directory with an exclusive lock on
+/// `.femdem.lock` for as long as it writes there: while another process
+/// holds it (here the test, standing for a run started in parallel with the
+/// same `--out`), a run is refused, naming the directory, and writes
+/// nothing; once it is released the run goes ahead, and the lock file is
+/// neither a result nor a stray file to the next run's check.
+#[test]
+fn a_directory_another_run_is_writing_is_refused() {
+    let out = fresh("outdir-locked");
+    std::fs::create_dir_all(&out).unwrap();
+    let held = std::fs::File::create(out.join(".femdem.lock")).unwrap();
+    held.lock().unwrap();
+    let o = run(BAR, &out, &["--set", "solver.end_time=1e-5"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "a run went ahead in a locked directory");
+    assert!(
+        err.contains(&format!("output directory {} is being written by another femdem run", out.display())),
+        "{err}"
+    );
+    assert!(!out.join("history.csv").exists());
+    held.unlock().unwrap();
+    let o = run(BAR, &out, &["--set", "solver.end_time=1e-5"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let again = run(BAR, &out, &["--set", "solver.end_time=1e-5"]);
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(err.contains("already holds the results of an earlier run of this case"), "{err}");
+    assert!(!err.contains(".femdem.lock"), "{err}");
+}

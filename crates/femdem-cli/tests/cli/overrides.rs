@@ -93,6 +93,8 @@ fn refused_overrides_name_the_argument_not_a_line() {
         ("output.compression=\"bzip\"", "`compression`: `bzip` is not one of"),
         ("heterogeneity.modulus=8", "missing field `distribution`"),
         ("materials.3.young=1", "`materials` has 1 entry: there is no entry 3"),
+        ("materials.x.young=1", "`materials` is an array: `x` is not the index of an entry (its one entry is 0)"),
+        ("platens.x.velocity=[0.0, 0.0, 0.0]", "`platens` is an array: `x` is not the index of an entry (0 to 1)"),
         ("solver.gravity.2=-9.81", "`solver.gravity` is not in the case"),
         ("solver.end_time.x=1", "`solver.end_time` is a number, not a table"),
         ("output.dir=out/x", "`out/x` is not a TOML value"),

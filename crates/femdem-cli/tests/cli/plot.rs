@@ -113,8 +113,11 @@ fn points_that_are_not_finite_are_named_in_a_warning() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot-nan");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("history.csv"), "# case: x.toml\ntime,kinetic,tet_elastic\n0,0,0\n1e-6,NaN,1\n2e-6,1,inf\n3e-6,2,2\n")
-        .unwrap();
+    std::fs::write(
+        dir.join("history.csv"),
+        "# case: x.toml\ntime,kinetic,tet_elastic\n0,0,0\n1e-6,NaN,1\n2e-6,1,inf\n3e-6,2,2\n",
+    )
+    .unwrap();
     let o = femdem(&["plot", dir.to_str().unwrap(), "--y", "kinetic", "--y", "tet_elastic"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");

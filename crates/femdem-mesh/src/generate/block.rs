@@ -72,16 +72,19 @@ pub fn generate_box(spec: &BoxSpec) -> Result<TetMesh, MeshError> {
     // box, and their integer product would wrap to a small number (it did:
     // max = [1e300, 1e300, 1] made 1 × 6 tets pass, then pushed vertices until memory ran out).
     if n.iter().map(|&c| c as f64).product::<f64>() * 6.0 > MAX_CELLS {
-        // The counts from the lengths, unsaturated.
+        // The counts from the lengths, unsaturated; their product by its
+        // logarithm, which cannot overflow.
         let c = |k: usize| ((spec.max[k] - spec.min[k]) / h).round().max(1.0);
+        let shown = |x: f64| if x < 1e15 { format!("{x:.0}") } else { format!("{x:.3e}") };
+        let log = (0..3).map(|k| c(k).log10()).sum::<f64>() + 6f64.log10();
+        let total = if log < 300.0 { shown(10f64.powf(log)) } else { format!("about 1e{log:.0}") };
         return Err(MeshError::InvalidParameter {
             name: "element_size",
             reason: format!(
-                "{h:e} m would make {:.3e} tets ({:.3e}×{:.3e}×{:.3e} cells of 6); refuse above {MAX_CELLS:e}",
-                c(0) * c(1) * c(2) * 6.0,
-                c(0),
-                c(1),
-                c(2)
+                "{h:e} m would make {total} tets ({}×{}×{} cells of 6); refuse above {MAX_CELLS:e}",
+                shown(c(0)),
+                shown(c(1)),
+                shown(c(2))
             ),
         });
     }

@@ -10,7 +10,8 @@
 //! layer of height `dz` makes tets of volume ≈ `a² dz / 6`, below
 //! [`crate::check::DEGENERATE_VOLUME_RATIO`] `dz³` once `a < 7.7·10⁻⁵ dz`.
 //! [`closest_approach`] finds such a gap first, in time linear in the
-//! features' length over the cell size.
+//! features' length over the cell size (at most some 10⁷ samples), times
+//! the segments that share a point's cells.
 
 use std::collections::HashMap;
 
@@ -73,7 +74,10 @@ pub fn closest_approach(network: &TraceNetwork, same: f64, below: f64, cell: f64
     // A point within `below` of a segment lies within `below + cell / 4` of
     // one of its samples (taken every `cell / 2`), so in the 3 × 3 cells
     // around the sample's when `below < 3 cell / 4`.
-    let cell = cell.max(2.0 * below);
+    // A larger cell is always correct, only slower per point: keep the
+    // samples to about 10⁷ whatever the features' length.
+    let total: f64 = segments.iter().map(|(a, b, _)| ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt()).sum();
+    let cell = cell.max(2.0 * below).max(total / 1e7);
     let lo = network.outline.iter().fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
     let key = |p: [f64; 2]| [((p[0] - lo[0]) / cell).floor() as i64, ((p[1] - lo[1]) / cell).floor() as i64];
     let mut grid: HashMap<[i64; 2], Vec<u32>> = HashMap::new();

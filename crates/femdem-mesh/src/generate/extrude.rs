@@ -151,12 +151,13 @@ fn clear_enough(network: &TraceNetwork, h: f64, dz: f64) -> Result<(), MeshError
     let below = MIN_CLEARANCE * h.max(dz).min(diagonal);
     match super::closest_approach(network, same, below, h.min(diagonal)) {
         None => Ok(()),
-        Some(m) => Err(MeshError::Triangulation(format!(
-            "a point of {} at ({:.9}, {:.9}) m lies {:.3e} m from {} (nearest at ({:.9}, {:.9}) m), closer than \
-             {MIN_CLEARANCE:e} of the element size or layer height ({below:.3e} m) without meeting it: the mesh \
-             would need elements of the gap's width there, and tets that thin are degenerate. Where they are \
-             meant to meet, put the point exactly on the other (within {same:.1e} m, the tolerance of a \
-             junction); otherwise move them apart",
+        Some(m) => Err(MeshError::Clearance(format!(
+            "a point of {} at ({:.9}, {:.9}) m lies {:.3e} m from a segment of {} that does not end there \
+             (nearest at ({:.9}, {:.9}) m), closer than {MIN_CLEARANCE:e} of the element size or layer height \
+             ({below:.3e} m): the mesh would need elements of that width there, and tets that thin against \
+             their layer height are degenerate (below 7.7e-5 of it). Where the two are meant to meet, put the \
+             point exactly on the other (within {same:.1e} m, the tolerance of a junction); otherwise move \
+             them apart, or drop a segment that short",
             m.point_of.name(),
             m.point[0],
             m.point[1],

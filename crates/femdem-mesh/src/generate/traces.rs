@@ -258,17 +258,14 @@ pub fn trace_network(outline: &[[f64; 2]], traces: &[Vec<[f64; 2]>]) -> Result<T
                     } else {
                         [a1[0] + s * (b1[0] - a1[0]), a1[1] + s * (b1[1] - a1[1])]
                     };
-                    if let Owner::Outline = oi {
-                        if !end_j {
-                            return Err(trace_error(
-                                tj,
-                                pj,
-                                format!(
-                                    "segment {pj} leaves the outline between its points (at ({}, {}) m)",
-                                    p[0], p[1]
-                                ),
-                            ));
-                        }
+                    if let Owner::Outline = oi
+                        && !end_j
+                    {
+                        return Err(trace_error(
+                            tj,
+                            pj,
+                            format!("segment {pj} leaves the outline between its points (at ({}, {}) m)", p[0], p[1]),
+                        ));
                     }
                     if !end_i {
                         segments[i].cuts.push((s, p));

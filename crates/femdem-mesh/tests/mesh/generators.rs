@@ -304,9 +304,14 @@ fn a_box_huge_on_two_axes_is_refused_not_wrapped() {
     match generate_box(&spec) {
         Err(femdem_mesh::MeshError::InvalidParameter { name: "element_size", reason }) => {
             assert!(reason.contains("refuse above"), "{reason}");
+            // The counts as they are (their product overflows an f64).
+            assert!(reason.contains("would make about 1e601 tets (1.000e300×1.000e300×1 cells of 6)"), "{reason}");
         }
         other => panic!("expected a refusal, got {:?}", other.map(|m| m.tets.len())),
     }
+    let fine = BoxSpec { max: [1.0, 1.0, 1.0], element_size: 1e-3, ..spec };
+    let reason = generate_box(&fine).unwrap_err().to_string();
+    assert!(reason.contains("1e-3 m would make 6000000000 tets (1000×1000×1000 cells of 6)"), "{reason}");
 }
 
 /// Regressions (found probing bad inputs): `z0 = NaN` meshed, and `femdem
@@ -391,7 +396,10 @@ fn features_closer_than_the_clearance_are_refused_before_meshing() {
         region: region(),
     };
     let e = generate_extrusion(&spec(1e-7, 0.8)).unwrap_err().to_string();
-    assert!(e.contains("a point of a trace at (0.200000000, 0.000000100) m lies 1.000e-7 m from the outline"), "{e}");
+    assert!(
+        e.contains("a point of a trace at (0.200000000, 0.000000100) m lies 1.000e-7 m from a segment of the outline"),
+        "{e}"
+    );
     assert!(e.contains("closer than 1e-4 of the element size or layer height (5.000e-6 m)"), "{e}");
     let mesh = generate_extrusion(&spec(1e-5, 0.25)).unwrap();
     femdem_mesh::check::check(&mesh).unwrap();

@@ -34,10 +34,10 @@ fn guarded(
     for n in 0..steps {
         s.step(Want { energy, ..Want::default() });
         each(s);
-        if n % 10 == 9 || n + 1 == steps {
-            if let Err(t) = s.check(critical) {
-                return Some(t);
-            }
+        if (n % 10 == 9 || n + 1 == steps)
+            && let Err(t) = s.check(critical)
+        {
+            return Some(t);
         }
     }
     assert!(s.state().x.iter().chain(&s.state().v).all(|p| p.iter().all(|c| c.is_finite())), "a silent NaN");
@@ -82,10 +82,10 @@ fn vibrates_boundedly(model: Model, steps: usize) -> (Real, Option<Trouble>) {
         if n % 20 == 0 {
             worst = worst.max((energy(&s) / e0 - 1.0).abs());
         }
-        if n % 10 == 9 {
-            if let Err(t) = s.check(st.critical) {
-                return (worst, Some(t));
-            }
+        if n % 10 == 9
+            && let Err(t) = s.check(st.critical)
+        {
+            return (worst, Some(t));
         }
     }
     assert!(s.state().x.iter().chain(&s.state().v).all(|p| p.iter().all(|c| c.is_finite())), "a silent NaN");

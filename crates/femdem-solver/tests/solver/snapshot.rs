@@ -23,7 +23,7 @@ fn block(size: [f64; 3]) -> Solver {
 }
 
 fn want(n: u64) -> Want {
-    Want { energy: n % 7 == 0, stress: n % 50 == 3 }
+    Want { energy: n.is_multiple_of(7), stress: n % 50 == 3 }
 }
 
 #[test]

@@ -132,6 +132,21 @@ pub fn surface_loads_on_interior_faces(
     }
 }
 
+/// The `ramp_time` and `stop_time` of a load that ramps: a velocity, or
+/// a pressure or traction unless `surfaces_held` (a static start applies
+/// those in full from t = 0). `None` for a fixed load.
+pub(super) fn ramp_of(load: &LoadSpec, surfaces_held: bool) -> Option<(f64, Option<f64>)> {
+    match load {
+        LoadSpec::Velocity { ramp_time, stop_time, .. } => Some((*ramp_time, *stop_time)),
+        LoadSpec::Pressure { ramp_time, stop_time, .. } | LoadSpec::Traction { ramp_time, stop_time, .. }
+            if !surfaces_held =>
+        {
+            Some((*ramp_time, *stop_time))
+        }
+        _ => None,
+    }
+}
+
 /// Pushes onto `warnings` every load of `case` whose `stop_time` comes
 /// before its `ramp_time` ends: it stops at the fraction
 /// `stop_time / ramp_time` of its value, never reaching it.
@@ -139,15 +154,7 @@ pub fn surface_loads_on_interior_faces(
 /// tractions in full from t = 0) only velocity loads ramp.
 pub fn loads_that_stop_while_ramping(case: &LoadedCase, surfaces_held: bool, warnings: &mut Vec<String>) {
     for (i, l) in case.case.loads.iter().enumerate() {
-        let (ramp_time, stop_time) = match l.get_ref() {
-            LoadSpec::Velocity { ramp_time, stop_time, .. } => (*ramp_time, *stop_time),
-            LoadSpec::Pressure { ramp_time, stop_time, .. } | LoadSpec::Traction { ramp_time, stop_time, .. }
-                if !surfaces_held =>
-            {
-                (*ramp_time, *stop_time)
-            }
-            _ => continue,
-        };
+        let Some((ramp_time, stop_time)) = ramp_of(l.get_ref(), surfaces_held) else { continue };
         if let Some(t) = stop_time.filter(|t| *t < ramp_time) {
             let message = format!(
                 "loads[{i}]: `stop_time` {t:e} s comes before `ramp_time` {ramp_time:e} s ends: the load stops at \

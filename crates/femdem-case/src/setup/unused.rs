@@ -7,7 +7,7 @@
 use femdem_mesh::JointedMesh;
 
 use crate::LoadedCase;
-use crate::format::{LoadSpec, PartSpec};
+use crate::format::PartSpec;
 
 /// Pushes a warning for every `[[mesh.regions]]` entry that holds no tet
 /// of `mesh` (no part meshes it: a misspelt `region` of a part, say): its
@@ -88,15 +88,7 @@ pub fn ramps_longer_than_the_run(case: &LoadedCase, end_time: f64, surfaces_held
         }
     }
     for (i, l) in case.case.loads.iter().enumerate() {
-        let (ramp_time, stop_time) = match l.get_ref() {
-            LoadSpec::Velocity { ramp_time, stop_time, .. } => (*ramp_time, *stop_time),
-            LoadSpec::Pressure { ramp_time, stop_time, .. } | LoadSpec::Traction { ramp_time, stop_time, .. }
-                if !surfaces_held =>
-            {
-                (*ramp_time, *stop_time)
-            }
-            _ => continue,
-        };
+        let Some((ramp_time, stop_time)) = super::loads::ramp_of(l.get_ref(), surfaces_held) else { continue };
         // A stop before the end of the ramp is the other warning's.
         if ramp_time > end_time && stop_time.is_none_or(|t| t >= ramp_time) {
             warn(l.span(), format!("loads[{i}]"), ramp_time);

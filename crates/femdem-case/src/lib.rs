@@ -329,11 +329,9 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase, CaseError> {
         }
         let at = Some(line_col(&source, key_offset(&source, s.clone(), &message)));
         // Serde reports a bad value at the value alone: name its key; and a
-        // missing key at its table's header: name the table.
-        // A list given where one table is wanted (`[[solver]]`) is the list's
-        // error, not its first element's.
-        // (A `[[name]]` header whose key takes one table, whatever serde
-        // then says of it.)
+        // missing key at its table's header: name the table. A `[[name]]`
+        // header whose key takes one table (`[[solver]]`), whatever serde
+        // says of it, is the list's slip, not its first element's.
         let whole = source.get(s.start..).and_then(|l| l.lines().next()).is_some_and(|l| {
             let l = l.trim();
             let path = l.trim_start_matches('[').split(']').next().unwrap_or("");

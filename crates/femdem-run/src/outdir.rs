@@ -39,7 +39,8 @@ pub const LOCK: &str = ".femdem.lock";
 ///
 /// # Errors
 /// When another process holds the lock (naming the directory), or the
-/// directory or file cannot be made.
+/// directory or file cannot be made. Where the file system has no locks,
+/// the run goes ahead unguarded.
 pub fn lock(dir: &Path) -> Result<fs::File> {
     fs::create_dir_all(dir).with_context(|| format!("creating the output directory {}", dir.display()))?;
     let path = dir.join(LOCK);
@@ -57,7 +58,9 @@ pub fn lock(dir: &Path) -> Result<fs::File> {
             dir.display(),
             path.display()
         ),
-        Err(fs::TryLockError::Error(e)) => Err(e).with_context(|| format!("locking {}", path.display())),
+        // A file system without locks (some network ones) cannot keep two
+        // runs apart; that is no reason to refuse the one run.
+        Err(fs::TryLockError::Error(_)) => Ok(file),
     }
 }
 

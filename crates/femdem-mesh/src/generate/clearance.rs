@@ -16,7 +16,7 @@
 use std::collections::HashMap;
 
 use super::TraceNetwork;
-use super::traces::nearest_on_segment;
+use super::traces::{bounds, nearest_on_segment};
 
 /// Which feature a point or a segment belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,7 +78,7 @@ pub fn closest_approach(network: &TraceNetwork, same: f64, below: f64, cell: f64
     // samples to about 10⁷ whatever the features' length.
     let total: f64 = segments.iter().map(|(a, b, _)| ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt()).sum();
     let cell = cell.max(2.0 * below).max(total / 1e7);
-    let lo = network.outline.iter().fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
+    let (lo, _) = bounds(&network.outline);
     let key = |p: [f64; 2]| [((p[0] - lo[0]) / cell).floor() as i64, ((p[1] - lo[1]) / cell).floor() as i64];
     let mut grid: HashMap<[i64; 2], Vec<u32>> = HashMap::new();
     for (s, &(a, b, _)) in segments.iter().enumerate() {

@@ -16,7 +16,7 @@ use std::collections::{HashMap, HashSet};
 use spade::handles::FixedVertexHandle;
 use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
 
-use super::traces::{inside, nearest_on_segment, trace_network};
+use super::traces::{bounds, inside, nearest_on_segment, trace_network};
 use super::{MAX_CELLS, TraceNetwork, positive, prism::split_prism};
 use crate::{BoundaryGroup, FaceRef, MeshError, Region, TetMesh};
 
@@ -144,8 +144,7 @@ pub const MIN_CLEARANCE: f64 = 1e-4;
 /// most the outline's bounding-box diagonal `D` (an element size above
 /// the outline makes elements of the outline's size).
 fn clear_enough(network: &TraceNetwork, h: f64, dz: f64) -> Result<(), MeshError> {
-    let lo = network.outline.iter().fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
-    let hi = network.outline.iter().fold([f64::NEG_INFINITY; 2], |m, p| [m[0].max(p[0]), m[1].max(p[1])]);
+    let (lo, hi) = bounds(&network.outline);
     let diagonal = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
     let same = super::TRACE_TOLERANCE * diagonal;
     let below = MIN_CLEARANCE * h.max(dz).min(diagonal);
@@ -244,8 +243,7 @@ fn triangulate(spec: &ExtrusionSpec, h: f64, layers: usize) -> Result<Planar, Me
     // triangle and layer, scaled by the outline's bounding box over its
     // area (≥ the hull's share refined outside a non-convex outline).
     let area = polygon_area(&outline);
-    let lo = outline.iter().fold([f64::INFINITY; 2], |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
-    let hi = outline.iter().fold([f64::NEG_INFINITY; 2], |l, p| [l[0].max(p[0]), l[1].max(p[1])]);
+    let (lo, hi) = bounds(&outline);
     let hull_share = ((hi[0] - lo[0]) * (hi[1] - lo[1]) / area).max(1.0);
     // Twice that, for the vertices a narrow notch draws into the hull
     // and those on the outline; the exact count below decides a mesh that

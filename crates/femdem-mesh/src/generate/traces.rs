@@ -84,6 +84,13 @@ fn norm(a: [f64; 2]) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// The lower and upper corners of the bounding box of `points`.
+pub(crate) fn bounds(points: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+    let lo = points.iter().fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
+    let hi = points.iter().fold([f64::NEG_INFINITY; 2], |m, p| [m[0].max(p[0]), m[1].max(p[1])]);
+    (lo, hi)
+}
+
 /// The point of segment `p q` nearest to `x`, and its distance.
 pub(crate) fn nearest_on_segment(x: [f64; 2], p: [f64; 2], q: [f64; 2]) -> ([f64; 2], f64) {
     let d = sub(q, p);
@@ -169,8 +176,7 @@ pub fn trace_network(outline: &[[f64; 2]], traces: &[Vec<[f64; 2]>]) -> Result<T
             reason: format!("a polygon needs at least 3 vertices, got {}", outline.len()),
         });
     }
-    let lo = outline.iter().fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
-    let hi = outline.iter().fold([f64::NEG_INFINITY; 2], |m, p| [m[0].max(p[0]), m[1].max(p[1])]);
+    let (lo, hi) = bounds(outline);
     let eps = TRACE_TOLERANCE * norm(sub(hi, lo));
 
     let mut segments: Vec<Segment> = (0..outline.len())

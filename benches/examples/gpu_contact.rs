@@ -16,11 +16,15 @@
 //! and then from the same state on the device (`STEPS` = 0: only makes the
 //! snapshot), and prints both rates in tet-steps/s, each run's time by
 //! stage (`Solver::stage_times`), whether the two runs broke the same
-//! joints, how far their positions ended apart, and then the device's
-//! `Bulk::timings`: read-back round trips, each kernel, and the contact
-//! pairs' kernel alone on the last list the pass sent (the measurement
-//! that splits the device's pair time between the kernel and the
-//! transfers). Without a device it measures the CPU and says why.
+//! joints, how far their positions ended apart, the host's time around
+//! each kind of the device run's read-backs by part (`Gpu::take_transfers`:
+//! submit, wait, read the mapped bytes; the pairs' upload), and then the
+//! device's `Bulk::timings`: read-back round trips, each kernel, and the
+//! contact pairs' kernel alone on the last list the pass sent, repeated in
+//! one submission and one a submission, and the read-back of its results
+//! alone (the measurements that split the device's pair time between the
+//! kernel and the transfers). Without a device it measures the CPU and
+//! says why.
 
 use std::time::Instant;
 
@@ -93,7 +97,9 @@ fn main() {
         return;
     }
     println!("device          {}", dev.device_summary().unwrap_or_default());
+    dev.device_transfers();
     let (on_gpu, failed_gpu) = rate(&mut dev, steps);
+    let transfers = dev.device_transfers().unwrap_or_default();
     println!("gpu             {on_gpu:.3e} tet-steps/s, {failed_gpu} joints failed");
     println!("gpu / cpu       {:.2}", on_gpu / on_cpu);
     println!("gpu stages      ms a step: {}", stages(&dev));
@@ -101,8 +107,22 @@ fn main() {
     let same = cpu.failures().iter().map(|f| (f.joint, f.mode)).eq(dev.failures().iter().map(|f| (f.joint, f.mode)));
     let apart = cpu.state().x.iter().zip(&dev.state().x).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
     println!("same failures   {same}; positions apart {apart:.3e} m after {steps} steps");
+    println!("gpu read-backs  host wall time a step, by kind and part:");
+    for p in transfers {
+        let per_step = p.seconds / steps as f64 * 1e3;
+        let rate = if p.bytes > 0 && p.seconds > 0.0 {
+            format!(
+                ", {:.2} MB a call, {:.2} GB/s",
+                p.bytes as f64 / p.calls as f64 / 1e6,
+                p.bytes as f64 / p.seconds / 1e9
+            )
+        } else {
+            String::new()
+        };
+        println!("  {:<28}{per_step:>8.3} ms ({} calls{rate})", format!("{:?}, {:?}", p.read_back, p.part), p.calls);
+    }
     for t in dev.device_timings(20).unwrap_or_default() {
-        let items = t.items.map_or(String::new(), |n| format!(" ({n} items)"));
+        let items = t.items.map_or(String::new(), |n| format!(" ({n})"));
         println!("  {:<40}{:>10.1} µs{items}", t.what, t.seconds * 1e6);
     }
 }

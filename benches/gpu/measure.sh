@@ -18,17 +18,19 @@
 # Arguments choose the parts (default `bulk contact`): `bulk` the
 # gpu_step boxes, `contact` the three contact cases and the fragmented
 # cube (`gpu_contact`: CPU and device by stage, and the pair kernel timed
-# alone on the pass's last list), `paper` the
+# alone on the pass's last list), `fragmented` the cube alone, `paper` the
 # multi-layer case at the paper's mesh size (24 mm, 603k tets) over its
 # first 40 steps (a minute or two of meshing each, on the CPU and on the
-# device). Every run prints its host wall-clock time by stage.
+# device). Every run prints its host wall-clock time by stage, and the
+# device runs their read-backs' host time by part. DEVICES=gpu (or cpu)
+# runs the `femdem run` parts on that side alone.
 set -u
 cd "$(dirname "$0")/../.."
 parts=" ${*:-bulk contact} "
 for part in $parts; do
     case $part in
-        bulk | contact | paper) ;;
-        *) echo "measure.sh: unknown part '$part' (bulk, contact, paper)" >&2; exit 2 ;;
+        bulk | contact | fragmented | paper) ;;
+        *) echo "measure.sh: unknown part '$part' (bulk, contact, fragmented, paper)" >&2; exit 2 ;;
     esac
 done
 log=${OUT:-/tmp}/measure.log
@@ -80,7 +82,7 @@ steppers=gpu_step
 [ -x "$carry/gpu_step_base" ] && steppers="gpu_step_base gpu_step"
 runs=()
 [[ " $parts " == *" bulk "* ]] && runs=("100000 60" "1000000 120")
-if [[ " $parts " == *" contact "* ]]; then
+if [[ " $parts " == *" contact "* || " $parts " == *" fragmented "* ]]; then
     echo "== gpu_contact 3400 100, $threads threads"
     RAYON_NUM_THREADS=$threads timeout 60 "$carry/gpu_contact" 3400 100 "$carry/cube50_3400.snap" 2>&1 \
         | grep -v XDG_RUNTIME_DIR
@@ -108,14 +110,14 @@ for run in ${runs[@]+"${runs[@]}"}; do
     read -r limit case overrides <<< "$run"
     sets=(--set output.interval=1.0)
     for o in $overrides; do sets+=(--set "$o"); done
-    for device in cpu gpu; do
+    for device in ${DEVICES:-cpu gpu}; do
         echo "== femdem run $case ${sets[*]} --device $device, $threads threads"
         start=$SECONDS
         # A run stopped by SIGTERM writes its checkpoint first: killed 10 s
         # later if that takes longer.
         timeout -k 10 "$limit" "$femdem" run "$case" --out "/tmp/measure-$device" \
             --overwrite --device "$device" --threads "$threads" "${sets[@]}" 2>&1 \
-            | grep -E "^femdem: [0-9]|^femdem: warning|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stages" \
+            | grep -E "^femdem: [0-9]|^femdem: warning|^error|finished after|^interrupted|^ended|^fractures|wall time|throughput|^device|^stages|^read-backs" \
             | grep -v XDG_RUNTIME_DIR
         status=${PIPESTATUS[0]}
         echo "elapsed $((SECONDS - start)) s, meshing and start included"

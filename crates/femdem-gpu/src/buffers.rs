@@ -1,14 +1,17 @@
 //! Device buffers: uploads, read-backs, and dispatches over more items than
 //! one dimension of workgroups holds.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
+use std::time::Instant;
 
 use bytemuck::Pod;
 use wgpu::util::DeviceExt;
 
 use crate::device::{Gpu, GpuError};
+use crate::transfers::{Part, ReadBack};
 
 /// Invocations per workgroup of every kernel (`@workgroup_size(64)`).
 pub(crate) const GROUP: u32 = 64;
@@ -67,9 +70,38 @@ pub(crate) fn read<T: Pod>(gpu: &Gpu, buffer: &wgpu::Buffer, len: usize) -> Vec<
 /// result: one wait for several read-backs.
 pub(crate) fn submit_and_read(
     gpu: &Gpu,
-    mut encoder: wgpu::CommandEncoder,
+    encoder: wgpu::CommandEncoder,
     copies: &[(&wgpu::Buffer, u64, u64)],
 ) -> Vec<Vec<u8>> {
+    submit_and_read_as(gpu, ReadBack::Other, encoder, copies)
+}
+
+/// [`submit_and_read`], its host time logged as `read_back`'s
+/// ([`Gpu::take_transfers`]).
+pub(crate) fn submit_and_read_as(
+    gpu: &Gpu,
+    read_back: ReadBack,
+    encoder: wgpu::CommandEncoder,
+    copies: &[(&wgpu::Buffer, u64, u64)],
+) -> Vec<Vec<u8>> {
+    submit_and_read_with(gpu, read_back, encoder, copies, |bytes| bytes.iter().map(|b| b.to_vec()).collect())
+}
+
+/// Submits `encoder` with copies of `(buffer, offset, bytes)` into one
+/// read-back buffer, waits, and hands `decode` each copy's bytes where
+/// they are mapped (each starts 8-byte aligned), so that a large
+/// read-back is decoded into the caller's own kept memory rather than
+/// copied into fresh allocations first: a step that read 150 MB into new
+/// vectors spent more time on them than on the copy (`docs/performance.md`).
+/// Its host time is logged as `read_back`'s ([`Gpu::take_transfers`]).
+pub(crate) fn submit_and_read_with<R>(
+    gpu: &Gpu,
+    read_back: ReadBack,
+    mut encoder: wgpu::CommandEncoder,
+    copies: &[(&wgpu::Buffer, u64, u64)],
+    decode: impl FnOnce(&[&[u8]]) -> R,
+) -> R {
+    let start = Instant::now();
     let starts: Vec<u64> = copies
         .iter()
         .scan(0u64, |at, &(_, _, bytes)| {
@@ -86,6 +118,8 @@ pub(crate) fn submit_and_read(
         }
     }
     gpu.queue.submit([encoder.finish()]);
+    let submitted = Instant::now();
+    gpu.transfers.add(read_back, Part::Submit, 0, submitted - start);
     let slice = staging.slice(..total);
     let done = Arc::new(AtomicBool::new(false));
     let mapped = done.clone();
@@ -94,13 +128,27 @@ pub(crate) fn submit_and_read(
         mapped.store(true, Ordering::Release);
     });
     gpu.wait(&done);
+    let waited = Instant::now();
+    gpu.transfers.add(read_back, Part::Wait, total, waited - submitted);
     let out = {
         let mapped = slice.get_mapped_range();
-        copies.iter().zip(&starts).map(|(c, &s)| mapped[s as usize..(s + c.2) as usize].to_vec()).collect()
+        let parts: Vec<&[u8]> =
+            copies.iter().zip(&starts).map(|(c, &s)| &mapped[s as usize..(s + c.2) as usize]).collect();
+        decode(&parts)
     };
     staging.unmap();
     gpu.keep_staging(staging);
+    gpu.transfers.add(read_back, Part::Read, total, waited.elapsed());
     out
+}
+
+/// Read-back bytes as 64-bit floats: in place where they are 8-byte
+/// aligned (as a mapped read-back is), else copied.
+pub(crate) fn reals(bytes: &[u8]) -> Cow<'_, [f64]> {
+    match bytemuck::try_cast_slice(bytes) {
+        Ok(r) => Cow::Borrowed(r),
+        Err(_) => Cow::Owned(bytemuck::pod_collect_to_vec(bytes)),
+    }
 }
 
 /// The u32 words at `indices` of `buffer`, after all submitted work.

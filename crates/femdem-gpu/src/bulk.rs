@@ -183,6 +183,11 @@ impl Bulk {
         })
     }
 
+    /// The device this model lives on.
+    pub fn gpu(&self) -> &Gpu {
+        &self.gpu
+    }
+
     /// Uploads positions and velocities.
     pub fn set_state(&mut self, x: &[Vec3], v: &[Vec3]) {
         assert_eq!(x.len(), self.num_nodes, "one position per node");

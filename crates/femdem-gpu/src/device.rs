@@ -13,6 +13,7 @@ use std::sync::{Arc, Mutex};
 use thiserror::Error;
 
 use crate::staging::Pool;
+use crate::transfers::{Log, Phase};
 
 /// Why no device could be opened.
 #[derive(Debug, Error)]
@@ -73,6 +74,8 @@ pub struct Gpu {
     /// Whether a read-back waits by polling the device in a loop rather
     /// than blocking ([`Gpu::set_spin_wait`]).
     spin: Arc<AtomicBool>,
+    /// The host's time around each read-back, for benchmarks.
+    pub(crate) transfers: Arc<Log>,
 }
 
 impl Gpu {
@@ -116,7 +119,15 @@ impl Gpu {
         // else to do while it waits; lavapipe computes on the host's own
         // cores, which a polling loop would take from it.
         let spin = Arc::new(AtomicBool::new(info.device_type != wgpu::DeviceType::Cpu));
-        Ok(Gpu { device, queue, info: Arc::new(info), limits, staging: Arc::default(), spin })
+        Ok(Gpu {
+            device,
+            queue,
+            info: Arc::new(info),
+            limits,
+            staging: Arc::default(),
+            spin,
+            transfers: Arc::default(),
+        })
     }
 
     /// The device for a test: `Some` where one opens; `None`, with a line
@@ -194,6 +205,14 @@ impl Gpu {
             self.device.poll(wgpu::PollType::wait_indefinitely()).expect("waiting for the device");
         }
         assert!(done.load(Ordering::Acquire), "the read-back is mapped once the device is done");
+    }
+
+    /// The host's time around each kind of read-back since the last call
+    /// (submitting, waiting for the device, reading the mapped bytes; the
+    /// contact pairs' upload too), emptying the log: where a device step's
+    /// transfers go, for benchmarks.
+    pub fn take_transfers(&self) -> Vec<Phase> {
+        self.transfers.take()
     }
 
     /// The largest storage binding, bytes.

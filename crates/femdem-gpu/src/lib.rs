@@ -49,6 +49,7 @@ pub mod pairs;
 mod staging;
 pub mod surface;
 pub mod timings;
+pub mod transfers;
 
 pub use bulk::{Bulk, Evaluate, TetMesh};
 pub use device::{Gpu, GpuError};
@@ -56,3 +57,4 @@ pub use joints::JointMesh;
 pub use motion::{MotionSetup, Resident, Sum, Totals};
 pub use surface::{LoadSums, SurfaceKind, SurfaceLoad};
 pub use timings::Timing;
+pub use transfers::{Part, Phase, ReadBack};

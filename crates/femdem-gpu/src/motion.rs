@@ -7,12 +7,13 @@
 
 use femdem_core::{Real, Vec3};
 
-use crate::buffers::{Params, dispatch, read, storage, submit_and_read, write, zeroed};
+use crate::buffers::{Params, dispatch, read, reals, storage, submit_and_read_as, submit_and_read_with, write, zeroed};
 use crate::bulk::Bulk;
 use crate::bulk::Evaluate;
 use crate::device::{Gpu, GpuError};
 use crate::kernels;
 use crate::surface::{LoadSums, SurfaceLoad, Surfaces, TERMS};
+use crate::transfers::ReadBack;
 
 /// Items per chunk of the CPU's parallel passes (`femdem_solver::forces::CHUNK`).
 pub const CHUNK: usize = 512;
@@ -303,6 +304,15 @@ impl Bulk {
     /// velocity, in one submission and one read-back ([`Resident`]). The
     /// sums land in the totals that [`Bulk::advance`] returns.
     pub fn forces_resident(&mut self, want: Evaluate, sums: &[Sum], factors: &[Real]) -> Resident {
+        let mut back = Resident::default();
+        self.forces_resident_into(want, sums, factors, &mut back);
+        back
+    }
+
+    /// [`Bulk::forces_resident`] into `back`, whose vectors are reused
+    /// (decoded from the mapped read-back: no allocation once they have
+    /// grown to the lists' lengths).
+    pub fn forces_resident_into(&mut self, want: Evaluate, sums: &[Sum], factors: &[Real], back: &mut Resident) {
         let gpu = &self.gpu;
         let m = self.motion();
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
@@ -330,17 +340,17 @@ impl Bulk {
         self.encode_compact(&mut encoder, &m.listed, m.num_listed, &m.compacted, false, true);
         self.encode_compact(&mut encoder, &m.watched, m.num_watched, &m.watched_out, true, true);
         let failed_words = if self.num_joints > 0 { 4 } else { 0 };
-        let bytes = submit_and_read(
-            gpu,
-            encoder,
-            &[
-                (&self.failed_list, 0, failed_words),
-                (&m.compacted, 0, 96 * m.num_listed as u64),
-                (&m.watched_out, 0, 48 * m.num_watched as u64),
-            ],
-        );
-        let failed = if failed_words > 0 { u32::from_le_bytes(bytes[0][..4].try_into().expect("4 bytes")) } else { 0 };
-        Resident { failed, listed: vectors(&bytes[1]), watched: vectors(&bytes[2]) }
+        let copies = [
+            (&self.failed_list, 0, failed_words),
+            (&m.compacted, 0, 96 * m.num_listed as u64),
+            (&m.watched_out, 0, 48 * m.num_watched as u64),
+        ];
+        submit_and_read_with(gpu, ReadBack::Forces, encoder, &copies, |bytes| {
+            back.failed =
+                if failed_words > 0 { u32::from_le_bytes(bytes[0][..4].try_into().expect("4 bytes")) } else { 0 };
+            vectors_into(bytes[1], &mut back.listed);
+            vectors_into(bytes[2], &mut back.watched);
+        });
     }
 
     /// The central-difference update of step `n` over `dt` with the
@@ -421,7 +431,7 @@ impl Bulk {
             self.encode_compact(&mut encoder, nodes, contact.len(), after, true, false);
             copies.push((after, 0, 48 * contact.len() as u64));
         }
-        let bytes = submit_and_read(gpu, encoder, &copies);
+        let bytes = submit_and_read_as(gpu, ReadBack::Update, encoder, &copies);
         let t: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
         Totals {
             contact_nodes: bytes.get(1).map_or_else(Vec::new, |b| vectors(b)),
@@ -483,11 +493,20 @@ impl Bulk {
 
 /// Groups of `N` vectors from read-back bytes.
 fn vectors<const N: usize>(bytes: &[u8]) -> Vec<[Vec3; N]> {
-    let numbers: Vec<Real> = bytemuck::pod_collect_to_vec(bytes);
-    numbers
-        .chunks_exact(3 * N)
-        .map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2])))
-        .collect()
+    let mut out = Vec::new();
+    vectors_into(bytes, &mut out);
+    out
+}
+
+/// Groups of `N` vectors from read-back bytes into `out` (emptied first,
+/// its memory reused).
+fn vectors_into<const N: usize>(bytes: &[u8], out: &mut Vec<[Vec3; N]>) {
+    out.clear();
+    out.extend(
+        reals(bytes)
+            .chunks_exact(3 * N)
+            .map(|c| std::array::from_fn(|k| Vec3::new(c[3 * k], c[3 * k + 1], c[3 * k + 2]))),
+    );
 }
 
 fn unflat(f: &[Real]) -> Vec<Vec3> {

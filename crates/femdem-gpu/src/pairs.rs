@@ -8,11 +8,15 @@
 //! friction, the start-at-zero activation, the certified pairs, the sum
 //! into nodal forces — is not here yet.
 
-use femdem_core::{Real, Vec3};
+use std::time::Instant;
 
-use crate::buffers::{Params, dispatch, read, storage, submit_and_read, write, zeroed};
+use femdem_core::{Real, Vec3};
+use rayon::prelude::*;
+
+use crate::buffers::{Params, dispatch, read, reals, storage, submit_and_read_with, write, zeroed};
 use crate::device::{Gpu, GpuError};
 use crate::kernels;
+use crate::transfers::{Part, ReadBack};
 
 /// Numbers the kernel writes per pair: forces on `a`'s and `b`'s nodes,
 /// `Σ |F_k| P_k`, `Σ |F_k|`, the pair's bound and whether it is
@@ -162,20 +166,37 @@ impl crate::Bulk {
         omits: Option<&[Real]>,
         penalty: Real,
     ) -> Result<Vec<PairBounded>, GpuError> {
+        let mut found = Vec::new();
+        self.pair_geometry_into(pairs, omits, penalty, &mut found, |p| p)?;
+        Ok(found)
+    }
+
+    /// [`Bulk::pair_geometry`] into `out` (emptied first, its memory
+    /// reused), each pair's result turned into a `T` by `convert`: decoded
+    /// from the mapped read-back on all threads, in the pairs' order, with
+    /// no copy of the results made first (at the paper's multi-layer size
+    /// some 10⁵ pairs a step, whose fresh vectors cost more than the
+    /// device's copy: `docs/performance.md`).
+    ///
+    /// # Errors
+    /// As [`Bulk::pair_geometry`]; `out` is left empty then.
+    pub fn pair_geometry_into<T: Send>(
+        &mut self,
+        pairs: &[[u32; 2]],
+        omits: Option<&[Real]>,
+        penalty: Real,
+        out: &mut Vec<T>,
+        convert: impl Fn(PairBounded) -> T + Sync + Send,
+    ) -> Result<(), GpuError> {
+        out.clear();
         if pairs.is_empty() {
-            return Ok(Vec::new());
+            return Ok(());
         }
         if let Some(o) = omits {
             assert_eq!(o.len(), pairs.len(), "one threshold per pair");
         }
         let gpu = self.gpu.clone();
-        if self.pair_kernel.is_none() {
-            let made = gpu.module("pairs", &kernels::pairs()).and_then(|m| gpu.pipeline("pairs", &m));
-            self.pair_kernel = Some(match made {
-                Ok(p) => PairKernel::Ready(p),
-                Err(e) => PairKernel::Refused(e.to_string()),
-            });
-        }
+        self.prepare_pair_kernel();
         let pipeline = match self.pair_kernel.as_ref().expect("set above") {
             PairKernel::Ready(p) => p.clone(),
             PairKernel::Refused(reason) => {
@@ -196,6 +217,7 @@ impl crate::Bulk {
                 last: (0, false),
             });
         }
+        let start = Instant::now();
         let b = self.pair_buffers.as_ref().expect("made above");
         write(&gpu, &b.pairs, pairs.as_flattened());
         write(&gpu, &b.penalty, &[penalty]);
@@ -207,9 +229,13 @@ impl crate::Bulk {
         self.encode_pairs(&mut encoder, &pipeline, count, omits.is_some());
         let b = self.pair_buffers.as_mut().expect("made above");
         b.last = (count, omits.is_some());
-        let bytes = submit_and_read(&gpu, encoder, &[(&b.out, 0, (8 * OUT * pairs.len()) as u64)]);
-        let out: Vec<Real> = bytemuck::pod_collect_to_vec(&bytes[0]);
-        Ok(out.chunks_exact(OUT).map(|c| bounded_of(c, omits.is_some())).collect())
+        gpu.transfers.add(ReadBack::Pairs, Part::Upload, 0, start.elapsed());
+        let within = omits.is_some();
+        let results = [(&b.out, 0, (8 * OUT * pairs.len()) as u64)];
+        submit_and_read_with(&gpu, ReadBack::Pairs, encoder, &results, |bytes| {
+            out.par_extend(reals(bytes[0]).par_chunks_exact(OUT).map(|c| convert(bounded_of(c, within))));
+        });
+        Ok(())
     }
 }
 
@@ -228,6 +254,27 @@ impl crate::Bulk {
         let buffers = [&self.x, &self.tets, &b.pairs, &b.penalty, &b.out, &b.omits];
         // Not kept: the count changes from pass to pass.
         dispatch(&self.gpu, None, encoder, pipeline, params, &buffers);
+    }
+
+    /// Compiles the pair kernel if it has not been compiled (or refused)
+    /// yet: [`Bulk::pair_geometry`] does it at its first call, which a
+    /// solver can move out of its first step by calling this first.
+    pub fn prepare_pair_kernel(&mut self) {
+        if self.pair_kernel.is_none() {
+            let gpu = &self.gpu;
+            let made = gpu.module("pairs", &kernels::pairs()).and_then(|m| gpu.pipeline("pairs", &m));
+            self.pair_kernel = Some(match made {
+                Ok(p) => PairKernel::Ready(p),
+                Err(e) => PairKernel::Refused(e.to_string()),
+            });
+        }
+    }
+
+    /// The buffer of the pairs' results and the bytes of the last list's,
+    /// if the pair kernel ran.
+    pub(crate) fn last_pairs_out(&self) -> Option<(&wgpu::Buffer, u64)> {
+        let b = self.pair_buffers.as_ref()?;
+        (b.last.0 > 0).then(|| (&b.out, (8 * OUT) as u64 * u64::from(b.last.0)))
     }
 
     /// The pair kernel and the last list it ran on (pairs, thresholds or

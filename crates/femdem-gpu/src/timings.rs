@@ -21,7 +21,7 @@ pub struct Timing {
     /// Mean wall time of one, s.
     pub seconds: f64,
     /// How many items it ran over, where not the model's tets, joints or
-    /// nodes (the contact pairs).
+    /// nodes (the contact pairs), or the bytes a read-back moved.
     pub items: Option<u64>,
 }
 
@@ -35,7 +35,9 @@ impl Bulk {
     /// before afterwards (the histories are saved and restored: the joint
     /// pass would advance them), and so is the device's wait mode. Where
     /// the contact pass has sent pairs (`Bulk::pair_geometry`), also the
-    /// pair kernel on the last list (its length in [`Timing::items`]). The
+    /// pair kernel on the last list (its length in [`Timing::items`]),
+    /// repeated in one submission and then one a submission as a step runs
+    /// it, and the read-back of its results alone (bytes in `items`). The
     /// forces and energies of the last evaluation are not: the next step
     /// computes them afresh.
     pub fn timings(&mut self, reps: usize) -> Vec<Timing> {
@@ -113,6 +115,26 @@ impl Bulk {
             let start = Instant::now();
             read_one(encoder);
             out.push(Timing { what, seconds: start.elapsed().as_secs_f64() / reps as f64, items });
+        }
+        // The pair kernel as a step runs it, alone in its submission and
+        // waited for (where the repeated ones above may overlap), and the
+        // read-back of its results without it: what splits the step's wait
+        // for the pairs between the kernel and the copy.
+        if let (Some(encode), Some((_, count, _)), Some((results, bytes))) = (&pairs, &last, self.last_pairs_out()) {
+            let start = Instant::now();
+            for _ in 0..reps {
+                let mut encoder = new_encoder();
+                encode(&mut encoder);
+                read_one(encoder);
+            }
+            let seconds = start.elapsed().as_secs_f64() / reps as f64;
+            out.push(Timing { what: "contact pairs, one a submission", seconds, items: Some(u64::from(*count)) });
+            let start = Instant::now();
+            for _ in 0..reps {
+                submit_and_read(&gpu, new_encoder(), &[(results, 0, bytes)]);
+            }
+            let seconds = start.elapsed().as_secs_f64() / reps as f64;
+            out.push(Timing { what: "read back the pairs' results", seconds, items: Some(bytes) });
         }
         let mut encoder = new_encoder();
         for (b, copy) in &saved {

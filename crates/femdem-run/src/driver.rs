@@ -288,6 +288,7 @@ pub fn run(path: &Path, options: RunOptions, stop: &AtomicBool, observer: &mut d
         device: solver.device_summary(),
         device_bytes: solver.device_bytes_per_step(),
         stage_times: solver.stage_times(),
+        read_backs: solver.device_transfers().unwrap_or_default(),
     })
 }
 

@@ -160,4 +160,7 @@ pub struct Summary {
     /// Host wall-clock time of the steps by stage (`None` without a step):
     /// where a step's time went. Varies from run to run.
     pub stage_times: Option<femdem_solver::StageTimes>,
+    /// Host wall-clock time around the device's read-backs, by kind and
+    /// part, over the whole run (empty on the CPU). Varies from run to run.
+    pub read_backs: Vec<femdem_solver::Phase>,
 }

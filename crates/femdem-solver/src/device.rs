@@ -55,6 +55,10 @@ pub(crate) struct OnDevice {
     /// Resident with contact: the nodes whose positions and velocities
     /// come back every step (the contactable tets'), ascending.
     pub(crate) watched: Vec<u32>,
+    /// What the last resident stage 1 read back, its vectors reused from
+    /// step to step (the watched nodes of the paper's multi-layer mesh are
+    /// 116 MB a step).
+    pub(crate) back: femdem_gpu::Resident,
 }
 
 /// Bytes one step of stage 1 alone moves between host and device at
@@ -104,6 +108,7 @@ impl OnDevice {
             flagged: Vec::new(),
             touched: Vec::new(),
             watched: Vec::new(),
+            back: femdem_gpu::Resident::default(),
         })
     }
 
@@ -360,6 +365,13 @@ impl crate::Solver {
             d.synced = false;
             d.bulk.timings(reps)
         })
+    }
+
+    /// The host's time around each kind of the device's read-backs since
+    /// the last call (`femdem_gpu::Gpu::take_transfers`), for benchmarks;
+    /// `None` on the CPU.
+    pub fn device_transfers(&self) -> Option<Vec<femdem_gpu::Phase>> {
+        self.pipeline.device.as_ref().map(|d| d.bulk.gpu().take_transfers())
     }
 
     /// Brings the state the device holds (joint histories; resident, also

@@ -85,6 +85,12 @@ pub fn run(path: &Path, options: RunOptions, progress_interval: Option<f64>) -> 
     if let Some(times) = &s.stage_times {
         let stages: Vec<String> = times.per_step_ms().iter().map(|(name, ms)| format!("{name} {ms:.3}")).collect();
         println!("stages      ms a step over {} steps (host wall clock): {}", times.steps, stages.join(", "));
+        if !s.read_backs.is_empty() && times.steps > 0 {
+            let per_step = |seconds: f64| seconds * 1e3 / times.steps as f64;
+            let parts: Vec<String> =
+                s.read_backs.iter().map(|p| format!("{} {:.3}", p.name(), per_step(p.seconds))).collect();
+            println!("read-backs  ms a step (host wall clock, the whole run): {}", parts.join(", "));
+        }
     }
     println!("built       femdem {}; {}; simd {}", provenance::build(), provenance::cpu(), provenance::simd());
     println!("results     {}", s.frames.display());

@@ -19,18 +19,39 @@ use crate::model::Model;
 
 /// Where [`Contact::pass_with`] gets the candidate pairs' Eq. 17 contacts:
 /// given the pairs, their `negligible` thresholds (m², where the settings
-/// have one) and the penalty (Pa), one result per pair, or `None` to
-/// compute them on the CPU after all.
-pub(crate) type Geometry<'a> = dyn FnMut(&[[u32; 2]], Option<&[Real]>, Real) -> Option<Vec<Bounded>> + 'a;
+/// have one), the penalty (Pa) and an empty vector (whose memory the last
+/// pass used), it pushes one result per pair and returns `true`, or
+/// returns `false` to have them computed on the CPU after all.
+pub(crate) type Geometry<'a> = dyn FnMut(&[[u32; 2]], Option<&[Real]>, Real, &mut Vec<Bounded>) -> bool + 'a;
 
 /// A candidate not asked for.
 const NOT_ASKED: u32 = u32::MAX;
 
 /// The contacts a geometry gave for the candidates that were asked for.
-pub(super) struct Asked {
+/// Its vectors are handed back to the next pass ([`Contact::keep_asked`]):
+/// at the paper's multi-layer size they hold some 10⁵ pairs, and fresh
+/// ones every step cost more than the device's copy (`docs/performance.md`).
+#[derive(Default)]
+pub(crate) struct Asked {
     /// Per candidate, its place in `found`, or [`NOT_ASKED`].
     slot: Vec<u32>,
     found: Vec<Bounded>,
+    /// The pairs asked for and their thresholds, kept for their memory.
+    pairs: Vec<[u32; 2]>,
+    omits: Vec<Real>,
+}
+
+/// A copy starts empty: the vectors are scratch memory between passes.
+impl Clone for Asked {
+    fn clone(&self) -> Self {
+        Asked::default()
+    }
+}
+
+impl std::fmt::Debug for Asked {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Asked").field("pairs", &self.pairs.len()).finish_non_exhaustive()
+    }
 }
 
 impl Asked {
@@ -91,20 +112,40 @@ impl Contact {
                 !skipped && boxes_overlap(&xs[0], &xs[1])
             })
             .collect();
-        let mut slot = vec![NOT_ASKED; self.candidates.len()];
-        let mut pairs = Vec::new();
+        let mut asked = std::mem::take(&mut self.asked_memory);
+        let Asked { slot, found, pairs, omits } = &mut asked;
+        slot.clear();
+        slot.resize(self.candidates.len(), NOT_ASKED);
+        pairs.clear();
         for (k, (&(a, b), _)) in self.candidates.iter().zip(&clipped).enumerate().filter(|(_, (_, c))| **c) {
             slot[k] = u32::try_from(pairs.len()).expect("fewer than 2^32 pairs");
             pairs.push([a, b]);
         }
         if pairs.is_empty() {
+            self.asked_memory = asked;
             return None;
         }
         let (negligible, sizes) = (self.settings.negligible, &self.sizes);
         let omit = |&[a, b]: &[u32; 2]| negligible * sizes[a as usize].min(sizes[b as usize]).powi(2);
-        let omits = (negligible > 0.0).then(|| pairs.iter().map(omit).collect::<Vec<_>>());
-        let found = geometry(&pairs, omits.as_deref(), self.settings.penalty)?;
+        omits.clear();
+        if negligible > 0.0 {
+            omits.extend(pairs.iter().map(omit));
+        }
+        found.clear();
+        let thresholds = (negligible > 0.0).then_some(&omits[..]);
+        if !geometry(pairs, thresholds, self.settings.penalty, found) {
+            self.asked_memory = asked;
+            return None;
+        }
+        assert_eq!(found.len(), pairs.len(), "the geometry answers every pair it was asked for");
         self.asked = pairs.len();
-        Some(Asked { slot, found })
+        Some(asked)
+    }
+
+    /// Keeps the vectors of the pass's `Asked` for the next pass.
+    pub(super) fn keep_asked(&mut self, asked: Option<Asked>) {
+        if let Some(a) = asked {
+            self.asked_memory = a;
+        }
     }
 }

@@ -153,6 +153,8 @@ pub struct Contact {
     /// Pairs whose contacts the last pass asked its geometry for
     /// (`geometry.rs`).
     asked: usize,
+    /// The vectors of the last pass's [`geometry::Asked`], reused.
+    asked_memory: geometry::Asked,
     /// Host wall-clock time of the passes by part (not a result: see
     /// `clock.rs`).
     pub(crate) clock: PassClock,
@@ -264,6 +266,7 @@ impl Contact {
             results: Vec::new(),
             certificates: Certificates::default(),
             asked: 0,
+            asked_memory: geometry::Asked::default(),
             clock: PassClock::default(),
             force: vec![Vec3::zeros(); model.num_nodes()],
             friction_force: vec![Vec3::zeros(); model.num_nodes()],
@@ -491,6 +494,7 @@ impl Contact {
         let orphans =
             if self.settings.model == ContactModel::Gradient { self.orphans(model, x, v, dt) } else { Vec::new() };
         self.sum_into_nodes(model, &orphans, v, certifying);
+        self.keep_asked(precomputed);
         // Eq. 18: n_c counts the steps since the joint failed.
         let n_total = self.settings.ramp_steps;
         self.ramp.retain(|_, n_c| {

@@ -89,6 +89,11 @@ impl Solver {
         self.pipeline.workspace.failed_now.fill(None);
         let device = self.pipeline.device.as_mut().expect("a device");
         device.make_resident(setup, &e.state.x, &e.state.v, &e.v_before, e.contact.is_some())?;
+        if e.contact.as_ref().is_some_and(Contact::geometry_elsewhere) {
+            // Compiled now rather than in the first pass (about a second
+            // on an H200): a refusal is kept, and the pass clips on the CPU.
+            device.bulk.prepare_pair_kernel();
+        }
         device.touched.clear();
         device.watched = Vec::new();
         self.watch_contactable()
@@ -131,7 +136,8 @@ impl Solver {
         }
         let evaluate = Evaluate { stress: want.stress, energy: want.energy, dissipation: viscous };
         let factors: Vec<_> = self.scene.loads.surfaces.iter().map(|l| l.ramp.factor(t)).collect();
-        let back = device.bulk.forces_resident(evaluate, &sums_wanted, &factors);
+        let mut back = std::mem::take(&mut device.back);
+        device.bulk.forces_resident_into(evaluate, &sums_wanted, &factors, &mut back);
         device.synced = false;
         self.pipeline.forces_current = true;
         if want.stress {
@@ -141,13 +147,14 @@ impl Solver {
         let state = &mut self.evolving.state;
         let internal = &mut self.pipeline.workspace.internal;
         let f_surface = &mut self.pipeline.external.f_surface;
-        for (&i, [x, v, f, s]) in device.listed.iter().zip(back.listed) {
+        for (&i, &[x, v, f, s]) in device.listed.iter().zip(&back.listed) {
             let i = i as usize;
             (state.x[i], state.v[i], internal[i], f_surface[i]) = (x, v, f, s);
         }
-        for (&i, [x, v]) in device.watched.iter().zip(back.watched) {
+        for (&i, &[x, v]) in device.watched.iter().zip(&back.watched) {
             (state.x[i as usize], state.v[i as usize]) = (x, v);
         }
+        device.back = back;
         lap(&mut clock, &mut times.forces);
         // 2. Failures: the record reads the failed joints' positions (and
         // contact, unbonding their tets, every node's).
@@ -168,11 +175,11 @@ impl Solver {
             // watched nodes' positions the pass reads are those).
             let bulk = &mut self.pipeline.device.as_mut().expect("a resident device").bulk;
             let on_device = &mut times.geometry_device;
-            let mut geometry = |pairs: &[[u32; 2]], omits: Option<&[f64]>, penalty: f64| {
+            let mut geometry = |pairs: &[[u32; 2]], omits: Option<&[f64]>, penalty: f64, found: &mut Vec<_>| {
                 let start = Instant::now();
-                let found = bulk.pair_geometry(pairs, omits, penalty).ok();
+                let answered = bulk.pair_geometry_into(pairs, omits, penalty, found, bounded).is_ok();
                 *on_device += start.elapsed();
-                Some(found?.into_iter().map(bounded).collect())
+                answered
             };
             let (x, v) = (&self.evolving.state.x, &self.evolving.state.v);
             let before = contact.clock;

@@ -30,7 +30,6 @@ use std::time::Instant;
 
 use femdem_core::Vec3;
 use femdem_gpu::{Evaluate, MotionSetup, Sum, SurfaceKind, SurfaceLoad};
-use rayon::prelude::*;
 
 use super::Solver;
 use super::external::weight;
@@ -152,18 +151,8 @@ impl Solver {
             let i = i as usize;
             (state.x[i], state.v[i], internal[i], f_surface[i]) = (x, v, f, s);
         }
-        if device.watched.len() == state.x.len() {
-            // Every node watched (sorted and deduplicated: the identity), as
-            // in a scene cut by fractures throughout: copied on all threads
-            // (2.4·10⁶ nodes a step at the paper's multi-layer size).
-            let (xs, vs) = (&mut state.x, &mut state.v);
-            xs.par_iter_mut().zip(vs.par_iter_mut()).zip(&back.watched).for_each(|((x, v), &[nx, nv])| {
-                (*x, *v) = (nx, nv);
-            });
-        } else {
-            for (&i, &[x, v]) in device.watched.iter().zip(&back.watched) {
-                (state.x[i as usize], state.v[i as usize]) = (x, v);
-            }
+        for (&i, &[x, v]) in device.watched.iter().zip(&back.watched) {
+            (state.x[i as usize], state.v[i as usize]) = (x, v);
         }
         device.back = back;
         lap(&mut clock, &mut times.forces);

@@ -16,6 +16,7 @@
 //! # Ok::<(), anyhow::Error>(())
 //! ```
 
+pub mod coincident;
 pub mod format;
 #[cfg(test)]
 mod fuzz;

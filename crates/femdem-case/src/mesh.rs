@@ -24,7 +24,8 @@ pub fn build_mesh(case: &LoadedCase) -> Result<TetMesh, CaseError> {
 /// [`build_mesh`], pushing onto `warnings` what is legal but probably not
 /// meant, one located sentence each: an extrusion meshed far finer than
 /// its `element_size` because features of its outline or traces crowd
-/// ([`crate::refinement`]).
+/// ([`crate::refinement`]); parts whose tets coincide exactly
+/// ([`crate::coincident`]).
 ///
 /// # Errors
 /// As [`build_mesh`].
@@ -48,6 +49,8 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
     }
     let mut mesh = TetMesh::default();
     let mut names: Vec<String> = Vec::new();
+    // Each part's tets in the assembled mesh.
+    let mut ranges: Vec<std::ops::Range<usize>> = Vec::new();
     for (i, part) in section.parts.iter().enumerate() {
         let span = part.span();
         let key = format!("mesh.parts[{i}]");
@@ -239,7 +242,25 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
             }
         }
         names.push(name);
+        let first = mesh.num_tets();
         mesh.append(&body);
+        ranges.push(first..mesh.num_tets());
+    }
+    for (earlier, later, tets) in crate::coincident::coinciding_parts(&mesh, &ranges) {
+        let (a, b) = (&names[earlier], &names[later]);
+        let total = ranges[later].len();
+        warnings.push(
+            case.error_at(
+                section.parts[later].span(),
+                format!(
+                    "mesh.parts[{later}] (`{b}`): {tets} of its {total} tets coincide exactly with tets of \
+                     mesh.parts[{earlier}] (`{a}`), two bodies in one place (a part given twice?): their mass \
+                     counts twice, and contact feels no force between coinciding tets (Eq. 17's potential is \
+                     zero on a tet's own faces); remove the copy, or move it"
+                ),
+            )
+            .to_string(),
+        );
     }
     // Keep the declared region order, including regions no part uses.
     reorder_regions(&mut mesh, &regions);

@@ -487,6 +487,34 @@ fn table_errors_name_the_table_they_come_from() {
     assert!(err.contains("missing field `version`") && !err.contains("mesh"), "{err}");
 }
 
+/// A part given twice in the same place (the second block moved onto the
+/// first) is two bodies in one place that contact cannot see: a warning at
+/// the later part, counting its coinciding tets. The blocks as written
+/// (the second 0.1 mm into the first: an overlap with a depth, which the
+/// run reports at its first step) give none.
+#[test]
+fn a_part_given_twice_in_one_place_is_a_warning() {
+    let blocks = "crates/femdem-cli/tests/cases/overlapping_blocks.toml";
+    let out = femdem(&[
+        "check",
+        blocks,
+        "--set",
+        "mesh.parts.1.min=[0.0,0.0,0.0]",
+        "--set",
+        "mesh.parts.1.max=[0.01,0.01,0.01]",
+    ]);
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "{err}");
+    let line = err.lines().find(|l| l.contains("coincide exactly")).unwrap_or_else(|| panic!("{err}"));
+    assert!(
+        line.starts_with(&format!("warning: {blocks}:23:1: mesh.parts[1] (`second`): 48 of its 48 tets")),
+        "{line}"
+    );
+    assert!(line.contains("with tets of mesh.parts[0] (`first`)"), "{line}");
+    let out = femdem(&["check", blocks]);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("coincide exactly"));
+}
+
 /// Declarations that would act on nothing, or not in full, are warnings at
 /// their tables (a platen with no tets is refused): pre-existing fractures
 /// without `[contact]`, platens under `[contact] surfaces = false` without

@@ -61,14 +61,37 @@ fn history_path(results: &Path) -> Result<PathBuf> {
 /// Runs the command: writes the plots and prints their paths.
 pub fn run(results: &Path, options: PlotOptions) -> Result<()> {
     let history = History::read(&history_path(results)?)?;
+    // A run's history: named so, or with its `time` and `step` columns (a
+    // run writes the header as it starts, a row at each output interval).
+    let named = history.path.file_name().is_some_and(|n| n == "history.csv");
+    let is_history = named || (history.index("time").is_ok() && history.index("step").is_ok());
     if history.rows.is_empty() {
-        bail!("{} has no rows yet: the run wrote its header and no step", history.path.display());
+        if is_history {
+            bail!("{} has no rows yet: the run wrote its header and no step", history.path.display());
+        }
+        bail!("{} has a header and no rows: nothing to draw", history.path.display());
+    }
+    if history.rows.len() == 1 {
+        eprintln!(
+            "warning: {} has one row: each curve is a single point, which a line plot does not show",
+            history.path.display()
+        );
     }
     let dir = history.path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
     let label = history.label();
     let mut written = Vec::new();
     if options.y.is_empty() {
-        for (name, plot) in default_plots(&history, &label)? {
+        let plots = default_plots(&history, &label)?;
+        if plots.is_empty() {
+            bail!(
+                "{} has none of the columns `femdem plot` draws by default (load and strain, the energies, the \
+                 failed joints){}: name the columns to draw with --y (and --x); its columns are: {}",
+                history.path.display(),
+                if is_history { "" } else { " — it is not a run's history.csv" },
+                history.columns.join(", ")
+            );
+        }
+        for (name, plot) in plots {
             let path = dir.join(format!("plot_{name}.png"));
             plot.draw(&path)?;
             written.push(path);

@@ -125,3 +125,39 @@ fn points_that_are_not_finite_are_named_in_a_warning() {
     assert!(err.contains("1 of the 4 points of `tet_elastic` are not finite"), "{err}");
     assert!(dir.join("plot_kinetic-tet_elastic_vs_time.png").is_file());
 }
+
+/// A CSV that is not a run's history (the run's `failures.csv`) has none
+/// of the default plots' columns: refused, saying so and listing its
+/// columns (it wrote nothing and exited 0); with `--y` it is drawn. A
+/// history of one row draws single points, which a line plot does not
+/// show: a warning. A header without rows in a file that is not a history
+/// is not blamed on a run.
+#[test]
+fn a_csv_that_is_not_a_history_and_a_single_row_are_said_so() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("plot-not-history");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let failures = dir.join("failures.csv");
+    std::fs::write(&failures, "time,joint,x,y,z,area,mode\n1e-6,3,0,0,0,1e-6,2\n2e-6,5,0,0,0,1e-6,1\n").unwrap();
+    let o = femdem(&["plot", failures.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(err.contains("has none of the columns `femdem plot` draws by default"), "{err}");
+    assert!(err.contains("it is not a run's history.csv") && err.contains("time, joint, x, y, z, area, mode"), "{err}");
+    let o = femdem(&["plot", failures.to_str().unwrap(), "--y", "area"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.join("plot_area_vs_time.png").is_file());
+
+    let one = dir.join("one").join("history.csv");
+    std::fs::create_dir_all(one.parent().unwrap()).unwrap();
+    std::fs::write(&one, "# case: x.toml\ntime,step,kinetic,balance\n0,0,0,0\n").unwrap();
+    let o = femdem(&["plot", one.parent().unwrap().to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("has one row: each curve is a single point"), "{err}");
+
+    let empty = dir.join("empty.csv");
+    std::fs::write(&empty, "a,b\n").unwrap();
+    let err = String::from_utf8(femdem(&["plot", empty.to_str().unwrap()]).stderr).unwrap();
+    assert!(err.contains("has a header and no rows: nothing to draw") && !err.contains("the run"), "{err}");
+}

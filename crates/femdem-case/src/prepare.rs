@@ -206,7 +206,8 @@ pub fn prepare_within(
         femdem_static::hold_surface_loads(&mut loads);
     }
     let load_strain = crate::setup::load_strain(&loaded, &loads, &model.x0, &mut warnings)?;
-    let held = held_nodes(&model, &loads).map_err(|e| at(e.to_string()))?;
+    let held = held_nodes(&model, &loads)
+        .map_err(|e| crate::setup::constrained_twice(&loaded, &loads, &e).unwrap_or_else(|| at(e.to_string())))?;
     crate::setup::surface_loads_on_held_nodes(&loaded, &loads, &held, &mut warnings);
     crate::setup::surface_loads_on_interior_faces(&loaded, &loads, &jointed, &mut warnings);
     crate::setup::loads_that_stop_while_ramping(&loaded, start == Start::Static, &mut warnings);

@@ -4,7 +4,7 @@
 use femdem_core::Vec3;
 use femdem_mesh::JointedMesh;
 use femdem_solver::select::{NodeSelection, UnknownName, group_faces, select_nodes};
-use femdem_solver::{Fixed, Loads, Ramp, SurfaceKind, SurfaceLoad, VelocityDrive};
+use femdem_solver::{Fixed, Loads, Ramp, SolverError, SurfaceKind, SurfaceLoad, VelocityDrive};
 
 use crate::format::{LoadSpec, NodeSpec};
 use crate::{CaseError, LoadedCase};
@@ -52,6 +52,31 @@ fn no_faces(group: &str, what: &str) -> String {
          with quadrangles, or lying on no tet's face, gives an empty group: `femdem check` lists each group's \
          faces)"
     )
+}
+
+/// The error of a velocity component constrained twice where the first
+/// constraint is an unnamed fixed load (the solver knows it only as "a
+/// fixed constraint"): placed at that load and naming it, `loads[i]`.
+/// `None` for any other error (the caller places it as before).
+pub fn constrained_twice(case: &LoadedCase, loads: &Loads, e: &SolverError) -> Option<CaseError> {
+    let SolverError::PrescribedTwice { node, at, component, first, by } = e else { return None };
+    let c = ["x", "y", "z"].iter().position(|n| n == component)?;
+    if first != "a fixed constraint" {
+        return None;
+    }
+    // The solver's fixed loads are the case's fixed loads without a name
+    // or a start time, in the case's order (`loads`).
+    let k = loads.fixed.iter().position(|f| f.components[c] && f.nodes.contains(node))?;
+    let unnamed = |l: &LoadSpec| matches!(l, LoadSpec::Fixed { name: None, start_time: None, .. });
+    let (i, spec) = case.case.loads.iter().enumerate().filter(|(_, l)| unnamed(l.get_ref())).nth(k)?;
+    let named = SolverError::PrescribedTwice {
+        node: *node,
+        at: *at,
+        component,
+        first: format!("the fixed load loads[{i}]"),
+        by: by.clone(),
+    };
+    Some(case.error_at(spec.span(), format!("loads[{i}]: {named}")))
 }
 
 /// Pushes onto `warnings` every pressure or traction of `case` whose

@@ -10,7 +10,7 @@ mod unused;
 
 pub use contact::{ContactCheck, activation_name, contact, contact_check, contact_noting};
 pub use loads::{
-    loads, loads_that_stop_while_ramping, platens_that_touch_nothing, surface_loads_on_held_nodes,
+    constrained_twice, loads, loads_that_stop_while_ramping, platens_that_touch_nothing, surface_loads_on_held_nodes,
     surface_loads_on_interior_faces,
 };
 pub use materials::{DEFAULT_PENALTY_FACTOR, behaviours, model};

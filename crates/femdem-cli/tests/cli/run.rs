@@ -328,7 +328,11 @@ fn bad_run_settings_are_refused_with_file_line_and_key() {
         ("negative_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got -0.002 s"),
         ("infinite_start_time", ":42:", "loads[2]: `start_time` must be finite and ≥ 0 s, got inf s"),
         ("gravity_four_components", ":67:11:", "`gravity`: invalid length 4, expected an array of 3"),
-        ("prescribed_twice", ":36:", "z velocity prescribed twice: by a fixed constraint and by drive `push`"),
+        (
+            "prescribed_twice",
+            ":23:1: loads[0]:",
+            "z velocity prescribed twice: by the fixed load loads[0] and by drive `push`",
+        ),
         ("mass_scaling_below_one", ":64:", "solver: mass_scaling must be finite and ≥ 1, got 0.5"),
         ("velocity_in_a_free_component", ":55:", "`velocity` has x = 0.5 m/s, but `components = \"z\"` leaves x free"),
         (

@@ -110,7 +110,10 @@ fn main() {
     println!("gpu read-backs  host wall time a step, by kind and part:");
     for p in transfers {
         let per_step = p.seconds / steps as f64 * 1e3;
-        let rate = if p.bytes > 0 && p.seconds > 0.0 {
+        // A rate for the parts that only move bytes (the wait includes the
+        // kernels).
+        let moves = matches!(p.part, femdem_solver::Part::Read | femdem_solver::Part::Upload);
+        let rate = if moves && p.bytes > 0 && p.seconds > 0.0 {
             format!(
                 ", {:.2} MB a call, {:.2} GB/s",
                 p.bytes as f64 / p.calls as f64 / 1e6,
@@ -119,7 +122,7 @@ fn main() {
         } else {
             String::new()
         };
-        println!("  {:<28}{per_step:>8.3} ms ({} calls{rate})", format!("{:?}, {:?}", p.read_back, p.part), p.calls);
+        println!("  {:<28}{per_step:>8.3} ms ({} calls{rate})", p.name(), p.calls);
     }
     for t in dev.device_timings(20).unwrap_or_default() {
         let items = t.items.map_or(String::new(), |n| format!(" ({n})"));

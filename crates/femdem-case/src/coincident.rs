@@ -1,6 +1,7 @@
 //! Parts meshed in the same place. Two parts whose tets coincide exactly
-//! (the same four corner positions: a part listed twice, or an MSH file
-//! given as two parts) are two bodies in one place: their mass counts
+//! (the same four corner positions: an MSH file given as two parts, a box
+//! without jitter listed twice; a jittered box listed twice gets another
+//! seed and is another mesh) are two bodies in one place: their mass counts
 //! twice, and contact cannot see them, since Eq. 17's potential `φ` is zero
 //! on a tet's own faces, so coinciding tets push each other with no force
 //! and the warning of tets overlapping at t = 0 (which measures that
@@ -18,7 +19,8 @@ use femdem_mesh::TetMesh;
 /// A tet's corners as bits, sorted: equal for two tets with the same four
 /// corner positions, whatever their node order.
 fn corners(mesh: &TetMesh, tet: usize) -> [[u64; 3]; 4] {
-    let mut c = mesh.tets[tet].map(|n| mesh.coords[n as usize].map(f64::to_bits));
+    // `+ 0.0` makes −0 the same as +0.
+    let mut c = mesh.tets[tet].map(|n| mesh.coords[n as usize].map(|x| (x + 0.0).to_bits()));
     c.sort_unstable();
     c
 }

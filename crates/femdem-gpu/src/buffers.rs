@@ -272,6 +272,22 @@ mod tests {
     use super::*;
     use crate::kernels;
 
+    /// Bytes are read as f64 in place where aligned and copied where not,
+    /// with the same numbers either way.
+    #[test]
+    fn reals_are_read_in_place_where_aligned_and_copied_where_not() {
+        let numbers = [1.5f64, -2.25e-300, f64::MAX, 0.1];
+        let aligned: &[u8] = bytemuck::cast_slice(&numbers);
+        assert!(matches!(reals(aligned), Cow::Borrowed(r) if r == numbers));
+        // The same bytes one byte into memory aligned for f64: misaligned.
+        let mut store = [0f64; 5];
+        let bytes: &mut [u8] = bytemuck::cast_slice_mut(&mut store);
+        bytes[1..33].copy_from_slice(aligned);
+        let read = reals(&bytes[1..33]);
+        assert!(matches!(read, Cow::Owned(_)));
+        assert_eq!(&*read, &numbers[..]);
+    }
+
     /// A dispatch of the same pipeline, parameters and buffers reuses its
     /// kept group; forgetting a buffer drops the groups that bind it; the
     /// kept groups never pass the limit; and what a kept group dispatches

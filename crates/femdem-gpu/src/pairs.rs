@@ -229,7 +229,8 @@ impl crate::Bulk {
         self.encode_pairs(&mut encoder, &pipeline, count, omits.is_some());
         let b = self.pair_buffers.as_mut().expect("made above");
         b.last = (count, omits.is_some());
-        gpu.transfers.add(ReadBack::Pairs, Part::Upload, 0, start.elapsed());
+        let sent = (size_of_val(pairs) + omits.map_or(0, size_of_val)) as u64;
+        gpu.transfers.add(ReadBack::Pairs, Part::Upload, sent, start.elapsed());
         let within = omits.is_some();
         let results = [(&b.out, 0, (8 * OUT * pairs.len()) as u64)];
         submit_and_read_with(&gpu, ReadBack::Pairs, encoder, &results, |bytes| {

@@ -1,9 +1,12 @@
 //! Where the host's time around the device goes, by read-back: for each
-//! kind of read-back (the stage-1 forces, the update, the contact pairs,
+//! kind of read-back (the resident stage-1 forces, the update, the contact
+//! pairs, the rest — a stage 1 that is not resident reads its forces as
 //! the rest), the host's wall time to submit it, to wait for the device
 //! (its kernels and the copy into host-visible memory), and to read the
-//! mapped bytes (copied out, or decoded in place), with the bytes read. A measurement for benchmarks
-//! (`gpu_contact`), never part of a result: [`crate::Gpu::take_transfers`].
+//! mapped bytes (copied out, or decoded in place), with the bytes read,
+//! and the pairs' upload with the bytes sent. A measurement (`femdem run`'s
+//! `read-backs` line, `gpu_contact`), never part of a result:
+//! [`crate::Gpu::take_transfers`].
 
 use std::sync::Mutex;
 use std::time::Duration;

@@ -88,7 +88,7 @@ pub use clock::StageTimes;
 pub use contact::{Activation, Contact, ContactEnergy, ContactModel, ContactSettings, NEGLIGIBLE, RAMP_STEPS};
 pub use device::Residency;
 pub use error::SolverError;
-pub use femdem_gpu::{Gpu, GpuError, Phase};
+pub use femdem_gpu::{Gpu, GpuError, Part, Phase};
 pub use forces::{Dissipation, ForceSums, Want, Workspace};
 pub use guard::{CONTACT_ENERGY_TOLERANCE, Trouble};
 pub use ledger::{ENERGY_TOLERANCE, FLOOR_STRAIN, Imbalance};

@@ -71,12 +71,6 @@ pub fn run(results: &Path, options: PlotOptions) -> Result<()> {
         }
         bail!("{} has a header and no rows: nothing to draw", history.path.display());
     }
-    if history.rows.len() == 1 {
-        eprintln!(
-            "warning: {} has one row: each curve is a single point, which a line plot does not show",
-            history.path.display()
-        );
-    }
     let dir = history.path.parent().map_or_else(PathBuf::new, Path::to_path_buf);
     let label = history.label();
     let mut written = Vec::new();
@@ -117,6 +111,12 @@ pub fn run(results: &Path, options: PlotOptions) -> Result<()> {
         let title = format!("{label} — {} against {x}", ys.join(", "));
         Plot { title, x: axis_label(&[x]), y: axis_label(&ys), series }.draw(&path)?;
         written.push(path);
+    }
+    if history.rows.len() == 1 {
+        eprintln!(
+            "warning: {} has one row: each curve is a single point, which a line plot does not show",
+            history.path.display()
+        );
     }
     for path in written {
         println!("{}", path.display());

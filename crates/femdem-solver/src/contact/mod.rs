@@ -393,10 +393,12 @@ impl Contact {
 
     /// [`Contact::pass`] with the candidate pairs' Eq. 17 contacts from
     /// `geometry` (given the pairs, each one's `negligible` threshold in m²
-    /// where the settings have one, and the penalty; `None` back: computed
-    /// here after all), for [`ContactModel::Potential`]: the pair kernel on
-    /// a device ([`femdem_gpu::Bulk::pair_geometry`]: the CPU's operations,
-    /// results to round-off, a driver may fuse a product and a sum). Everything else — detection, certificates,
+    /// where the settings have one, the penalty and a vector to fill;
+    /// `false` back: computed here after all), for
+    /// [`ContactModel::Potential`]: the pair kernel on a device
+    /// ([`femdem_gpu::Bulk::pair_geometry_into`]: the CPU's operations,
+    /// results to round-off, a driver may fuse a product and a sum).
+    /// Everything else — detection, certificates,
     /// the boxes' early-out, the Eq. 18 ramp, the start-at-zero offsets,
     /// friction, the sums into nodal forces — is the CPU's as in `pass`.
     pub(crate) fn pass_with(

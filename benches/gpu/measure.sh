@@ -75,7 +75,8 @@ RAYON_NUM_THREADS=$threads timeout 40 "$carry/gpu_step" 2000 10 2>&1 | grep -v X
 # Time limits: the first box 40 s, bulk 180 s (360 s with a baseline),
 # contact 240 s (of which the fragmented cube, also the part `fragmented`
 # alone, 60 s), paper 300 s; DEVICES=gpu (or cpu) halves the `femdem run`
-# parts' (paper alone: 110 s on an H200, meshing included). Within one command's 600 s: `bulk contact`
+# parts' (paper alone: 110 s on an H200, meshing included). Within one
+# command's 600 s: `bulk contact`
 # without a baseline (460 s), `bulk` with one (400 s), `contact` (280 s),
 # `paper` alone (340 s; 230 s on an H100, meshing included); with a
 # baseline run `bulk` and `contact` as two calls, or accept that the

@@ -57,26 +57,20 @@ pub struct Phase {
 
 impl Phase {
     /// Its name in a summary line, e.g. `pairs wait`.
-    pub fn name(&self) -> &'static str {
-        use {Part::*, ReadBack::*};
-        match (self.read_back, self.part) {
-            (Forces, Upload) => "forces upload",
-            (Forces, Submit) => "forces submit",
-            (Forces, Wait) => "forces wait",
-            (Forces, Read) => "forces read",
-            (Update, Upload) => "update upload",
-            (Update, Submit) => "update submit",
-            (Update, Wait) => "update wait",
-            (Update, Read) => "update read",
-            (Pairs, Upload) => "pairs upload",
-            (Pairs, Submit) => "pairs submit",
-            (Pairs, Wait) => "pairs wait",
-            (Pairs, Read) => "pairs read",
-            (Other, Upload) => "other upload",
-            (Other, Submit) => "other submit",
-            (Other, Wait) => "other wait",
-            (Other, Read) => "other read",
-        }
+    pub fn name(&self) -> String {
+        let read_back = match self.read_back {
+            ReadBack::Forces => "forces",
+            ReadBack::Update => "update",
+            ReadBack::Pairs => "pairs",
+            ReadBack::Other => "other",
+        };
+        let part = match self.part {
+            Part::Upload => "upload",
+            Part::Submit => "submit",
+            Part::Wait => "wait",
+            Part::Read => "read",
+        };
+        format!("{read_back} {part}")
     }
 }
 
@@ -121,7 +115,7 @@ mod tests {
         assert_eq!((phases[0].read_back, phases[0].calls, phases[0].bytes), (ReadBack::Pairs, 2, 720));
         assert!((phases[0].seconds - 0.005).abs() < 1e-12);
         assert_eq!((phases[1].read_back, phases[1].calls), (ReadBack::Forces, 1));
-        assert_eq!((phases[0].name(), phases[1].name()), ("pairs wait", "forces wait"));
+        assert_eq!((phases[0].name().as_str(), phases[1].name().as_str()), ("pairs wait", "forces wait"));
         assert!(log.take().is_empty());
     }
 }

@@ -1,4 +1,4 @@
-//! The kernels' own `ln` and `exp` in f64 (`wgsl/math.wgsl`, where the
+//! The kernels' own `ln`, `exp`, `ln(1 + x)` and `x − ln(1 + x)` in f64 (`wgsl/math.wgsl`, where the
 //! formulas are), evaluated over arrays so that tests can compare them with
 //! the CPU's in units in the last place.
 
@@ -13,6 +13,10 @@ pub enum MathFn {
     Ln,
     /// The exponential (the softening law's curve).
     Exp,
+    /// `ln(1 + x)` (the neo-Hookean energy's `ln J`, from `J − 1`).
+    Ln1p,
+    /// `x − ln(1 + x)` (the neo-Hookean energy's `J − 1 − ln J`).
+    Excess,
 }
 
 /// `f(x)` for every `x` of `input`, computed on the device.
@@ -25,6 +29,8 @@ pub fn evaluate(gpu: &Gpu, f: MathFn, input: &[f64]) -> Result<Vec<f64>, GpuErro
     let flags = match f {
         MathFn::Ln => 0,
         MathFn::Exp => 1,
+        MathFn::Ln1p => 2,
+        MathFn::Excess => 3,
     };
     let count = u32::try_from(input.len()).expect("at most 2^32 inputs");
     dispatch(gpu, None, &mut encoder, &pipeline, Params { count, flags, pad: [0; 2] }, &[&a, &b]);

@@ -51,8 +51,24 @@
 //!
 //! For `J ≥ J_FLOOR` everything is exactly Eq. 1–2. Finite inputs always
 //! give finite outputs.
+//!
+//! # Energy at small strains
+//!
+//! `W = μ/2 (tr B − 3) − μ ln J + λ/2 (ln J)²` is of second order in the
+//! strain, but `μ/2 (tr B − 3)` and `μ ln J` are each of first order: at a
+//! strain of 10⁻⁹ they are 10⁹ times `W`, and evaluated as written their
+//! difference keeps no correct digit (an elastic wave's energy came out
+//! ten times too large). So `W` is evaluated from `H = F − I`:
+//! `tr B − 3 = 2 tr H + |H|²`, `J − 1 = tr H + I₂(H) + det H` (the
+//! characteristic polynomial, `I₂ = ½((tr H)² − tr H²)`), and
+//! `W = μ/2 |H|² + μ ((J − 1 − ln J) − I₂ − det H) + λ/2 (ln J)²`, with
+//! `J − 1 − ln J` and `ln J` from [`crate::log1p`]. Every term is then of
+//! second order or is `ln J` itself, and `W` keeps its relative precision
+//! (that of `H`, which `F` holds to `ε / |H|`). The stress is of first order
+//! and keeps its digits as written; it is unchanged.
 
 use crate::Material;
+use crate::log1p::ln_1p_and_excess;
 use femdem_core::{Mat3, Real};
 
 /// The constitutive law of a tet region.
@@ -104,6 +120,28 @@ pub(crate) fn sym(a: &Mat3) -> Mat3 {
     (a + a.transpose()) * 0.5
 }
 
+/// The neo-Hookean stored energy per unit reference volume from
+/// `H = F − I` (module docs, "Energy at small strains"):
+/// `W = μ/2 |H|² + μ (tr H − ln J) + λ/2 (ln J)²` for `J ≥ J_FLOOR`, with
+/// `J − 1 = tr H + I₂(H) + det H` and `tr H − ln J = (J − 1 − ln J) − I₂(H)
+/// − det H`; below the floor `W = μ/2 |H|² + μ tr H + U(Ĵ) + U′(Ĵ)(J − Ĵ)`
+/// (`ln_jh = ln Ĵ`, `du = U′(Ĵ)`). Both are
+/// `μ/2 (tr B − 3) − μ ln J + λ/2 (ln J)²` (and its continuation) exactly.
+#[inline]
+fn neo_hookean_energy(lambda: Real, mu: Real, f: &Mat3, j: Real, jh: Real, ln_jh: Real, du: Real) -> Real {
+    let h = f - Mat3::identity();
+    let tr = h.trace();
+    let shear = 0.5 * mu * h.norm_squared();
+    if j >= J_FLOOR {
+        let i2 = 0.5 * (tr * tr - (h * h).trace());
+        let det = h.column(0).dot(&cofactor(&h).column(0));
+        let (ln_j, excess) = ln_1p_and_excess(tr + i2 + det);
+        shear + mu * (excess - (i2 + det)) + 0.5 * lambda * ln_j * ln_j
+    } else {
+        shear + mu * tr + (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh)
+    }
+}
+
 /// Evaluates `law` at deformation gradient `f`, velocity gradient `l` and
 /// `cof = cof f`, `j = det f` (computed once by the caller).
 #[inline]
@@ -116,8 +154,7 @@ pub(crate) fn response(law: Law, m: &Material, f: &Mat3, l: &Mat3, cof: &Mat3, j
             let jh = j.max(J_FLOOR);
             let ln_jh = jh.ln();
             let du = (lambda * ln_jh - mu) / jh;
-            let u = (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh);
-            let energy = 0.5 * mu * (f.norm_squared() - 3.0) + u;
+            let energy = neo_hookean_energy(lambda, mu, f, j, jh, ln_jh, du);
             // P = μF + U′(Ĵ) cof F + η D cof F  (= J T F⁻ᵀ for J ≥ J_f).
             let p = f * mu + (Mat3::identity() * du + d * eta) * cof;
             // Eq. 1 with Ĵ: T = (μ (B − I) + λ ln Ĵ I)/Ĵ + η D.
@@ -281,6 +318,36 @@ mod tests {
             let cof = cofactor(&f);
             let elastic = first_piola_kirchhoff(Law::NeoHookean, &m, &f, &Mat3::zeros());
             assert!((elastic - f * m.mu()).component_mul(&cof).sum() < 0.0);
+        }
+    }
+
+    /// At small strains the neo-Hookean energy is the linear law's,
+    /// `λ/2 (tr ε)² + μ ε:ε`, up to terms of relative order `|H|`: checked
+    /// on uniaxial stress, pure shear and a general gradient, from
+    /// `|H| = 10⁻³` down to 10⁻¹¹, within `4 |H|` plus 10⁻¹³ (both laws
+    /// read the same `F`, so what `F` has lost of `H` is common to both;
+    /// the 10⁻¹³ is a few hundred ulps of the terms' round-off). Evaluated as
+    /// `μ/2 (tr B − 3) − μ ln J + …` the energy at `|H| = 10⁻⁹` is off by a
+    /// factor of order ten (module docs, "Energy at small strains").
+    #[test]
+    fn energy_at_small_strains_is_the_linear_laws() {
+        let m = material(0.0);
+        let nu = m.poisson();
+        let general = Mat3::new(0.3, -0.7, 0.2, 0.5, -0.4, 0.9, -0.1, 0.6, 0.8);
+        for size in [1e-3, 1e-5, 1e-7, 1e-9, 3e-10, 1e-11] {
+            let shapes = [
+                Mat3::from_diagonal(&femdem_core::Vec3::new(1.0, -nu, -nu)),
+                Mat3::new(0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+                general,
+            ];
+            for shape in shapes {
+                let f = Mat3::identity() + shape * size;
+                let nh = strain_energy_density(Law::NeoHookean, &m, &f);
+                let lin = strain_energy_density(Law::LinearElastic, &m, &f);
+                assert!(lin > 0.0);
+                let err = (nh / lin - 1.0).abs();
+                assert!(err < 4.0 * size * shape.norm() + 1e-13, "|H| = {size:e}, {shape}: {nh:e} vs {lin:e}");
+            }
         }
     }
 

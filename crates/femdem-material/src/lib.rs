@@ -15,6 +15,8 @@
 //! - [`law`]: [`Law`], [`cauchy_stress`] (Eq. 1–2), [`first_piola_kirchhoff`]
 //!   and [`strain_energy_density`], including the documented behaviour of
 //!   inverted elements (`J ≤` [`J_FLOOR`]).
+//! - [`log1p`]: `ln(1 + x)` and `x − ln(1 + x)` without cancellation, for
+//!   the energy at small strains.
 //! - [`tet`]: the hot-path kernel: [`TetReference`] (`Dm⁻¹` and `V₀`),
 //!   [`deformation_gradient`], [`velocity_gradient`], [`nodal_forces`] and
 //!   [`tet_forces`], which returns forces, stress and stored energy of one
@@ -79,6 +81,7 @@
 
 pub mod invariants;
 pub mod law;
+pub mod log1p;
 pub mod params;
 pub mod tet;
 pub mod tet_lanes;

@@ -70,6 +70,15 @@ fn ln64(x_in: f64) -> f64 {
     }
     let s = (m - 1.0) / (m + 1.0);
     let z = s * s;
+    // 2 atanh s = 2s + 2s z p, the small part added last.
+    let ln_m = 2.0 * s + 2.0 * s * z * atanh_tail(z);
+    let k = f64(e);
+    return k * LN2_HI + (ln_m + k * LN2_LO);
+}
+
+// p(z) = 1/3 + z/5 + z^2/7 + ... + z^10/23, so that
+// 2 atanh s = 2s + 2s z p(s^2) for |s| <= 0.1716 (see ln64).
+fn atanh_tail(z: f64) -> f64 {
     var p: f64 = 1.0 / 23.0;
     p = p * z + 1.0 / 21.0;
     p = p * z + 1.0 / 19.0;
@@ -81,10 +90,22 @@ fn ln64(x_in: f64) -> f64 {
     p = p * z + 1.0 / 7.0;
     p = p * z + 1.0 / 5.0;
     p = p * z + 1.0 / 3.0;
-    // 2 atanh s = 2s + 2s z p, the small part added last.
-    let ln_m = 2.0 * s + 2.0 * s * z * p;
-    let k = f64(e);
-    return k * LN2_HI + (ln_m + k * LN2_LO);
+    return p;
+}
+
+// (ln(1 + x), x - ln(1 + x)) for x > -1 without cancellation at small x
+// (femdem_material::log1p): s = x/(2 + x), ln(1 + x) = 2 atanh s and
+// x - ln(1 + x) = s x - 2 s z p(z), z = s^2, for |s| <= 0.1716; plainly
+// outside it, where ln(1 + x) is at most 0.84 of x.
+fn ln1p_and_excess(x: f64) -> vec2<f64> {
+    let s = x / (2.0 + x);
+    if (abs(s) <= 0.1715728752538099) {
+        let z = s * s;
+        let tail = 2.0 * s * z * atanh_tail(z);
+        return vec2<f64>(2.0 * s + tail, s * x - tail);
+    }
+    let plain = ln64(1.0 + x);
+    return vec2<f64>(plain, x - plain);
 }
 
 // exp x (0 below -745.2, +inf above 709.79, NaN for NaN).

@@ -1,4 +1,4 @@
-// ln64 (flags 0) or exp64 (flags 1) of each input, for the ulp tests.
+// ln64 (flags 0), exp64 (1), ln(1 + x) (2) or x - ln(1 + x) (3) of each input, for the ulp tests.
 
 @group(0) @binding(1) var<storage, read> input: array<f64>;
 @group(0) @binding(2) var<storage, read_write> output: array<f64>;
@@ -12,7 +12,11 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
     }
     if (params.flags == 0u) {
         output[i] = ln64(input[i]);
-    } else {
+    } else if (params.flags == 1u) {
         output[i] = exp64(input[i]);
+    } else if (params.flags == 2u) {
+        output[i] = ln1p_and_excess(input[i]).x;
+    } else {
+        output[i] = ln1p_and_excess(input[i]).y;
     }
 }

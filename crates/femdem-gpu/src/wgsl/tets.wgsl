@@ -109,8 +109,20 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         let jh = max(j, J_FLOOR);
         let ln_jh = ln64(jh);
         let du = (lambda * ln_jh - mu) / jh;
-        let u = (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh);
-        w = 0.5 * mu * (frob2(f) - 3.0) + u;
+        // W from H = F - I, without the cancellation of its first-order
+        // terms (femdem_material::law, "Energy at small strains").
+        let hm = f - diag(1.0);
+        let tr = hm[0][0] + hm[1][1] + hm[2][2];
+        let shear = 0.5 * mu * frob2(hm);
+        if (j >= J_FLOOR) {
+            let hh = hm * hm;
+            let i2 = 0.5 * (tr * tr - (hh[0][0] + hh[1][1] + hh[2][2]));
+            let det = dot(hm[0], cofactor(hm)[0]);
+            let lg = ln1p_and_excess(tr + i2 + det);
+            w = shear + mu * (lg.y - (i2 + det)) + 0.5 * lambda * lg.x * lg.x;
+        } else {
+            w = shear + mu * tr + (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh);
+        }
         p = f * mu + (diag(du) + d * eta) * cof;
         let b = f * transpose(f);
         cauchy = b * (mu / jh) + diag((lambda * ln_jh - mu) / jh) + d * eta;

@@ -1,4 +1,4 @@
-//! The kernels' `ln` and `exp` against the CPU's, in units in the last
+//! The kernels' `ln`, `exp` and `ln(1 + x)` against the CPU's, in units in the last
 //! place.
 //!
 //! The tolerance, 4 ulps, is the sum of what each side may leave: the
@@ -77,6 +77,41 @@ fn exp_within_four_ulps() {
     assert!(ulps <= TOLERANCE_ULPS, "exp({at:e}) is {ulps} ulps from the CPU's");
     let edge = evaluate(&gpu().unwrap(), MathFn::Exp, &[0.0, 800.0, -800.0]).unwrap();
     assert_eq!(edge, vec![1.0, f64::INFINITY, 0.0]);
+}
+
+/// `ln(1 + x)` and `x − ln(1 + x)` (the neo-Hookean energy's, from
+/// `J − 1`) against the CPU's (`femdem_material::log1p`) over the series'
+/// range `x ∈ [−0.29, 0.41]`, at strains down to 10⁻¹⁵ and beyond the
+/// range to `J = 10⁻²` and 10². Both sides evaluate the same formula
+/// (the CPU's `ln_1p` outside the series), so within the same 4 ulps as
+/// `ln`: the device's quotient `s` may round differently, and outside
+/// the series its `ln` is within 4 ulps (the difference there: below).
+#[test]
+fn ln1p_and_its_excess_within_four_ulps() {
+    if gpu().is_none() {
+        return;
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(36);
+    let mut xs: Vec<f64> = (0..20_000).map(|_| rng.random_range(-0.29..0.41)).collect();
+    xs.extend((0..20_000).map(|_| rng.random_range(-1.0..1.0) * 10f64.powf(rng.random_range(-15.0..-1.0))));
+    xs.extend((0..5_000).map(|_| rng.random_range(-0.99..99.0)));
+    xs.extend([0.0, 1e-300, -1e-300, 0.4142, -0.2929, 0.4143, -0.293]);
+    let excess = |x: f64| femdem_material::log1p::ln_1p_and_excess(x).1;
+    let (ulps, at) = worst(MathFn::Ln1p, &xs, f64::ln_1p);
+    println!("ln(1 + x): worst {ulps} ulps, at {at:e}");
+    assert!(ulps <= TOLERANCE_ULPS, "ln(1 + {at:e}) is {ulps} ulps from the CPU's");
+    let (series, plain): (Vec<f64>, Vec<f64>) = xs.iter().partition(|&&x| (x / (2.0 + x)).abs() <= 0.1715);
+    let (ulps, at) = worst(MathFn::Excess, &series, excess);
+    println!("x − ln(1 + x), series: worst {ulps} ulps, at {at:e}");
+    assert!(ulps <= TOLERANCE_ULPS, "{at:e} − ln(1 + {at:e}) is {ulps} ulps from the CPU's");
+    // Outside the series the difference is taken plainly, so what each
+    // side's ln(1 + x) may be off (4 ulps of it) is carried over whole, and
+    // the difference rounds once more on each side (an ulp of it).
+    let out = evaluate(&gpu().unwrap(), MathFn::Excess, &plain).unwrap();
+    for (&x, &g) in plain.iter().zip(&out) {
+        let allowed = TOLERANCE_ULPS as f64 * f64::EPSILON * (x.ln_1p().abs() + excess(x).abs());
+        assert!((g - excess(x)).abs() <= allowed, "{x:e} − ln(1 + {x:e}): {g:e} against {:e}", excess(x));
+    }
 }
 
 /// The ulp distance itself: neighbours are 1 apart, across zero counts

@@ -589,6 +589,12 @@ pub enum PartSpec {
         name: Option<String>,
         /// Path, relative to the case file.
         path: String,
+        /// Factor on the file's coordinates, to metres (1e-3 for a file in
+        /// millimetres; default 1).
+        scale: Option<f64>,
+        /// Added to the scaled coordinates, m (a file in site coordinates
+        /// brought near the origin; default none).
+        translate: Option<[f64; 3]>,
     },
 }
 

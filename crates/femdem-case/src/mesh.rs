@@ -146,13 +146,14 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
                 };
                 (name.clone().unwrap_or_else(|| r.clone()), generate_platen(&spec, lo, hi).map_err(fail)?)
             }
-            PartSpec::Msh { name, path } => {
+            PartSpec::Msh { name, path, scale, translate } => {
                 let file = case.dir().join(path);
                 let bytes = std::fs::read(&file).map_err(|e| {
                     case.error_at(span.clone(), format!("{key}.path: cannot read {}: {e}", file.display()))
                 })?;
                 let (mut m, report) = femdem_mesh::msh::read_msh_report(&bytes)
                     .map_err(|e| case.error_at(span.clone(), format!("{key}.path: {}: {e}", file.display())))?;
+                place(&mut m, *scale, *translate).map_err(|e| case.error_at(span.clone(), format!("{key}.{e}")))?;
                 // Volume elements other than linear tets would leave their
                 // part of the body out of the model, silently.
                 let volumes = report.skipped_volumes();
@@ -272,6 +273,35 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
         message: format!("mesh check failed: {e}"),
     })?;
     Ok(mesh)
+}
+
+/// Brings an MSH part's coordinates into the case's: `x ← scale x +
+/// translate`, in that order (each rounded once: a file in site coordinates
+/// keeps every digit it holds of its edges, since `x − x₀` is exact for `x`
+/// within a factor of two of `x₀`). Refuses a `scale` that is not finite
+/// and positive (a negative one would turn every tet inside out) and a
+/// `translate` that is not finite, naming the key.
+fn place(m: &mut TetMesh, scale: Option<f64>, translate: Option<[f64; 3]>) -> Result<(), String> {
+    if let Some(s) = scale
+        && !(s.is_finite() && s > 0.0)
+    {
+        return Err(format!(
+            "scale: the factor on the file's coordinates must be finite and > 0 (1e-3 for a file in millimetres), \
+             got {s}"
+        ));
+    }
+    if let Some(t) = translate
+        && !t.iter().all(|c| c.is_finite())
+    {
+        return Err(format!("translate: every component must be finite (m), got {t:?}"));
+    }
+    let (s, t) = (scale.unwrap_or(1.0), translate.unwrap_or([0.0; 3]));
+    if s != 1.0 || t != [0.0; 3] {
+        for x in &mut m.coords {
+            *x = [0, 1, 2].map(|k| s * x[k] + t[k]);
+        }
+    }
+    Ok(())
 }
 
 /// `e`, a check of one part's mesh `body`, with where its tets are: their

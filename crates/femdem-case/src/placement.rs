@@ -6,8 +6,10 @@
 //! from the origin (an MSH file in site coordinates, a UTM easting of
 //! 5·10⁵ m under millimetre elements) loses those increments and openings
 //! to round-off, and its runs change with where it sits. femdem does not
-//! translate the mesh itself (its inputs — boxes, probes, outputs — are
-//! all in the case's coordinates); it says so.
+//! translate the mesh by itself (its inputs — boxes, probes, outputs — are
+//! all in the case's coordinates); it says so, and proposes a round shift
+//! for an MSH part's `translate` key, which moves the file's coordinates
+//! into the case's as they are read (`mesh.rs`, `place`).
 
 use femdem_mesh::TetMesh;
 
@@ -36,15 +38,30 @@ pub fn warning(mesh: &TetMesh) -> Option<String> {
         return None;
     }
     let roundoff = f64::EPSILON * far;
+    // A round shift that brings the centre within a power of ten of the
+    // size, p = 10^k ≥ extent: |x + t| ≤ p/2 + extent/2 ≤ p. Rounded by an
+    // integer power of ten (exact) so that it prints as a round number.
+    let k = extent.log10().ceil();
+    let shift = if k < 0.0 {
+        let q = 10f64.powf(-k);
+        centre.map(|c| -(c * q).round() / q)
+    } else {
+        let p = 10f64.powf(k);
+        centre.map(|c| -(c / p).round() * p)
+    };
     Some(format!(
         "mesh: the mesh's centre lies {offset:.4e} m from the origin, {:.1e} times its size ({extent:.3e} m) and \
          {:.1e} times its shortest edge ({shortest:.3e} m): a coordinate there carries a round-off of about \
          {roundoff:.1e} m, {:.1e} of that edge, which a step's position increments (some 10⁻⁶ of an edge) and the \
          joints' openings before their peak (some 10⁻⁵) feel, so results change with where the mesh sits; \
-         translate the mesh near the origin (its coordinates in the MSH file or the case)",
+         translate the mesh near the origin: an MSH part's `translate = [{}, {}, {}]` (then give the case's \
+         boxes and points in the shifted coordinates), or the coordinates in the file or the case",
         offset / extent,
         far / shortest,
-        roundoff / shortest
+        roundoff / shortest,
+        shift[0] + 0.0,
+        shift[1] + 0.0,
+        shift[2] + 0.0
     ))
 }
 
@@ -77,6 +94,8 @@ mod tests {
         let w = at([5e5, 5e6, 0.0]).expect("a warning");
         assert!(w.contains("the mesh's centre lies 5.0249e6 m from the origin"), "{w}");
         assert!(w.contains("a round-off of about 1.1e-9 m"), "{w}");
+        // The cube is 17 mm across its diagonal: shifts in multiples of 0.1 m.
+        assert!(w.contains("`translate = [-500000, -5000000, 0]`"), "{w}");
         let mut centred = generate_box(&BoxSpec {
             min: [-0.005; 3],
             max: [0.005; 3],

@@ -46,6 +46,9 @@ struct CheckReport {
     interface_joints: usize,
     interior_faces: usize,
     initial_contact_faces: usize,
+    /// The mesh's bounding box, `[min, max]`, m (a file in millimetres
+    /// shows here a thousand times too large).
+    bounds: Option<[[f64; 3]; 2]>,
     min_volume: f64,
     volume: f64,
     min_edge: f64,
@@ -116,6 +119,7 @@ pub fn run(
         interface_joints: jointed.interface_joints,
         interior_faces,
         initial_contact_faces: jointed.initial_contacts.len(),
+        bounds: mesh.bounding_box().map(|(lo, hi)| [lo, hi]),
         min_volume: s.min_volume,
         volume: s.volume,
         min_edge: s.min_edge,
@@ -180,6 +184,10 @@ fn print_text(r: &CheckReport) {
     );
     println!("interior faces (jointed|jointed, not pre-fractured)       {}", r.interior_faces);
     println!("initial contact faces (pre-existing fractures)            {}", r.initial_contact_faces);
+    if let Some([lo, hi]) = r.bounds {
+        let xyz = |p: [f64; 3]| format!("({:.6e}, {:.6e}, {:.6e})", p[0], p[1], p[2]);
+        println!("bounds    {} to {} m", xyz(lo), xyz(hi));
+    }
     println!("volume    {:.6e} m³   min tet volume {:.3e} m³", r.volume, r.min_volume);
     println!("edges     min {:.4e} m   mean {:.4e} m", r.min_edge, r.mean_edge);
     println!(

@@ -118,6 +118,46 @@ fn gmsh_case_reads_the_binary_twin_alike() {
     assert_eq!(faces(&binary), faces(&ascii));
 }
 
+/// An MSH part's `scale` and `translate` bring the file's coordinates
+/// into the case's, `x ← scale x + translate`: the same tets and joints,
+/// volumes times `scale³` and edges times `scale` (to round-off, 10⁻¹²),
+/// the bounding box moved and scaled alike; a `translate` that is not
+/// finite is refused naming the key.
+#[test]
+fn an_msh_part_is_scaled_then_translated() {
+    let case = "crates/femdem-cli/tests/cases/gmsh_inclusion.toml";
+    let plain = check_json(case);
+    let (scale, shift): (f64, [f64; 3]) = (2.5, [1.0, -2.0, 0.5]);
+    let out = femdem(&[
+        "check",
+        case,
+        "--json",
+        "--set",
+        "mesh.parts.0.scale=2.5",
+        "--set",
+        "mesh.parts.0.translate=[1.0, -2.0, 0.5]",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let placed: Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["tets", "nodes", "joints", "interface_joints", "interior_faces"] {
+        assert_eq!(placed[key], plain[key], "{key}");
+    }
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+    let f = |r: &Value, key: &str| r[key].as_f64().unwrap();
+    assert!(close(f(&placed, "volume"), scale.powi(3) * f(&plain, "volume")));
+    assert!(close(f(&placed, "min_edge"), scale * f(&plain, "min_edge")));
+    for side in 0..2 {
+        for k in 0..3 {
+            let (p, q) = (plain["bounds"][side][k].as_f64().unwrap(), placed["bounds"][side][k].as_f64().unwrap());
+            assert!(close(q, scale * p + shift[k]), "bounds[{side}][{k}]: {q} against {p}");
+        }
+    }
+    let out = femdem(&["check", case, "--set", "mesh.parts.0.translate=[0.0, nan, 0.0]"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("mesh.parts[0].translate: every component must be finite (m), got [0.0, NaN, 0.0]"), "{err}");
+}
+
 /// A truncated binary MSH file is refused naming the file, the section and
 /// the byte.
 #[test]
@@ -249,6 +289,7 @@ fn bad_cases_are_refused_with_file_line_and_key() {
         ("load_without_kind.toml", ":26:1:", "loads[2]: missing field `kind`"),
         ("group_names_collide.toml", ":12:1:", "mesh.parts[1]: its boundary group `a.b.c` has the name of a group"),
         ("no_physical_volume.toml", ":8:1:", "no_physical_volume.msh belong to no physical volume"),
+        ("msh_scale_negative.toml", ":11:1:", "mesh.parts[0].scale: the factor on the file's coordinates must be"),
     ];
     for (file, at, words) in expected {
         let path = format!("{dir}/{file}");

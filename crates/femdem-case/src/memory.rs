@@ -6,7 +6,7 @@
 //! vertices; an extrusion about `3 × layers × A / (√3/4 h²)` tets (the
 //! estimate its generator refuses above 2e8), on about half as many
 //! vertices per layer as triangles; an MSH file is read (its size is the
-//! file's). A breakable region's tets own their four nodes after joint
+//! file's) and placed by its `scale` and `translate`. A breakable region's tets own their four nodes after joint
 //! insertion and carry a joint on each interior face, about two per tet;
 //! an unbreakable region keeps its vertices and has no joints. With
 //! `joints_within`, the jointed share `s` of a part's tets is the share of
@@ -177,9 +177,12 @@ pub fn estimate(case: &LoadedCase) -> Option<Estimate> {
                 let (tets, vertices) = box_counts([0.0; 3], size, *element_size)?;
                 out.add(tets, vertices, if breakable(region) { 1.0 } else { 0.0 });
             }
-            PartSpec::Msh { path, .. } => {
+            PartSpec::Msh { path, scale, translate, .. } => {
                 let bytes = std::fs::read(case.dir().join(path)).ok()?;
-                let mesh = femdem_mesh::msh::read_msh(&bytes).ok()?;
+                let mut mesh = femdem_mesh::msh::read_msh(&bytes).ok()?;
+                // In the case's coordinates, as the mesh will be: its
+                // bounds size a later platen, its centroids meet the zones.
+                crate::mesh::place(&mut mesh, *scale, *translate).ok()?;
                 let (b_lo, b_hi) = mesh.bounding_box()?;
                 for (r, region) in mesh.regions.iter().enumerate() {
                     let of_region: Vec<usize> =

@@ -276,12 +276,14 @@ pub fn build_mesh_noting(case: &LoadedCase, warnings: &mut Vec<String>) -> Resul
 }
 
 /// Brings an MSH part's coordinates into the case's: `x ← scale x +
-/// translate`, in that order (each rounded once: a file in site coordinates
-/// keeps every digit it holds of its edges, since `x − x₀` is exact for `x`
-/// within a factor of two of `x₀`). Refuses a `scale` that is not finite
-/// and positive (a negative one would turn every tet inside out) and a
-/// `translate` that is not finite, naming the key.
-fn place(m: &mut TetMesh, scale: Option<f64>, translate: Option<[f64; 3]>) -> Result<(), String> {
+/// translate`, rounded once (a fused multiply–add: a file in site
+/// coordinates keeps every digit it holds of its edges, since the shift of
+/// `x` by a nearby `−x₀` is exact). Refuses a `scale` that is not finite
+/// and positive (a negative one would turn every tet inside out), a
+/// `translate` that is not finite, and a placement that takes a
+/// coordinate out of the finite numbers, naming the key (without the
+/// part's, which the caller adds).
+pub(crate) fn place(m: &mut TetMesh, scale: Option<f64>, translate: Option<[f64; 3]>) -> Result<(), String> {
     if let Some(s) = scale
         && !(s.is_finite() && s > 0.0)
     {
@@ -298,7 +300,14 @@ fn place(m: &mut TetMesh, scale: Option<f64>, translate: Option<[f64; 3]>) -> Re
     let (s, t) = (scale.unwrap_or(1.0), translate.unwrap_or([0.0; 3]));
     if s != 1.0 || t != [0.0; 3] {
         for x in &mut m.coords {
-            *x = [0, 1, 2].map(|k| s * x[k] + t[k]);
+            *x = [0, 1, 2].map(|k| s.mul_add(x[k], t[k]));
+        }
+        if let Some(x) = m.coords.iter().find(|x| !x.iter().all(|c| c.is_finite())) {
+            let key = if scale.is_some() { "scale" } else { "translate" };
+            return Err(format!(
+                "{key}: the placed mesh has a coordinate that is not a finite number ({x:?}): the scale or the \
+                 shift is too large"
+            ));
         }
     }
     Ok(())

@@ -30,7 +30,7 @@ pub fn warning(mesh: &TetMesh) -> Option<String> {
     let offset = centre.iter().map(|c| c * c).sum::<f64>().sqrt();
     let extent = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
     let far = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).fold(0.0f64, f64::max);
-    if !(far.is_finite() && offset > extent) {
+    if !(far.is_finite() && extent > 0.0 && offset > extent) {
         return None;
     }
     let (shortest, _) = crate::refinement::shortest_edge(mesh, |_, _| true)?;
@@ -38,10 +38,12 @@ pub fn warning(mesh: &TetMesh) -> Option<String> {
         return None;
     }
     let roundoff = f64::EPSILON * far;
-    // A round shift that brings the centre within a power of ten of the
-    // size, p = 10^k ≥ extent: |x + t| ≤ p/2 + extent/2 ≤ p. Rounded by an
-    // integer power of ten (exact) so that it prints as a round number.
-    let k = extent.log10().ceil();
+    // A round shift that brings the centre within the size: rounded to a
+    // multiple of p = 10^k ≤ extent, each coordinate of the centre ends
+    // within p/2, the centre within √3 p/2 < extent (so this warning is not
+    // given again). Rounded by an integer power of ten (exact) so that it
+    // prints as a round number.
+    let k = extent.log10().floor();
     let shift = if k < 0.0 {
         let q = 10f64.powf(-k);
         centre.map(|c| -(c * q).round() / q)
@@ -54,8 +56,9 @@ pub fn warning(mesh: &TetMesh) -> Option<String> {
          {:.1e} times its shortest edge ({shortest:.3e} m): a coordinate there carries a round-off of about \
          {roundoff:.1e} m, {:.1e} of that edge, which a step's position increments (some 10⁻⁶ of an edge) and the \
          joints' openings before their peak (some 10⁻⁵) feel, so results change with where the mesh sits; \
-         translate the mesh near the origin: an MSH part's `translate = [{}, {}, {}]` (then give the case's \
-         boxes and points in the shifted coordinates), or the coordinates in the file or the case",
+         move the mesh near the origin, e.g. by [{}, {}, {}] m: for an MSH part, add that to its `translate` \
+         (and give the case's boxes and points in the shifted coordinates), or change the coordinates in the \
+         file or the case",
         offset / extent,
         far / shortest,
         roundoff / shortest,
@@ -94,8 +97,16 @@ mod tests {
         let w = at([5e5, 5e6, 0.0]).expect("a warning");
         assert!(w.contains("the mesh's centre lies 5.0249e6 m from the origin"), "{w}");
         assert!(w.contains("a round-off of about 1.1e-9 m"), "{w}");
-        // The cube is 17 mm across its diagonal: shifts in multiples of 0.1 m.
-        assert!(w.contains("`translate = [-500000, -5000000, 0]`"), "{w}");
+        // The cube is 17 mm across its diagonal: a shift in multiples of
+        // 10 mm, which brings its centre (5e5 + 0.005, 5e6 + 0.005, 0.005)
+        // within 10 mm of the origin.
+        let by = &w[w.find("by [").expect("a shift") + 4..];
+        let shift: Vec<f64> = by[..by.find(']').unwrap()].split(", ").map(|c| c.parse().unwrap()).collect();
+        let centre = [5e5 + 0.005, 5e6 + 0.005, 0.005];
+        for k in 0..3 {
+            assert!((centre[k] + shift[k]).abs() <= 0.005 + 1e-9, "{w}");
+            assert!(((shift[k] * 100.0).round() - shift[k] * 100.0).abs() < 1e-6, "{w}");
+        }
         let mut centred = generate_box(&BoxSpec {
             min: [-0.005; 3],
             max: [0.005; 3],

@@ -58,7 +58,10 @@ pub fn check(mesh: &TetMesh) -> Result<(), MeshError> {
     let bad = mesh.tets.par_iter().enumerate().find_first(|(t, _)| {
         let p = mesh.tet_points(*t);
         let lmax = edge_lengths(&p).into_iter().fold(0.0, f64::max);
-        signed_volume(&p) <= DEGENERATE_VOLUME_RATIO * lmax.powi(3)
+        // A volume that is not a number (coordinates so large that their
+        // products overflow) is bad too.
+        let volume = signed_volume(&p);
+        volume.is_nan() || volume <= DEGENERATE_VOLUME_RATIO * lmax.powi(3)
     });
     if let Some((t, _)) = bad {
         let volume = signed_volume(&mesh.tet_points(t));

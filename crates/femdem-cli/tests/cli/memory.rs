@@ -99,3 +99,28 @@ fn a_mesh_refined_beyond_its_sizes_is_named_and_checked_again_once_built() {
     }
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// An MSH part is estimated where its `scale` and `translate` put it: a
+/// platen after it takes its default extent from the placed mesh (the
+/// fixture's 10 mm cube scaled to 10 m), so the estimate is the one with
+/// that extent given, 10 m × 10 m; from the file's own coordinates it
+/// would be a platen of 10 mm (six tets instead of 600).
+#[test]
+fn an_msh_part_is_estimated_where_it_is_placed() {
+    let case = root().join("tests/cases/scaled_msh_with_platen.toml");
+    let case = case.to_str().unwrap();
+    let report = |sets: &[&str]| {
+        let mut args = vec!["check", case, "--json"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        let out = femdem(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let default = report(&[]);
+    let given = report(&["mesh.parts.1.extent=[10.0, 10.0]"]);
+    assert_eq!(default["tets"], given["tets"]);
+    assert_eq!(default["tets"], 403 + 600);
+    assert_eq!(default["estimated_memory_bytes"], given["estimated_memory_bytes"]);
+}

@@ -109,19 +109,22 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(num_workgroups) nwg: vec3
         let jh = max(j, J_FLOOR);
         let ln_jh = ln64(jh);
         let du = (lambda * ln_jh - mu) / jh;
-        // W from H = F - I, without the cancellation of its first-order
-        // terms (femdem_material::law, "Energy at small strains").
+        // W from the Green-Lagrange strain E = (H + H^T + H^T H)/2,
+        // H = F - I, where it is small and J > 0, without the cancellation of its
+        // first-order terms; as written elsewhere (femdem_material::law,
+        // "Energy at small strains"): y = J^2 - 1 = 2 tr E + 4 I2(E) + 8 det E.
         let hm = f - diag(1.0);
-        let tr = hm[0][0] + hm[1][1] + hm[2][2];
-        let shear = 0.5 * mu * frob2(hm);
-        if (j >= J_FLOOR) {
-            let hh = hm * hm;
-            let i2 = 0.5 * (tr * tr - (hh[0][0] + hh[1][1] + hh[2][2]));
-            let det = dot(hm[0], cofactor(hm)[0]);
-            let lg = ln1p_and_excess(tr + i2 + det);
-            w = shear + mu * (lg.y - (i2 + det)) + 0.5 * lambda * lg.x * lg.x;
+        let e = (hm + transpose(hm) + transpose(hm) * hm) * 0.5;
+        // C = F^T F cannot tell a reflection from no deformation: J > 0 too.
+        if (j > 0.0 && frob2(e) < 1.0e-2) {
+            let tr = e[0][0] + e[1][1] + e[2][2];
+            let i2 = 0.5 * (tr * tr - frob2(e));
+            let det = dot(e[0], cross(e[1], e[2]));
+            let lg = ln1p_and_excess(2.0 * tr + 4.0 * i2 + 8.0 * det);
+            w = 0.5 * mu * lg.y - 2.0 * mu * i2 - 4.0 * mu * det + 0.125 * lambda * lg.x * lg.x;
         } else {
-            w = shear + mu * tr + (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh);
+            let u = (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh);
+            w = 0.5 * mu * (frob2(f) - 3.0) + u;
         }
         p = f * mu + (diag(du) + d * eta) * cof;
         let b = f * transpose(f);

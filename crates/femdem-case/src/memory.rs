@@ -6,9 +6,10 @@
 //! vertices; an extrusion about `3 × layers × A / (√3/4 h²)` tets (the
 //! estimate its generator refuses above 2e8), on about half as many
 //! vertices per layer as triangles; an MSH file is read (its size is the
-//! file's) and placed by its `scale` and `translate`. A breakable region's tets own their four nodes after joint
-//! insertion and carry a joint on each interior face, about two per tet;
-//! an unbreakable region keeps its vertices and has no joints. With
+//! file's) and placed by its `scale` and `translate`. A breakable region's
+//! tets own their four nodes after joint insertion and carry a joint on
+//! each interior face, about two per tet; an unbreakable region keeps its
+//! vertices and has no joints. With
 //! `joints_within`, the jointed share `s` of a part's tets is the share of
 //! its volume in the zones (sampled on a grid, `crate::zones::sampled_share`;
 //! exact from the centroids for an MSH part; 1 for a platen part, whose

@@ -140,14 +140,21 @@ pub(crate) fn sym(a: &Mat3) -> Mat3 {
 /// `tr B − 3 = tr C − 3 = 2 tr E` and `ln J = ½ ln(1 + y)`.
 #[inline]
 fn neo_hookean_energy(lambda: Real, mu: Real, f: &Mat3, j: Real, jh: Real, ln_jh: Real, du: Real) -> Real {
-    let h = f - Mat3::identity();
-    let e = (h + h.transpose() + h.transpose() * h) * 0.5;
+    let e = green_lagrange(f);
     // C = FᵀF cannot tell a reflection from no deformation: J > 0 too.
     if j > 0.0 && e.norm_squared() < 1e-2 {
         energy_from_strain(lambda, mu, &e)
     } else {
         0.5 * mu * (f.norm_squared() - 3.0) + (0.5 * lambda * ln_jh - mu) * ln_jh + du * (j - jh)
     }
+}
+
+/// The Green–Lagrange strain `E = ½ (FᵀF − I)`, as `½ (H + Hᵀ + HᵀH)`,
+/// `H = F − I`, so that a small strain keeps its digits.
+#[inline]
+fn green_lagrange(f: &Mat3) -> Mat3 {
+    let h = f - Mat3::identity();
+    (h + h.transpose() + h.transpose() * h) * 0.5
 }
 
 /// `W` from the Green–Lagrange strain `e`, for `J > 0`
@@ -391,8 +398,7 @@ mod tests {
         let turn = nalgebra::Rotation3::from_axis_angle(&femdem_core::Vec3::x_axis(), 0.7);
         for size in [0.07, 0.1, 0.2, 0.4] {
             for f in [Mat3::identity() + general * size, turn.matrix() * (Mat3::identity() + general * size)] {
-                let h = f - Mat3::identity();
-                let e = (h + h.transpose() + h.transpose() * h) * 0.5;
+                let e = green_lagrange(&f);
                 let written = strain_energy_density(Law::NeoHookean, &m, &f);
                 let j = f.determinant();
                 let from_strain = energy_from_strain(m.lambda(), m.mu(), &e);
